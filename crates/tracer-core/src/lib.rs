@@ -1,0 +1,31 @@
+//! # tracer-core: the raygine renderer as a library
+//!
+//! ```text
+//!  .shp / .brs file ──shp::load──▶ ShpDescription (plain data, line numbers)
+//!                                        │ scene::Scene::build (+ sidecar: materials, lights, camera)
+//!                                        ▼
+//!                                      Scene ──bvh::Bvh::build──▶ BVH over world triangles
+//!                                        │
+//!                     shading::radiance (direct light E = I cos θ / R², Lambert + Blinn-Phong, mirrors)
+//!                                        │
+//!                     render (tiles, passes, samples seeded by pixel and sample index)
+//!                                        ▼
+//!                                Film (linear HDR cd/m², per-pixel illuminance lx)
+//!                                        │ display (exposure, tone map, sRGB, false colour)
+//!                                        ▼
+//!                                    PNG / EXR
+//! ```
+//!
+//! Units: lengths in the scene unit (mm, cm or m, see [`scene::LengthUnit`]); light is photometric
+//! SI: intensity in candela, illuminance in lux, luminance in cd/m². Angles are radians inside.
+//! This crate knows nothing of egui, dialogs or UI threads.
+
+pub mod bvh;
+pub mod display;
+pub mod geometry;
+pub mod render;
+pub mod scene;
+pub mod shading;
+pub mod shp;
+
+pub use geometry::{Aabb, Ray};

@@ -1,0 +1,1 @@
+//! End-to-end tests of the `raygine` binary live in `tests/tests/`.
