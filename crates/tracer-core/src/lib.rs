@@ -22,6 +22,7 @@
 
 pub mod bvh;
 pub mod display;
+pub mod export;
 pub mod geometry;
 pub mod render;
 pub mod scene;

@@ -1,1 +1,102 @@
-//! TODO module
+//! Tiles, passes and threads: turning the integrator into images. One-shot rendering lives here;
+//! the progressive session of the viewer builds on the same film, sampler and tile order.
+
+mod film;
+mod sampler;
+mod tiles;
+
+pub use film::Film;
+pub use sampler::{pixel_sample_offset, sample_hash};
+pub use tiles::{Tile, tiles_centre_out};
+
+use crate::scene::{Scene, Setup};
+use crate::shading::{Prepared, trace};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Default maximum number of mirror reflections.
+pub const DEFAULT_MAX_DEPTH: u32 = 5;
+
+/// What to render, independent of the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel: sample 0 at the pixel centre, later ones jittered.
+    pub samples_per_pixel: u32,
+    /// Maximum mirror reflections after the camera ray.
+    pub max_depth: u32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            width: 1280,
+            height: 720,
+            samples_per_pixel: 1,
+            max_depth: DEFAULT_MAX_DEPTH,
+        }
+    }
+}
+
+/// Statistics of a finished render.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    pub rays: u64,
+    pub elapsed_secs: f64,
+}
+
+impl RenderStats {
+    pub fn mrays_per_sec(&self) -> f64 {
+        if self.elapsed_secs > 0.0 {
+            self.rays as f64 / self.elapsed_secs / 1e6
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Tile edge in pixels for one-shot renders.
+pub const TILE_SIZE: u32 = 32;
+
+/// Renders every sample of every pixel on the current rayon pool. The result does not depend on
+/// the number of threads: each sample's position comes from (pixel, sample index) only.
+pub fn render(scene: &Scene, setup: &Setup, settings: &RenderSettings) -> (Film, RenderStats) {
+    let started = std::time::Instant::now();
+    let prep = Prepared::new(scene, setup, settings.max_depth);
+    let basis = setup
+        .camera
+        .basis(setup.handedness, settings.width, settings.height);
+    let tiles = tiles_centre_out(settings.width, settings.height, TILE_SIZE);
+    let rays = AtomicU64::new(0);
+    let spp = settings.samples_per_pixel.max(1);
+    let done: Vec<(Tile, Vec<film::PixelSum>)> = tiles
+        .into_par_iter()
+        .map(|tile| {
+            let mut out = Vec::with_capacity(tile.pixel_count());
+            let mut tile_rays = 0u64;
+            for (x, y) in tile.pixels() {
+                let mut sum = film::PixelSum::default();
+                for s in 0..spp {
+                    let (dx, dy) = pixel_sample_offset(x, y, settings.width, s);
+                    let ray = basis.ray(x as f32 + dx, y as f32 + dy);
+                    let sample = trace(&prep, &ray);
+                    tile_rays += u64::from(sample.rays);
+                    sum.add(&sample);
+                }
+                out.push(sum);
+            }
+            rays.fetch_add(tile_rays, Ordering::Relaxed);
+            (tile, out)
+        })
+        .collect();
+    let mut film = Film::new(settings.width, settings.height);
+    for (tile, sums) in done {
+        film.add_tile(&tile, &sums);
+    }
+    let stats = RenderStats {
+        rays: rays.into_inner(),
+        elapsed_secs: started.elapsed().as_secs_f64(),
+    };
+    (film, stats)
+}

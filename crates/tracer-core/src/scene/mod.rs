@@ -1,1 +1,84 @@
-//! TODO module
+//! From a plain `.shp` description to a renderable scene: world-space geometry with its BVH
+//! ([`Scene`], immutable, shared) and the editable [`Setup`] (camera, lights, materials).
+
+mod builtin;
+mod camera;
+mod error;
+mod geometry;
+mod light;
+mod material;
+mod setup;
+mod sidecar;
+pub mod transform;
+mod units;
+
+pub use builtin::{BUILTIN_NAME, builtin_cornell_box};
+pub use camera::{Camera, CameraBasis};
+pub use error::SceneError;
+pub use geometry::{Brep, Scene, SlotOwner};
+pub use light::{LUMINANCE_WEIGHTS, PointLight, luminance};
+pub use material::Material;
+pub use setup::{DEFAULT_FOV_DEG, Setup, default_light, framing_camera};
+pub use sidecar::{Sidecar, sidecar_path};
+pub use units::{Handedness, LengthUnit};
+
+use std::path::Path;
+use std::time::Instant;
+
+/// A scene ready to render, with the setup its sidecar (or the defaults) gave it.
+#[derive(Debug)]
+pub struct LoadedScene {
+    pub scene: Scene,
+    pub setup: Setup,
+    /// Non-fatal problems to show the user (unknown material keys, clamped values, unit hints).
+    pub warnings: Vec<String>,
+    /// Wall time of reading and parsing the files, seconds (the BVH build is in the scene).
+    pub parse_secs: f64,
+}
+
+/// Where the setup comes from when loading.
+#[derive(Clone, Debug, Default)]
+pub struct LoadOptions<'a> {
+    /// `--units`: wins over the sidecar.
+    pub unit: Option<crate::scene::LengthUnit>,
+    /// An explicit sidecar file instead of `NAME.raygine.toml` next to the scene.
+    pub sidecar: Option<&'a Path>,
+}
+
+/// Reads a `.shp` (and the `.brs` files it names), builds the scene and applies its sidecar.
+pub fn load(path: &Path, options: &LoadOptions<'_>) -> Result<LoadedScene, SceneError> {
+    let started = Instant::now();
+    let desc = crate::shp::load(path)?;
+    let parse_secs = started.elapsed().as_secs_f64();
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".to_owned());
+    let scene = Scene::build(&desc, &name)?;
+    let sidecar_file = options
+        .sidecar
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| sidecar_path(path));
+    let sidecar = match options.sidecar {
+        Some(p) => Some(Sidecar::parse(
+            &std::fs::read_to_string(p).map_err(|source| SceneError::SidecarIo {
+                path: p.to_owned(),
+                source,
+            })?,
+            p,
+        )?),
+        None => Sidecar::read_if_present(&sidecar_file)?,
+    }
+    .unwrap_or_default();
+    let mut warnings = Vec::new();
+    let setup = sidecar.apply(&scene, options.unit, &mut warnings);
+    if let Some(hint) = setup.unit.size_hint(scene.bounds.extent().length()) {
+        warnings.push(format!("hint: {hint}"));
+    }
+    Ok(LoadedScene {
+        scene,
+        setup,
+        warnings,
+        parse_secs,
+    })
+}

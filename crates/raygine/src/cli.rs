@@ -1,0 +1,118 @@
+//! Command-line interface. `raygine render` keeps the coursework renderer's interface:
+//! `raygine render -S scene.shp -W 1280 -H 720 -I 100 -A -R out.png lx ly lz cx cy cz cf`.
+
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+use tracer_core::display::ToneMap;
+use tracer_core::scene::LengthUnit;
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "raygine",
+    version,
+    about = "Interactive progressive ray tracer for lighting design"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// Scene to open (Lumicept .shp); the built-in Cornell box when absent.
+    pub scene: Option<PathBuf>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render a scene to a PNG (and optionally an EXR) without a window.
+    Render(RenderArgs),
+}
+
+#[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
+pub struct RenderArgs {
+    /// Scene file (Lumicept .shp). Without it, the built-in Cornell box.
+    #[arg(
+        short = 'S',
+        long = "scene_path",
+        visible_alias = "scene-path",
+        value_name = "PATH"
+    )]
+    pub scene_path: Option<PathBuf>,
+    /// Image width in pixels.
+    #[arg(short = 'W', long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub width: u32,
+    /// Image height in pixels.
+    #[arg(short = 'H', long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub height: u32,
+    /// Intensity of the first point light, candela (cd).
+    #[arg(short = 'I', long, value_name = "CD")]
+    pub intensity: Option<f32>,
+    /// Antialiasing: 16 jittered samples per pixel.
+    #[arg(short = 'A', long)]
+    pub antialiased: bool,
+    /// Output PNG (default: the scene's path with .png; cornell_box.png for the built-in scene).
+    #[arg(
+        short = 'R',
+        long = "render_path",
+        visible_alias = "render-path",
+        value_name = "PATH"
+    )]
+    pub render_path: Option<PathBuf>,
+    /// Samples per pixel (overrides -A).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub samples: Option<u32>,
+    /// Maximum mirror reflection depth.
+    #[arg(long, default_value_t = tracer_core::render::DEFAULT_MAX_DEPTH, value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub depth: u32,
+    /// Exposure in stops (0: 100 cd/m² is display white). Default 0.
+    #[arg(
+        long,
+        value_name = "STOPS",
+        allow_hyphen_values = true,
+        conflicts_with = "auto_exposure"
+    )]
+    pub exposure: Option<f32>,
+    /// Choose the exposure from the image (log-average luminance to middle grey).
+    #[arg(long)]
+    pub auto_exposure: bool,
+    /// Tone curve: clamp, reinhard or filmic.
+    #[arg(long, default_value = "filmic", value_parser = parse_tone_map)]
+    pub tone_map: ToneMap,
+    /// Point the camera looks at, `x,y,z` (default: the scene's, or -Z from a camera placed by
+    /// the positional arguments).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub look_at: Option<[f32; 3]>,
+    /// Scene length unit: mm, cm or m (default: the sidecar's, else mm).
+    #[arg(long, value_name = "UNIT")]
+    pub units: Option<LengthUnit>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub threads: Option<u32>,
+    /// Also write the linear image (cd/m² per channel) as OpenEXR.
+    #[arg(long, value_name = "PATH")]
+    pub exr: Option<PathBuf>,
+    /// Sidecar with materials, lights and camera (default: NAME.raygine.toml beside the scene).
+    #[arg(long, value_name = "PATH")]
+    pub sidecar: Option<PathBuf>,
+    /// Light position, camera position and vertical field of view (degrees):
+    /// `lx ly lz cx cy cz cf`, or any prefix of them.
+    #[arg(value_name = "LX LY LZ CX CY CZ CF", num_args = 0..=7)]
+    pub positional: Vec<f32>,
+}
+
+fn parse_tone_map(s: &str) -> Result<ToneMap, String> {
+    ToneMap::from_name(s).ok_or_else(|| format!("unknown tone map `{s}` (clamp, reinhard, filmic)"))
+}
+
+/// Parses `x,y,z` (spaces allowed) into three finite numbers.
+pub fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [x, y, z] = parts.as_slice() else {
+        return Err(format!("expected x,y,z, got `{s}`"));
+    };
+    let num = |t: &str| -> Result<f32, String> {
+        t.parse::<f32>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| format!("`{t}` is not a finite number"))
+    };
+    Ok([num(x)?, num(y)?, num(z)?])
+}

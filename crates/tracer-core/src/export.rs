@@ -1,0 +1,103 @@
+//! Writing images without ever leaving a half-written file: encode to a temporary file in the
+//! destination's folder, then rename it into place. On failure the temporary file is removed and
+//! any existing file at the destination is untouched.
+
+use crate::render::Film;
+use image::{ImageFormat, Rgb32FImage, RgbaImage};
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    #[error("{}: {reason}", path.display())]
+    Io { path: PathBuf, reason: String },
+    #[error("{}: cannot encode the image: {reason}", path.display())]
+    Encode { path: PathBuf, reason: String },
+}
+
+/// Writes RGBA8 pixels (row-major, top row first) as a PNG.
+pub fn write_png(path: &Path, rgba: Vec<u8>, width: u32, height: u32) -> Result<(), ExportError> {
+    let img = RgbaImage::from_raw(width, height, rgba).ok_or_else(|| ExportError::Encode {
+        path: path.to_owned(),
+        reason: "pixel buffer does not match the image size".to_owned(),
+    })?;
+    write_atomically(path, |w| {
+        let encoder = image::codecs::png::PngEncoder::new_with_quality(
+            w,
+            image::codecs::png::CompressionType::Fast,
+            image::codecs::png::FilterType::Adaptive,
+        );
+        img.write_with_encoder(encoder).map_err(|e| e.to_string())
+    })
+}
+
+/// Writes the film's mean linear luminance per channel (cd/m²) as OpenEXR (32-bit float).
+pub fn write_exr(path: &Path, film: &Film) -> Result<(), ExportError> {
+    let data: Vec<f32> = film
+        .mean_rgb_all()
+        .iter()
+        .flat_map(|v| v.to_array())
+        .collect();
+    let img = Rgb32FImage::from_raw(film.width, film.height, data).ok_or_else(|| {
+        ExportError::Encode {
+            path: path.to_owned(),
+            reason: "pixel buffer does not match the image size".to_owned(),
+        }
+    })?;
+    write_atomically(path, |w| {
+        let mut buf = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut buf, ImageFormat::OpenExr)
+            .map_err(|e| e.to_string())?;
+        w.write_all(buf.get_ref()).map_err(|e| e.to_string())
+    })
+}
+
+/// Writes text (a sidecar) atomically.
+pub fn write_text(path: &Path, text: &str) -> Result<(), ExportError> {
+    write_atomically(path, |w| {
+        w.write_all(text.as_bytes()).map_err(|e| e.to_string())
+    })
+}
+
+fn write_atomically(
+    path: &Path,
+    encode: impl FnOnce(&mut BufWriter<std::fs::File>) -> Result<(), String>,
+) -> Result<(), ExportError> {
+    let io_err = |reason: String| ExportError::Io {
+        path: path.to_owned(),
+        reason,
+    };
+    if path.is_dir() {
+        return Err(io_err("is a directory".to_owned()));
+    }
+    let file_name = path
+        .file_name()
+        .ok_or_else(|| io_err("not a file path".to_owned()))?;
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let tmp = dir.join(format!(
+        ".{}.{}.tmp",
+        file_name.to_string_lossy(),
+        std::process::id()
+    ));
+    let result = (|| {
+        let file = std::fs::File::create(&tmp).map_err(|e| io_err(format!("cannot write: {e}")))?;
+        let mut w = BufWriter::new(file);
+        encode(&mut w).map_err(|reason| ExportError::Encode {
+            path: path.to_owned(),
+            reason,
+        })?;
+        let file = w
+            .into_inner()
+            .map_err(|e| io_err(format!("cannot write: {}", e.error())))?;
+        file.sync_all()
+            .map_err(|e| io_err(format!("cannot write: {e}")))?;
+        std::fs::rename(&tmp, path).map_err(|e| io_err(format!("cannot replace the file: {e}")))
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}

@@ -1,0 +1,57 @@
+//! Reproducible sample positions: each depends on (pixel, sample index) only, never on time or
+//! thread, so any thread count and any interruption give the same image.
+
+/// A well-mixed 64-bit hash of a pixel index and a sample index (splitmix64 finaliser).
+pub fn sample_hash(pixel_index: u64, sample_index: u32) -> u64 {
+    let mut z = pixel_index
+        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        .wrapping_add(u64::from(sample_index).wrapping_mul(0xD1B5_4A32_D192_ED03))
+        .wrapping_add(0x632B_E59B_D9B4_E019);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Offset in the pixel (each in [0, 1)) of sample `s` of pixel (`x`, `y`). Sample 0 is the
+/// centre; later samples follow the R2 low-discrepancy sequence, shifted per pixel by a hash so
+/// neighbouring pixels do not share a pattern.
+pub fn pixel_sample_offset(x: u32, y: u32, width: u32, s: u32) -> (f32, f32) {
+    if s == 0 {
+        return (0.5, 0.5);
+    }
+    // R2: increments 1/φ2 and 1/φ2², φ2 the plastic number.
+    const A1: f64 = 0.754_877_666_246_692_7;
+    const A2: f64 = 0.569_840_290_998_053_3;
+    let h = sample_hash(u64::from(y) * u64::from(width) + u64::from(x), 0);
+    let shift_x = (h >> 40) as f64 / (1u64 << 24) as f64;
+    let shift_y = ((h >> 16) & 0xFF_FFFF) as f64 / (1u64 << 24) as f64;
+    let n = f64::from(s);
+    let fx = (shift_x + n * A1).fract();
+    let fy = (shift_y + n * A2).fract();
+    // f32 rounding could give 1.0 exactly; keep offsets inside the pixel.
+    ((fx as f32).min(0.999_999_94), (fy as f32).min(0.999_999_94))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offsets_are_inside_the_pixel_and_cover_it() {
+        let mut quadrants = [0u32; 4];
+        for s in 1..257 {
+            let (dx, dy) = pixel_sample_offset(7, 3, 640, s);
+            assert!((0.0..1.0).contains(&dx) && (0.0..1.0).contains(&dy));
+            quadrants[usize::from(dx >= 0.5) + 2 * usize::from(dy >= 0.5)] += 1;
+        }
+        // A low-discrepancy sequence puts close to a quarter of the samples in each quadrant.
+        for q in quadrants {
+            assert!((56..=72).contains(&q), "{quadrants:?}");
+        }
+        assert_eq!(pixel_sample_offset(1, 2, 10, 0), (0.5, 0.5));
+        assert_ne!(
+            pixel_sample_offset(1, 2, 10, 5),
+            pixel_sample_offset(2, 2, 10, 5)
+        );
+    }
+}

@@ -1,0 +1,27 @@
+//! Errors of building a scene and reading its sidecar.
+
+use crate::shp::ShpError;
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error(transparent)]
+    Shp(#[from] ShpError),
+    #[error("{}: line {line}: the placement of brep {brep} moves a vertex to infinity", path.display())]
+    NonFinitePlacement {
+        path: PathBuf,
+        line: usize,
+        brep: String,
+    },
+    #[error("brep {brep}: triangle {triangle} uses a vertex the brep does not have")]
+    BadIndex { brep: String, triangle: usize },
+    #[error("{}: the scene has no triangles", path.display())]
+    NoTriangles { path: PathBuf },
+    #[error("{}: cannot read the sidecar: {source}", path.display())]
+    SidecarIo {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{}: {message}", path.display())]
+    Sidecar { path: PathBuf, message: String },
+}

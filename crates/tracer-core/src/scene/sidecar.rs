@@ -1,0 +1,197 @@
+//! The human-editable sidecar `NAME.raygine.toml` next to `NAME.shp`: materials, lights, camera,
+//! scene unit and handedness. Everything is optional; what is absent comes from the defaults.
+//!
+//! ```toml
+//! unit = "mm"            # mm, cm or m
+//! handedness = "left"    # left (Lumicept files) or right
+//!
+//! [camera]
+//! position = [278.0, 273.0, 800.0]
+//! look_at = [278.0, 273.0, -280.0]
+//! fov_deg = 40.0
+//!
+//! [[lights]]
+//! position = [278.0, 548.7, -279.5]
+//! intensity_cd = 100.0
+//! color = [1.0, 1.0, 1.0]
+//!
+//! [default_material]     # slots not named below
+//! kd = [0.7, 0.7, 0.7]
+//!
+//! [materials.brs_1]      # every part of brep brs_1; "brs_1/2" names part 2 only
+//! kd = [0.14, 0.45, 0.091]
+//! ks = [0.0, 0.0, 0.0]
+//! glossiness = 0.0
+//! ```
+
+use super::camera::Camera;
+use super::error::SceneError;
+use super::geometry::Scene;
+use super::light::PointLight;
+use super::material::Material;
+use super::setup::Setup;
+use super::units::{Handedness, LengthUnit};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sidecar {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unit: Option<LengthUnit>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub handedness: Option<Handedness>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<Camera>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lights: Option<Vec<PointLight>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub default_material: Option<Material>,
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub materials: BTreeMap<String, Material>,
+    /// Breps (or `brep/part` keys) that are not drawn.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hidden: Vec<String>,
+}
+
+fn set_material(
+    setup: &mut Setup,
+    slots: &[u32],
+    m: &Material,
+    key: &str,
+    warnings: &mut Vec<String>,
+) {
+    let (clamped, changed) = m.clamped();
+    if changed {
+        warnings.push(format!(
+            "material {key}: clamped into range (0..1, Kd + Ks <= 1 per channel)"
+        ));
+    }
+    for &s in slots {
+        if let Some(slot) = setup.materials.get_mut(s as usize) {
+            *slot = clamped;
+        }
+    }
+}
+
+/// The sidecar path for a scene file: `room.shp` -> `room.raygine.toml`.
+pub fn sidecar_path(scene_path: &Path) -> PathBuf {
+    scene_path.with_extension("raygine.toml")
+}
+
+impl Sidecar {
+    /// Parses sidecar text; errors name the file, line and column (toml's message).
+    pub fn parse(text: &str, path: &Path) -> Result<Sidecar, SceneError> {
+        toml::from_str(text).map_err(|e| SceneError::Sidecar {
+            path: path.to_owned(),
+            message: e.to_string().trim_end().replace('\n', " "),
+        })
+    }
+
+    /// Reads the sidecar if the file exists (`Ok(None)` when it does not).
+    pub fn read_if_present(path: &Path) -> Result<Option<Sidecar>, SceneError> {
+        match std::fs::read_to_string(path) {
+            Ok(text) => Self::parse(&text, path).map(Some),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+            Err(source) => Err(SceneError::SidecarIo {
+                path: path.to_owned(),
+                source,
+            }),
+        }
+    }
+
+    /// The setup this sidecar gives `scene`: the defaults overridden by what the sidecar says.
+    /// `unit_override` (the CLI's `--units`) wins over the sidecar. Problems that do not stop a
+    /// render (an unknown brep name, a material clamped into range) are pushed to `warnings`.
+    pub fn apply(
+        &self,
+        scene: &Scene,
+        unit_override: Option<LengthUnit>,
+        warnings: &mut Vec<String>,
+    ) -> Setup {
+        let unit = unit_override.or(self.unit).unwrap_or_default();
+        let mut setup = Setup::defaults(scene, unit);
+        if let Some(h) = self.handedness {
+            setup.handedness = h;
+        }
+        if let Some(c) = self.camera {
+            setup.camera = c;
+        }
+        if let Some(lights) = &self.lights {
+            setup.lights.clone_from(lights);
+        }
+        if let Some(m) = &self.default_material {
+            let all: Vec<u32> = (0..scene.slots.len() as u32).collect();
+            set_material(&mut setup, &all, m, "default_material", warnings);
+        }
+        // Whole-brep keys first, so "brep/part" keys refine them.
+        let (whole, parts): (Vec<_>, Vec<_>) =
+            self.materials.iter().partition(|(k, _)| !k.contains('/'));
+        for (key, m) in whole.into_iter().chain(parts) {
+            match scene.slots_for_key(key) {
+                Some(slots) => set_material(&mut setup, &slots, m, key, warnings),
+                None => warnings.push(format!(
+                    "material {key}: the scene has no such brep or part"
+                )),
+            }
+        }
+        for key in &self.hidden {
+            match scene.slots_for_key(key) {
+                Some(slots) => slots.iter().for_each(|&s| setup.hidden[s as usize] = true),
+                None => warnings.push(format!("hidden {key}: the scene has no such brep or part")),
+            }
+        }
+        for (i, light) in setup.lights.iter().enumerate() {
+            let valid = light.intensity_cd.is_finite()
+                && light.intensity_cd >= 0.0
+                && light.position.iter().all(|x| x.is_finite());
+            if !valid {
+                warnings.push(format!(
+                    "light {i}: position and intensity must be finite, intensity >= 0"
+                ));
+            }
+        }
+        setup
+    }
+
+    /// The sidecar that reproduces `setup` for `scene` (every brep's material written out).
+    pub fn from_setup(scene: &Scene, setup: &Setup) -> Sidecar {
+        let mut materials = BTreeMap::new();
+        let mut hidden = Vec::new();
+        for brep in &scene.breps {
+            let range = brep.first_slot as usize..(brep.first_slot + brep.part_count) as usize;
+            let Some(mats) = setup.materials.get(range.clone()) else {
+                continue;
+            };
+            if mats.iter().all(|m| *m == mats[0]) {
+                materials.insert(brep.name.clone(), mats[0]);
+            } else {
+                for (part, m) in mats.iter().enumerate() {
+                    materials.insert(format!("{}/{part}", brep.name), *m);
+                }
+            }
+            let hid = &setup.hidden[range];
+            if hid.iter().all(|&h| h) {
+                hidden.push(brep.name.clone());
+            } else {
+                for (part, _) in hid.iter().enumerate().filter(|(_, h)| **h) {
+                    hidden.push(format!("{}/{part}", brep.name));
+                }
+            }
+        }
+        Sidecar {
+            unit: Some(setup.unit),
+            handedness: Some(setup.handedness),
+            camera: Some(setup.camera),
+            lights: Some(setup.lights.clone()),
+            default_material: None,
+            materials,
+            hidden,
+        }
+    }
+
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).unwrap_or_else(|e| format!("# cannot write sidecar: {e}\n"))
+    }
+}

@@ -1,0 +1,121 @@
+//! Per-render constants derived once from a scene and its setup, so the per-ray code does no
+//! conversions: light tints scaled to luminance 1, Kd / π, highlight normalisation, unit factor.
+
+use crate::bvh::Hit;
+use crate::geometry::Ray;
+use crate::scene::{Scene, Setup};
+use glam::Vec3;
+
+#[derive(Clone, Copy, Debug)]
+pub struct PreparedLight {
+    pub position: Vec3,
+    pub intensity_cd: f32,
+    /// Colour with Rec. 709 luminance 1.
+    pub tint: Vec3,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct PreparedMaterial {
+    pub kd_over_pi: Vec3,
+    pub ks: Vec3,
+    pub glossiness: f32,
+    /// (g + 8) / (8π), the normalisation of the Blinn-Phong lobe.
+    pub highlight_norm: f32,
+}
+
+/// Everything the integrator needs for one render.
+#[derive(Debug)]
+pub struct Prepared<'a> {
+    pub scene: &'a Scene,
+    pub lights: Vec<PreparedLight>,
+    pub materials: Vec<PreparedMaterial>,
+    /// (metres per scene unit)², to turn squared scene distances into m².
+    pub metres_per_unit_sq: f32,
+    /// Offset of secondary ray origins along the normal, scene units.
+    pub epsilon: f32,
+    pub max_depth: u32,
+    /// True when some slot is hidden (then hits on hidden slots are skipped).
+    any_hidden: bool,
+    hidden: Vec<bool>,
+}
+
+impl<'a> Prepared<'a> {
+    pub fn new(scene: &'a Scene, setup: &Setup, max_depth: u32) -> Self {
+        let lights = setup
+            .lights
+            .iter()
+            .filter(|l| l.intensity_cd.is_finite() && l.position().is_finite())
+            .map(|l| PreparedLight {
+                position: l.position(),
+                intensity_cd: l.intensity_cd.max(0.0),
+                tint: l.tint(),
+            })
+            .collect();
+        let materials = (0..scene.slots.len())
+            .map(|slot| {
+                let m = setup
+                    .materials
+                    .get(slot)
+                    .copied()
+                    .unwrap_or_default()
+                    .clamped()
+                    .0;
+                PreparedMaterial {
+                    kd_over_pi: m.kd() / std::f32::consts::PI,
+                    ks: m.ks(),
+                    glossiness: m.glossiness,
+                    highlight_norm: (m.glossiness + 8.0) / (8.0 * std::f32::consts::PI),
+                }
+            })
+            .collect();
+        let mpu = setup.unit.metres_per_unit();
+        let hidden: Vec<bool> = (0..scene.slots.len())
+            .map(|s| setup.is_hidden(s as u32))
+            .collect();
+        // Relative to the scene's size and its distance from the origin (f32 precision).
+        let b = scene.bounds;
+        let scale = b
+            .radius()
+            .max(b.min.abs().max_element())
+            .max(b.max.abs().max_element());
+        Prepared {
+            scene,
+            lights,
+            materials,
+            metres_per_unit_sq: mpu * mpu,
+            epsilon: (scale * 2e-5).max(1e-6),
+            max_depth,
+            any_hidden: hidden.iter().any(|&h| h),
+            hidden,
+        }
+    }
+
+    /// Closest hit on a drawn surface.
+    pub fn closest_visible(&self, ray: &Ray) -> Option<Hit> {
+        let mut r = *ray;
+        loop {
+            let hit = self.scene.bvh.intersect(&r)?;
+            if !self.any_hidden || !self.is_hidden_prim(hit.prim) {
+                return Some(hit);
+            }
+            r.t_min = hit.t + self.epsilon / r.dir.length().max(1e-20);
+        }
+    }
+
+    /// Whether a drawn surface blocks the segment `origin .. origin + to_target` (exclusive of
+    /// the end point).
+    pub fn occluded(&self, origin: Vec3, to_target: Vec3) -> bool {
+        let mut ray = Ray::new(origin, to_target);
+        ray.t_max = 1.0 - 1e-4;
+        if !self.any_hidden {
+            return self.scene.bvh.occluded(&ray);
+        }
+        // With hidden breps, walk the closest hits and ignore hidden ones.
+        self.closest_visible(&ray).is_some()
+    }
+
+    fn is_hidden_prim(&self, prim: u32) -> bool {
+        let slot = self.scene.triangle_slots[prim as usize] as usize;
+        self.hidden[slot]
+    }
+}
