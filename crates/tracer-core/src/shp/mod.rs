@@ -1,67 +1,73 @@
-//! TEMPORARY minimal reader (replaced by the shp-parser branch).
+//! Reading Lumicept `.shp` scenes (and IPUR's `.brs` brep files) into a plain
+//! [`ShpDescription`]: what the file says, each item with its line, no transforms applied.
+//!
+//! ```text
+//! bytes ──lexer──▶ lines (comment-free, trimmed, numbered) ──parser/brep──▶ ShpDescription
+//!                                                          └─resolve: NAME.brs for `set breps`
+//! ```
+//!
+//! What is accepted, as real files show it (see `../shared/scenes/README.md`):
+//! - LF, CRLF or lone-CR line ends, blanks and tabs anywhere, blank lines, `;;` comments anywhere
+//!   (their text is never parsed and need not be UTF-8), a UTF-8 byte order mark.
+//! - Keywords compared ignoring ASCII case; brep names compared exactly.
+//! - Numbers as Rust's `f64` grammar reads them (`-0`, `+1`, `1.000000e+000`, `1E-3`), finite
+//!   only; indices and counts are whole numbers from 0 to `u32::MAX`.
+//! - Blocks closed by `enddef`: `define breps NAME` and `set breps NAME` are read, any other
+//!   block is skipped up to the first `enddef` (real files never nest them; `parser.rs`
+//!   says why that holds for `product` blocks). An unknown block still open at the end of
+//!   the file is an error, not silently accepted: the file is more likely cut short than
+//!   complete.
+//!
+//! Counts are checked against what the rest of the file could hold before anything is
+//! allocated, so no input makes the reader exhaust memory; nothing in it panics.
+
+mod brep;
+mod brs;
 pub mod description;
+mod error;
+mod lexer;
+mod parser;
+mod resolve;
+mod writer;
+
+use std::fs;
+use std::path::Path;
+
 pub use description::{BrepDef, Placement, ShpDescription};
-use std::path::{Path, PathBuf};
+pub use error::ShpError;
 
-#[derive(Debug, thiserror::Error)]
-#[error("{}: line {line}: {message}", path.display())]
-pub struct ShpError {
-    pub path: PathBuf,
-    pub line: usize,
-    pub message: String,
-}
-
+/// Reads a `.shp` file; for every `set breps NAME` whose geometry is not defined in the file,
+/// loads `NAME.brs` from the same folder (matching the file name's case loosely if need be).
 pub fn load(path: &Path) -> Result<ShpDescription, ShpError> {
-    let bytes = std::fs::read(path).map_err(|e| ShpError {
-        path: path.into(),
-        line: 0,
-        message: e.to_string(),
+    let bytes = fs::read(path).map_err(|source| ShpError::Io {
+        path: path.to_path_buf(),
+        source,
     })?;
-    parse_shp(&bytes, path)
+    let mut desc = parse_shp(&bytes, path)?;
+    resolve::load_missing_breps(&mut desc)?;
+    if desc.breps.iter().all(|b| b.triangles.is_empty()) {
+        return Err(ShpError::NoTriangles {
+            path: path.to_path_buf(),
+        });
+    }
+    Ok(desc)
 }
 
+/// Parses `.shp` bytes already in memory (`path` is used only in messages and as `source`).
+/// Does not load `.brs` files: a placement whose brep is not defined is kept in `placements`,
+/// and the caller decides. A file with no triangles and no such placement is an error.
 pub fn parse_shp(bytes: &[u8], path: &Path) -> Result<ShpDescription, ShpError> {
-    let text = String::from_utf8_lossy(bytes);
-    let mut d = ShpDescription {
-        path: path.into(),
-        ..Default::default()
-    };
-    let mut lines = text
-        .lines()
-        .map(|l| l.split(";;").next().unwrap_or("").trim());
-    let nums = |l: &str| -> Vec<f64> {
-        l.split_whitespace()
-            .filter_map(|t| t.parse().ok())
-            .collect()
-    };
-    while let Some(l) = lines.next() {
-        if let Some(name) = l.strip_prefix("define breps ") {
-            let mut b = BrepDef {
-                name: name.trim().into(),
-                source: path.into(),
-                part_count: 1,
-                ..Default::default()
-            };
-            while let Some(l) = lines.next() {
-                if let Some(n) = l.strip_prefix("vertices") {
-                    let n: usize = n.trim().parse().unwrap_or(0);
-                    for _ in 0..n {
-                        let v = nums(lines.next().unwrap_or(""));
-                        b.vertices.push([v[0], v[1], v[2]]);
-                    }
-                } else if let Some(n) = l.strip_prefix("triangles") {
-                    let n: usize = n.trim().parse().unwrap_or(0);
-                    for _ in 0..n {
-                        let v = nums(lines.next().unwrap_or(""));
-                        b.triangles.push([v[0] as u32, v[1] as u32, v[2] as u32]);
-                    }
-                } else if l == "enddef" {
-                    break;
-                }
-            }
-            b.parts = vec![0; b.triangles.len()];
-            d.breps.push(b);
-        }
-    }
-    Ok(d)
+    parser::parse(bytes, path)
+}
+
+/// Parses a bare `.brs` file's bytes into one brep named `name`; `line` is that of `vertices`.
+pub fn parse_brs(bytes: &[u8], path: &Path, name: &str) -> Result<BrepDef, ShpError> {
+    brs::parse(bytes, path, name)
+}
+
+/// Writes a description as `.shp` text (LF, `define breps` blocks then `set breps` blocks), for
+/// tests and asset generators. `parse_shp` of the result gives back the same geometry and
+/// placements, provided names have no blanks and `parts` has one entry per triangle.
+pub fn write_shp(desc: &ShpDescription) -> String {
+    writer::ShpText(desc).to_string()
 }
