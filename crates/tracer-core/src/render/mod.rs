@@ -2,10 +2,16 @@
 //! the progressive session of the viewer builds on the same film, sampler and tile order.
 
 mod film;
+mod passes;
+mod progressive_film;
 mod sampler;
+mod session;
 mod tiles;
 
-pub use film::Film;
+pub use film::{Film, PixelSum};
+pub use passes::{PREVIEW_BLOCKS, Pass};
+pub use progressive_film::ProgressiveFilm;
+pub use session::{Notify, RenderSession, SessionStats, Snapshot};
 pub use sampler::{pixel_sample_offset, sample_hash};
 pub use tiles::{Tile, tiles_centre_out};
 
@@ -70,13 +76,13 @@ pub fn render(scene: &Scene, setup: &Setup, settings: &RenderSettings) -> (Film,
     let tiles = tiles_centre_out(settings.width, settings.height, TILE_SIZE);
     let rays = AtomicU64::new(0);
     let spp = settings.samples_per_pixel.max(1);
-    let done: Vec<(Tile, Vec<film::PixelSum>)> = tiles
+    let done: Vec<(Tile, Vec<PixelSum>)> = tiles
         .into_par_iter()
         .map(|tile| {
             let mut out = Vec::with_capacity(tile.pixel_count());
             let mut tile_rays = 0u64;
             for (x, y) in tile.pixels() {
-                let mut sum = film::PixelSum::default();
+                let mut sum = PixelSum::default();
                 for s in 0..spp {
                     let (dx, dy) = pixel_sample_offset(x, y, settings.width, s);
                     let ray = basis.ray(x as f32 + dx, y as f32 + dy);
