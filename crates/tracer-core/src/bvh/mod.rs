@@ -1,7 +1,38 @@
-//! TEMPORARY brute-force stand-in with the BVH's interface (replaced by the real BVH branch).
-use crate::geometry::{Aabb, Ray};
+//! Bounding volume hierarchy over triangles: binned SAH build, flat nodes, closest-hit and any-hit
+//! traversal, and [`Bvh::validate`] for its invariants.
+//!
+//! ```ignore
+//! let bvh = Bvh::build(&triangles);           // triangles: &[[Vec3; 3]]
+//! let hit: Option<Hit> = bvh.intersect(&ray); // closest hit in [ray.t_min, ray.t_max]
+//! let blocked: bool = bvh.occluded(&ray);     // any hit in [ray.t_min, ray.t_max]
+//! bvh.validate()?;
+//! ```
+//!
+//! Layout: one `Vec` of 32-byte [`Node`]s, root at index 0, the two children of an interior node
+//! adjacent (`left`, `left + 1`) and always after their parent. Leaves hold a range of triangles
+//! stored in BVH order as their three vertices; `prim_ids` maps that order back to the caller's slice.
+//!
+//! Triangle test: watertight (Woop, Benthin, Wald 2013), two-sided, edges and vertices
+//! inclusive, so rays through shared edges of closed meshes never leak (see `triangle.rs` for
+//! why not Möller–Trumbore). Box tests are conservative (slab exit scaled up by a few ulps).
+
+mod build;
+mod sphere;
+mod traverse;
+mod triangle;
+mod validate;
+
 use glam::Vec3;
 
+use crate::geometry::Aabb;
+
+pub use sphere::uv_sphere;
+pub use triangle::{intersect_brute_force, occluded_brute_force};
+
+use triangle::Triangle;
+
+/// A closest hit: ray parameter `t`, barycentrics `(u, v)` of `v1` and `v2`, and the index of
+/// the triangle in the slice given to [`Bvh::build`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f32,
@@ -10,71 +41,99 @@ pub struct Hit {
     pub prim: u32,
 }
 
-#[derive(Debug, Default)]
+/// One BVH node: 32 bytes, plain data.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(32))]
+pub(crate) struct Node {
+    pub min: [f32; 3],
+    /// Interior: index of the left child (the right child is `index + 1`).
+    /// Leaf: position of the first triangle in BVH order.
+    pub index: u32,
+    pub max: [f32; 3],
+    /// Number of triangles in a leaf; 0 marks an interior node.
+    pub count: u32,
+}
+
+impl Node {
+    fn new(bounds: Aabb, index: u32, count: u32) -> Self {
+        Self {
+            min: bounds.min.to_array(),
+            index,
+            max: bounds.max.to_array(),
+            count,
+        }
+    }
+
+    fn bounds(&self) -> Aabb {
+        Aabb {
+            min: Vec3::from_array(self.min),
+            max: Vec3::from_array(self.max),
+        }
+    }
+
+    fn is_leaf(&self) -> bool {
+        self.count > 0
+    }
+}
+
+/// A BVH that owns a copy of its triangles in BVH order.
+#[derive(Clone, Default)]
 pub struct Bvh {
-    tris: Vec<[Vec3; 3]>,
+    /// Root first; children adjacent and after their parent. Empty iff there are no triangles.
+    nodes: Vec<Node>,
+    /// Triangles in BVH order (leaves index into this).
+    triangles: Vec<Triangle>,
+    /// `prim_ids[i]`: index in the caller's slice of `triangles[i]`.
+    prim_ids: Vec<u32>,
+    /// Edges on the longest root-to-leaf path (bounds the traversal stack).
+    depth: usize,
+}
+
+impl std::fmt::Debug for Bvh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Bvh")
+            .field("triangles", &self.triangles.len())
+            .field("nodes", &self.nodes.len())
+            .field("depth", &self.depth)
+            .field("bounds", &self.bounds())
+            .finish()
+    }
 }
 
 impl Bvh {
-    pub fn build(triangles: &[[Vec3; 3]]) -> Bvh {
-        Bvh {
-            tris: triangles.to_vec(),
-        }
-    }
-    pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        let mut best: Option<Hit> = None;
-        let mut r = *ray;
-        for (i, t) in self.tris.iter().enumerate() {
-            let e1 = t[1] - t[0];
-            let e2 = t[2] - t[0];
-            let p = r.dir.cross(e2);
-            let det = e1.dot(p);
-            if det.abs() < 1e-20 {
-                continue;
-            }
-            let inv = 1.0 / det;
-            let s = r.origin - t[0];
-            let u = s.dot(p) * inv;
-            if !(0.0..=1.0).contains(&u) {
-                continue;
-            }
-            let q = s.cross(e1);
-            let v = r.dir.dot(q) * inv;
-            if v < 0.0 || u + v > 1.0 {
-                continue;
-            }
-            let tt = e2.dot(q) * inv;
-            if tt >= r.t_min && tt <= r.t_max {
-                r.t_max = tt;
-                best = Some(Hit {
-                    t: tt,
-                    u,
-                    v,
-                    prim: i as u32,
-                });
-            }
-        }
-        best
-    }
-    pub fn occluded(&self, ray: &Ray) -> bool {
-        self.intersect(ray).is_some()
-    }
-    pub fn validate(&self) -> Result<(), String> {
-        Ok(())
-    }
+    /// Bounds of all triangles ([`Aabb::EMPTY`] when there are none).
     pub fn bounds(&self) -> Aabb {
-        self.tris
-            .iter()
-            .flatten()
-            .fold(Aabb::EMPTY, |b, &p| b.grow(p))
+        self.nodes.first().map_or(Aabb::EMPTY, Node::bounds)
     }
+
     pub fn triangle_count(&self) -> usize {
-        self.tris.len()
+        self.triangles.len()
     }
+
     pub fn node_count(&self) -> usize {
-        1
+        self.nodes.len()
     }
+
+    /// Edges on the longest path from the root to a leaf.
+    pub fn depth(&self) -> usize {
+        self.depth
+    }
+
+    /// Bytes held: nodes, triangle data and the index array.
     pub fn memory_bytes(&self) -> usize {
-        self.tris.len() * 36
+        self.nodes.len() * size_of::<Node>()
+            + self.triangles.len() * size_of::<Triangle>()
+            + self.prim_ids.len() * size_of::<u32>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn node_is_32_bytes() {
+        assert_eq!(size_of::<Node>(), 32);
+        assert_eq!(align_of::<Node>(), 32);
     }
 }
