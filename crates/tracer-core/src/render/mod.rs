@@ -11,8 +11,8 @@ mod tiles;
 pub use film::{Film, PixelSum};
 pub use passes::{PREVIEW_BLOCKS, Pass};
 pub use progressive_film::ProgressiveFilm;
-pub use session::{Notify, RenderSession, SessionStats, Snapshot};
 pub use sampler::{pixel_sample_offset, sample_hash};
+pub use session::{Notify, RenderSession, SessionStats, Snapshot};
 pub use tiles::{Tile, tiles_centre_out};
 
 use crate::scene::{Scene, Setup};

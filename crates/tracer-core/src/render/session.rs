@@ -6,12 +6,12 @@
 //! are dropped. The consumer is woken through a callback after every finished tile and reads what
 //! changed with [`RenderSession::take_dirty`] and the pixels with [`RenderSession::with_film`].
 
+use super::RenderSettings;
 use super::film::PixelSum;
 use super::passes::Pass;
 use super::progressive_film::ProgressiveFilm;
 use super::sampler::pixel_sample_offset;
 use super::tiles::{Tile, tiles_centre_out};
-use super::RenderSettings;
 use crate::scene::{CameraBasis, Scene, Setup};
 use crate::shading::{Prepared, trace};
 use rayon::prelude::*;
@@ -289,17 +289,19 @@ fn run_generation(
         };
     }
     let prep = Prepared::new(&snap.scene, &snap.setup, s.max_depth);
-    let basis = snap.setup.camera.basis(snap.setup.handedness, s.width, s.height);
+    let basis = snap
+        .setup
+        .camera
+        .basis(snap.setup.handedness, s.width, s.height);
     let rays = AtomicU64::new(0);
     let mut pass = Some(Pass::first());
     while let Some(current) = pass {
         if !shared.is_current(generation) {
             return;
         }
-        if snap
-            .time_limit
-            .is_some_and(|limit| started.elapsed() >= limit && matches!(current, Pass::Full { index } if index > 0))
-        {
+        if snap.time_limit.is_some_and(|limit| {
+            started.elapsed() >= limit && matches!(current, Pass::Full { index } if index > 0)
+        }) {
             break;
         }
         shared.lock().stats.pass = current.label();
