@@ -15,8 +15,14 @@ use tracer_core::scene::LengthUnit;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// Scene to open (Lumicept .shp); the built-in Cornell box when absent.
+    /// Scene to open (Lumicept .shp); without one, the last scene or the built-in Cornell box.
     pub scene: Option<PathBuf>,
+    /// Render threads of the viewer (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub threads: Option<u32>,
+    /// Start with the built-in Cornell box instead of reopening the last scene.
+    #[arg(long)]
+    pub no_restore: bool,
 }
 
 #[derive(Debug, Subcommand)]

@@ -1,8 +1,18 @@
 //! raygine, the application: the interactive viewer and the headless `render` command.
 //! Both are thin shells that turn user intent into `tracer-core` calls.
 
+pub mod app;
+pub mod camera_control;
 pub mod cli;
+pub mod document;
+pub mod file_ops;
+pub mod history;
+pub mod panels;
+pub mod prefs;
 pub mod render_cmd;
+pub mod render_worker;
+pub mod viewer;
+pub mod viewport_ui;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -13,7 +23,11 @@ pub fn run() -> ExitCode {
     let args = cli::Cli::parse();
     let result = match args.command {
         Some(cli::Command::Render(render)) => render_cmd::run(&render),
-        None => render_cmd::run_default(args.scene.as_deref()),
+        None => viewer::run_viewer(app::AppOptions {
+            scene: args.scene.clone(),
+            threads: args.threads.unwrap_or(0) as usize,
+            ignore_last_scene: args.no_restore,
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

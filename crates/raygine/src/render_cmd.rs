@@ -164,18 +164,3 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     Ok(())
 }
-
-/// `raygine [SCENE]` until the viewer exists: renders the scene to a PNG beside it.
-pub fn run_default(scene: Option<&Path>) -> Result<()> {
-    use clap::Parser;
-    let mut argv = vec!["raygine".to_owned(), "render".to_owned()];
-    if let Some(s) = scene {
-        argv.push("-S".to_owned());
-        argv.push(s.display().to_string());
-    }
-    let cli = crate::cli::Cli::try_parse_from(argv)?;
-    match cli.command {
-        Some(crate::cli::Command::Render(args)) => run(&args),
-        None => bail!("internal: no render command"),
-    }
-}

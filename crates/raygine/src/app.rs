@@ -1,0 +1,632 @@
+//! The viewer application: state, the per-frame loop, shortcuts and file actions. Panels and
+//! the viewport draw in their own modules.
+
+use crate::document::Document;
+use crate::file_ops::{DialogPurpose, PendingDialog, PendingLoad, PendingWrite};
+use crate::history::History;
+use crate::prefs::{PREFS_KEY, Prefs};
+use crate::render_worker::{RenderKey, RenderWorker, map_rect};
+use egui::{Key, KeyboardShortcut, Modifiers};
+use std::collections::VecDeque;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+use tracer_core::display::{
+    DisplaySettings, FalseColour, FalseColourQuantity, FalseColourScale, ToneMap,
+};
+use tracer_core::render::RenderSettings;
+use tracer_core::scene::{Setup, Sidecar, framing_camera, sidecar_path};
+
+pub const SHORTCUT_OPEN: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::O);
+pub const SHORTCUT_SAVE: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::S);
+pub const SHORTCUT_EXPORT: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::E);
+pub const SHORTCUT_UNDO: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Z);
+pub const SHORTCUT_REDO: KeyboardShortcut =
+    KeyboardShortcut::new(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
+
+/// How the viewer starts.
+#[derive(Clone, Debug, Default)]
+pub struct AppOptions {
+    /// Scene to open; else the last scene (if it still exists), else the built-in Cornell box.
+    pub scene: Option<PathBuf>,
+    /// Render threads (0: all cores).
+    pub threads: usize,
+    /// Do not reopen the last scene (tests, smoke runs).
+    pub ignore_last_scene: bool,
+}
+
+/// Render preferences that restart the render when changed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderPrefs {
+    pub max_depth: u32,
+    pub target_spp: u32,
+    /// Film pixels per screen pixel (0.25 ..= 1).
+    pub resolution_scale: f32,
+    pub threads: usize,
+}
+
+/// The false-colour view as edited in the panel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FalseColourUi {
+    pub enabled: bool,
+    pub quantity: FalseColourQuantity,
+    pub scale: FalseColourScale,
+    pub min: f32,
+    pub max: f32,
+}
+
+/// A finished or running "Render image..." job.
+#[derive(Debug)]
+pub struct RenderImageJob {
+    pub worker: tracer_core::render::RenderSession,
+    pub path: PathBuf,
+    pub display: DisplaySettings,
+    pub started: Instant,
+}
+
+/// Values the "Render image..." window edits.
+#[derive(Clone, Debug)]
+pub struct RenderImageForm {
+    pub width: u32,
+    pub height: u32,
+    pub samples: u32,
+    pub path: String,
+}
+
+/// What the path window (typed path, with a Browse... button for the native dialog) is for.
+#[derive(Clone, Debug)]
+pub struct PathPrompt {
+    pub purpose: DialogPurpose,
+    pub text: String,
+    /// Set when the file exists and the user must confirm overwriting it.
+    pub confirm_overwrite: bool,
+}
+
+/// What the mouse points at in the viewport.
+#[derive(Clone, Debug, Default)]
+pub struct HoverInfo {
+    pub luminance: f32,
+    pub illuminance: f32,
+    pub surface: Option<String>,
+    pub pixel: [u32; 2],
+}
+
+pub struct RaygineApp {
+    /// The egui context, for waking the UI from background threads.
+    pub ctx: egui::Context,
+    pub doc: Document,
+    pub history: History,
+    pub render: RenderPrefs,
+    pub display: DisplaySettings,
+    pub false_colour: FalseColourUi,
+    pub worker: RenderWorker,
+    pub prefs: Prefs,
+    pub selected_slot: Option<u32>,
+    pub error: Option<String>,
+    pub notice: Option<String>,
+    pub loading: Option<PendingLoad>,
+    pub dialog: Option<PendingDialog>,
+    pub writes: Vec<PendingWrite>,
+    pub prompt: Option<PathPrompt>,
+    pub render_image_form: Option<RenderImageForm>,
+    pub render_image_job: Option<RenderImageJob>,
+    pub hover: Option<HoverInfo>,
+    pub paused: bool,
+    pub show_help: bool,
+    /// Film size of the viewport, pixels.
+    pub viewport_px: [u32; 2],
+    /// Recent UI frame intervals while rendering (for the p95 in the status bar).
+    pub frame_times: VecDeque<f32>,
+    last_frame: Option<Instant>,
+    frame_log: Option<Instant>,
+}
+
+impl std::fmt::Debug for RaygineApp {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RaygineApp")
+            .field("scene", &self.doc.title())
+            .finish_non_exhaustive()
+    }
+}
+
+impl RaygineApp {
+    /// Builds the app; reads persisted preferences when the integration has storage.
+    pub fn new(cc: &eframe::CreationContext<'_>, options: AppOptions) -> anyhow::Result<Self> {
+        let prefs: Prefs = cc
+            .storage
+            .and_then(|s| eframe::get_value(s, PREFS_KEY))
+            .unwrap_or_default();
+        let doc = Document::builtin()?;
+        let threads = options.threads;
+        let worker = RenderWorker::new(&cc.egui_ctx, threads)?;
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let mut app = Self {
+            ctx: cc.egui_ctx.clone(),
+            history: History::new(&doc.setup),
+            doc,
+            render: RenderPrefs {
+                max_depth: prefs.max_depth.min(64),
+                target_spp: prefs.target_spp.clamp(1, 65_536),
+                resolution_scale: prefs.resolution_scale.clamp(0.25, 1.0),
+                threads: if threads == 0 { cores } else { threads },
+            },
+            display: DisplaySettings {
+                exposure_stops: if prefs.exposure_stops.is_finite() {
+                    prefs.exposure_stops
+                } else {
+                    0.0
+                },
+                auto_exposure: prefs.auto_exposure,
+                tone_map: ToneMap::from_name(&prefs.tone_map).unwrap_or_default(),
+                false_colour: None,
+            },
+            false_colour: FalseColourUi {
+                enabled: false,
+                quantity: FalseColourQuantity::Illuminance,
+                scale: FalseColourScale::Log,
+                min: 1.0,
+                max: 10_000.0,
+            },
+            worker,
+            prefs,
+            selected_slot: None,
+            error: None,
+            notice: None,
+            loading: None,
+            dialog: None,
+            writes: Vec::new(),
+            prompt: None,
+            render_image_form: None,
+            render_image_job: None,
+            hover: None,
+            paused: false,
+            show_help: false,
+            viewport_px: [0, 0],
+            frame_times: VecDeque::new(),
+            last_frame: None,
+            frame_log: std::env::var_os("RAYGINE_FRAME_STATS").map(|_| Instant::now()),
+        };
+        let start_scene = options.scene.or_else(|| {
+            if options.ignore_last_scene {
+                None
+            } else {
+                app.prefs.last_scene.clone().filter(|p| p.is_file())
+            }
+        });
+        if let Some(path) = start_scene {
+            app.open_path(&path);
+        }
+        Ok(app)
+    }
+
+    /// Starts loading a scene in the background; the current scene stays until it succeeds.
+    pub fn open_path(&mut self, path: &Path) {
+        self.loading = Some(PendingLoad::start(path, &self.ctx));
+    }
+
+    /// Waits for a pending load (tests and scripts only; the UI never calls this).
+    pub fn finish_loading_blocking(&mut self, timeout: Duration) {
+        let deadline = Instant::now() + timeout;
+        while self.loading.is_some() && Instant::now() < deadline {
+            self.poll_background();
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    }
+
+    /// The render settings of the viewport at its current size.
+    pub fn render_settings(&self) -> RenderSettings {
+        RenderSettings {
+            width: self.viewport_px[0].max(1),
+            height: self.viewport_px[1].max(1),
+            samples_per_pixel: self.render.target_spp,
+            max_depth: self.render.max_depth,
+        }
+    }
+
+    fn effective_display(&self) -> DisplaySettings {
+        let fc = self.false_colour;
+        DisplaySettings {
+            false_colour: fc.enabled.then_some(FalseColour {
+                quantity: fc.quantity,
+                scale: fc.scale,
+                min: fc.min,
+                max: fc.max,
+            }),
+            ..self.display
+        }
+    }
+
+    /// Replaces the setup (undo, redo) and clears a selection that no longer exists.
+    fn set_setup(&mut self, setup: Setup) {
+        self.doc.setup = setup;
+    }
+
+    pub fn undo(&mut self) {
+        if let Some(s) = self.history.undo(&self.doc.setup) {
+            self.set_setup(s);
+        }
+    }
+
+    pub fn redo(&mut self) {
+        if let Some(s) = self.history.redo(&self.doc.setup) {
+            self.set_setup(s);
+        }
+    }
+
+    /// Resets the camera to frame the scene (keeps the field of view).
+    pub fn frame_scene(&mut self) {
+        let fov = self.doc.setup.camera.fov_deg;
+        self.doc.setup.camera = framing_camera(&self.doc.scene, fov);
+    }
+
+    /// Checks background work: loads, dialogs, writes, the render-image job.
+    pub fn poll_background(&mut self) {
+        if let Some(result) = self.loading.as_ref().and_then(PendingLoad::poll) {
+            let path = self.loading.take().map(|l| l.path);
+            match result {
+                Ok(loaded) => {
+                    let doc = Document::from_loaded(loaded, path.clone());
+                    self.history = History::new(&doc.setup);
+                    self.notice = (!doc.warnings.is_empty()).then(|| doc.warnings.join("; "));
+                    self.doc = doc;
+                    self.selected_slot = None;
+                    self.error = None;
+                    if let Some(p) = path {
+                        self.prefs.add_recent(&p);
+                        self.prefs.last_scene = Some(p);
+                    }
+                }
+                Err(e) => self.error = Some(e),
+            }
+        }
+        if let Some(picked) = self.dialog.as_ref().and_then(PendingDialog::poll) {
+            let purpose = self.dialog.take().map(|d| d.purpose);
+            if let (Some(path), Some(purpose)) = (picked, purpose) {
+                match &mut self.prompt {
+                    Some(p) if p.purpose == purpose => p.text = path.display().to_string(),
+                    _ => {
+                        self.prompt = Some(PathPrompt {
+                            purpose,
+                            text: path.display().to_string(),
+                            confirm_overwrite: false,
+                        });
+                    }
+                }
+                if purpose == DialogPurpose::Open {
+                    self.prompt = None;
+                    self.open_path(&path);
+                }
+            }
+        }
+        let mut still = Vec::new();
+        for w in self.writes.drain(..) {
+            match w.poll() {
+                Some(Ok(msg)) => self.notice = Some(msg),
+                Some(Err(e)) => self.error = Some(e),
+                None => still.push(w),
+            }
+        }
+        self.writes = still;
+        self.poll_render_image();
+    }
+
+    fn poll_render_image(&mut self) {
+        let Some(job) = &self.render_image_job else {
+            return;
+        };
+        let stats = job.worker.stats();
+        if !(stats.finished && stats.generation == job.worker.generation()) {
+            return;
+        }
+        let Some(job) = self.render_image_job.take() else {
+            return;
+        };
+        let film = job.worker.with_film(|f| f.map(|f| f.accum.clone()));
+        let Some(film) = film else {
+            self.error = Some("the render produced no image".to_owned());
+            return;
+        };
+        let display = job.display;
+        let path = job.path;
+        let secs = job.started.elapsed().as_secs_f64();
+        self.writes.push(PendingWrite::start(&self.ctx, move || {
+            let rgba = display.map_film(&film);
+            tracer_core::export::write_png(&path, rgba, film.width, film.height)
+                .map(|()| {
+                    format!(
+                        "rendered {}x{} in {secs:.1} s, wrote {}",
+                        film.width,
+                        film.height,
+                        path.display()
+                    )
+                })
+                .map_err(|e| e.to_string())
+        }));
+    }
+
+    /// Suggested file for an export or save.
+    pub fn suggested_path(&self, purpose: DialogPurpose) -> PathBuf {
+        let base = self
+            .doc
+            .path
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("cornell_box.shp"));
+        match purpose {
+            DialogPurpose::Open => base,
+            DialogPurpose::ExportPng | DialogPurpose::RenderImage => base.with_extension("png"),
+            DialogPurpose::ExportExr => base.with_extension("exr"),
+            DialogPurpose::SaveSidecar => sidecar_path(&base),
+        }
+    }
+
+    /// Opens the path window for `purpose` (typed path; Browse... runs the native dialog).
+    pub fn prompt_path(&mut self, purpose: DialogPurpose) {
+        let text = match purpose {
+            DialogPurpose::Open => String::new(),
+            p => self.suggested_path(p).display().to_string(),
+        };
+        self.prompt = Some(PathPrompt {
+            purpose,
+            text,
+            confirm_overwrite: false,
+        });
+    }
+
+    /// Runs the action of a path window once the user confirmed a path.
+    pub fn run_path_action(&mut self, ctx: &egui::Context, purpose: DialogPurpose, path: PathBuf) {
+        match purpose {
+            DialogPurpose::Open => self.open_path(&path),
+            DialogPurpose::ExportPng => self.export_png(ctx, path),
+            DialogPurpose::ExportExr => self.export_exr(ctx, path),
+            DialogPurpose::SaveSidecar => self.save_sidecar(ctx, path),
+            DialogPurpose::RenderImage => self.start_render_image(path),
+        }
+    }
+
+    /// Writes the image as displayed (display mapping applied) to `path`.
+    pub fn export_png(&mut self, ctx: &egui::Context, path: PathBuf) {
+        let display = self.effective_display();
+        let image = self.worker.with_film(|f| {
+            f.map(|f| {
+                let exposure = if display.auto_exposure {
+                    tracer_core::display::auto_exposure_stops(&f.shown())
+                } else {
+                    display.exposure_stops
+                };
+                let img = map_rect(f, &display, exposure, None);
+                (img, f.width(), f.height())
+            })
+        });
+        let Some((img, w, h)) = image else {
+            self.error = Some("nothing rendered yet".to_owned());
+            return;
+        };
+        let rgba: Vec<u8> = img.pixels.iter().flat_map(|c| c.to_array()).collect();
+        self.writes.push(PendingWrite::start(ctx, move || {
+            tracer_core::export::write_png(&path, rgba, w, h)
+                .map(|()| format!("exported {w}x{h} PNG to {}", path.display()))
+                .map_err(|e| e.to_string())
+        }));
+    }
+
+    /// Writes the linear film (cd/m² per channel) to `path` as OpenEXR.
+    pub fn export_exr(&mut self, ctx: &egui::Context, path: PathBuf) {
+        let Some(film) = self.worker.with_film(|f| f.map(|f| f.shown())) else {
+            self.error = Some("nothing rendered yet".to_owned());
+            return;
+        };
+        self.writes.push(PendingWrite::start(ctx, move || {
+            tracer_core::export::write_exr(&path, &film)
+                .map(|()| format!("exported linear EXR (cd/m²) to {}", path.display()))
+                .map_err(|e| e.to_string())
+        }));
+    }
+
+    /// Saves materials, lights and camera as the scene's sidecar.
+    pub fn save_sidecar(&mut self, ctx: &egui::Context, path: PathBuf) {
+        let text = Sidecar::from_setup(&self.doc.scene, &self.doc.setup).to_toml();
+        self.writes.push(PendingWrite::start(ctx, move || {
+            tracer_core::export::write_text(&path, &text)
+                .map(|()| format!("saved scene settings to {}", path.display()))
+                .map_err(|e| e.to_string())
+        }));
+    }
+
+    /// Starts the background "Render image..." job with the form's size and samples.
+    pub fn start_render_image(&mut self, path: PathBuf) {
+        let Some(form) = self.render_image_form.clone() else {
+            return;
+        };
+        let worker = match tracer_core::render::RenderSession::new(
+            self.render.threads,
+            std::sync::Arc::new(|| {}),
+        ) {
+            Ok(w) => w,
+            Err(e) => {
+                self.error = Some(format!("cannot start the render: {e}"));
+                return;
+            }
+        };
+        worker.start(tracer_core::render::Snapshot {
+            scene: std::sync::Arc::clone(&self.doc.scene),
+            setup: self.doc.setup.clone(),
+            settings: RenderSettings {
+                width: form.width.clamp(1, 16_384),
+                height: form.height.clamp(1, 16_384),
+                samples_per_pixel: form.samples.clamp(1, 65_536),
+                max_depth: self.render.max_depth,
+            },
+            time_limit: None,
+        });
+        self.render_image_job = Some(RenderImageJob {
+            worker,
+            path,
+            display: self.effective_display(),
+            started: Instant::now(),
+        });
+        self.render_image_form = None;
+    }
+
+    fn handle_shortcuts(&mut self, ctx: &egui::Context) {
+        let typing = ctx.text_edit_focused();
+        let (open, save, export, undo, redo, frame, pause) = ctx.input_mut(|i| {
+            // Redo first: Ctrl+Shift+Z also matches Ctrl+Z's modifiers loosely.
+            let redo = i.consume_shortcut(&SHORTCUT_REDO)
+                || i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Y));
+            (
+                i.consume_shortcut(&SHORTCUT_OPEN),
+                i.consume_shortcut(&SHORTCUT_SAVE),
+                i.consume_shortcut(&SHORTCUT_EXPORT),
+                i.consume_shortcut(&SHORTCUT_UNDO),
+                redo,
+                !typing && i.consume_key(Modifiers::NONE, Key::F),
+                !typing && i.consume_key(Modifiers::NONE, Key::P),
+            )
+        });
+        if open {
+            self.prompt_path(DialogPurpose::Open);
+        }
+        if save {
+            match self.doc.path.clone() {
+                Some(p) => self.save_sidecar(ctx, sidecar_path(&p)),
+                None => self.prompt_path(DialogPurpose::SaveSidecar),
+            }
+        }
+        if export {
+            self.prompt_path(DialogPurpose::ExportPng);
+        }
+        if redo {
+            self.redo();
+        } else if undo {
+            self.undo();
+        }
+        if frame {
+            self.frame_scene();
+        }
+        if pause {
+            self.paused = !self.paused;
+            self.worker.set_paused(self.paused);
+        }
+    }
+
+    fn handle_dropped_files(&mut self, ctx: &egui::Context) {
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().to_path_buf())
+                .collect()
+        });
+        if let Some(path) = dropped.into_iter().next() {
+            if path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("shp"))
+            {
+                self.open_path(&path);
+            } else {
+                self.error = Some(format!("{}: not a .shp scene", path.display()));
+            }
+        }
+    }
+
+    /// Starts a new render generation when anything that affects the picture changed.
+    pub fn sync_render(&mut self) {
+        if self.viewport_px[0] == 0 || self.viewport_px[1] == 0 {
+            return;
+        }
+        let key = RenderKey {
+            scene: std::sync::Arc::clone(&self.doc.scene),
+            setup: self.doc.setup.clone(),
+            settings: self.render_settings(),
+            threads: self.render.threads,
+        };
+        self.worker.sync(key);
+    }
+
+    fn record_frame_time(&mut self) {
+        let now = Instant::now();
+        if let Some(last) = self.last_frame.replace(now)
+            && self.worker.busy()
+        {
+            self.frame_times
+                .push_back(now.duration_since(last).as_secs_f32());
+            if self.frame_times.len() > 600 {
+                self.frame_times.pop_front();
+            }
+        }
+        if let Some(t) = self.frame_log
+            && t.elapsed() > Duration::from_secs(2)
+        {
+            self.frame_log = Some(now);
+            if let Some(p95) = self.p95_frame_ms() {
+                let s = self.worker.stats();
+                eprintln!(
+                    "frame-stats p95_ms={p95:.1} frames={} spp={} busy={} change_to_pixels_ms={:.1}",
+                    self.frame_times.len(),
+                    s.samples_per_pixel,
+                    self.worker.busy(),
+                    self.worker.last_change_to_pixels.unwrap_or(f64::NAN) * 1e3
+                );
+            }
+        }
+    }
+
+    /// The 95th percentile of recent UI frame intervals while rendering, milliseconds.
+    pub fn p95_frame_ms(&self) -> Option<f32> {
+        if self.frame_times.len() < 10 {
+            return None;
+        }
+        let mut v: Vec<f32> = self.frame_times.iter().copied().collect();
+        v.sort_by(f32::total_cmp);
+        let i = ((v.len() as f32 * 0.95) as usize).min(v.len() - 1);
+        Some(v[i] * 1e3)
+    }
+
+    /// One frame: background results, shortcuts, panels, viewport, then the render sync.
+    pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
+        let ctx = ui.ctx().clone();
+        self.record_frame_time();
+        self.poll_background();
+        self.handle_shortcuts(&ctx);
+        self.handle_dropped_files(&ctx);
+        crate::panels::menu_bar(ui, self);
+        crate::panels::status_bar(ui, self);
+        egui::Panel::left("controls")
+            .resizable(true)
+            .default_size(310.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| crate::panels::controls_ui(ui, self));
+            });
+        egui::CentralPanel::default()
+            .frame(egui::Frame::NONE.fill(egui::Color32::from_gray(20)))
+            .show(ui, |ui| crate::viewport_ui::viewport_ui(ui, self));
+        crate::panels::windows_ui(&ctx, self);
+        // Commit a finished interaction as one undo step.
+        if !ctx.input(|i| i.pointer.any_down()) {
+            self.history.commit(&self.doc.setup);
+        }
+        self.sync_render();
+        if self.loading.is_some()
+            || self.dialog.is_some()
+            || !self.writes.is_empty()
+            || self.render_image_job.is_some()
+        {
+            ctx.request_repaint_after(Duration::from_millis(100));
+        }
+    }
+}
+
+impl eframe::App for RaygineApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        self.frame_ui(ui);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        self.prefs.exposure_stops = self.display.exposure_stops;
+        self.prefs.auto_exposure = self.display.auto_exposure;
+        self.prefs.tone_map = self.display.tone_map.name().to_owned();
+        self.prefs.max_depth = self.render.max_depth;
+        self.prefs.target_spp = self.render.target_spp;
+        self.prefs.resolution_scale = self.render.resolution_scale;
+        eframe::set_value(storage, PREFS_KEY, &self.prefs);
+    }
+}

@@ -1,0 +1,94 @@
+//! Materials per brep and part: Kd colour, Ks colour, glossiness; hide or isolate breps; the
+//! surface clicked in the viewport is selected here.
+
+use crate::app::RaygineApp;
+
+pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
+    let scene = std::sync::Arc::clone(&app.doc.scene);
+    egui::ScrollArea::vertical()
+        .id_salt("breps")
+        .max_height(220.0)
+        .show(ui, |ui| {
+            for (bi, brep) in scene.breps.iter().enumerate() {
+                let slots = brep.first_slot..brep.first_slot + brep.part_count;
+                ui.horizontal(|ui| {
+                    let mut visible = slots.clone().any(|s| !app.doc.setup.is_hidden(s));
+                    if ui
+                        .checkbox(&mut visible, "")
+                        .on_hover_text("Show or hide this brep")
+                        .changed()
+                    {
+                        for s in slots.clone() {
+                            app.doc.setup.hidden[s as usize] = !visible;
+                        }
+                    }
+                    let selected = app.selected_slot.is_some_and(|s| slots.contains(&s));
+                    if ui.selectable_label(selected, brep.name.as_str()).clicked() {
+                        app.selected_slot = Some(brep.first_slot);
+                    }
+                    if ui
+                        .small_button("isolate")
+                        .on_hover_text("Show only this brep")
+                        .clicked()
+                    {
+                        for (s, owner) in scene.slots.iter().enumerate() {
+                            app.doc.setup.hidden[s] = owner.brep as usize != bi;
+                        }
+                    }
+                });
+                if brep.part_count > 1 && app.selected_slot.is_some_and(|s| slots.contains(&s)) {
+                    ui.indent(bi, |ui| {
+                        ui.horizontal_wrapped(|ui| {
+                            for s in slots.clone() {
+                                let part = s - brep.first_slot;
+                                if ui
+                                    .selectable_label(
+                                        app.selected_slot == Some(s),
+                                        format!("part {part}"),
+                                    )
+                                    .clicked()
+                                {
+                                    app.selected_slot = Some(s);
+                                }
+                            }
+                        });
+                    });
+                }
+            }
+        });
+    if app.doc.setup.hidden.iter().any(|&h| h) && ui.button("Show all").clicked() {
+        app.doc.setup.hidden.iter_mut().for_each(|h| *h = false);
+    }
+    ui.separator();
+    let Some(slot) = app.selected_slot else {
+        ui.label("Click a surface or a brep name to edit its material.");
+        return;
+    };
+    let label = scene.slot_label(slot);
+    let Some(m) = app.doc.setup.materials.get_mut(slot as usize) else {
+        return;
+    };
+    ui.strong(format!("Material of {label}"));
+    ui.horizontal(|ui| {
+        ui.color_edit_button_rgb(&mut m.kd);
+        ui.label("Kd, diffuse reflectance");
+    });
+    ui.horizontal(|ui| {
+        ui.color_edit_button_rgb(&mut m.ks);
+        ui.label("Ks, mirror reflectance");
+    });
+    ui.add(
+        egui::Slider::new(&mut m.glossiness, 0.0..=10_000.0)
+            .logarithmic(true)
+            .text("glossiness"),
+    )
+    .on_hover_text("Blinn-Phong exponent of the point lights' highlight (0: none)");
+    let (clamped, changed) = m.clamped();
+    if changed {
+        *m = clamped;
+        ui.colored_label(
+            egui::Color32::YELLOW,
+            "Kd + Ks was above 1: scaled down per channel",
+        );
+    }
+}

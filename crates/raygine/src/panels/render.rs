@@ -1,0 +1,78 @@
+//! Render settings (restart the render) and display settings (re-map only).
+
+use crate::app::RaygineApp;
+use tracer_core::display::{FalseColourQuantity, FalseColourScale, ToneMap};
+
+pub fn render_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let r = &mut app.render;
+    ui.add(egui::Slider::new(&mut r.max_depth, 0..=16).text("max reflection depth"))
+        .on_hover_text("Mirror bounces traced after the camera ray");
+    ui.add(
+        egui::Slider::new(&mut r.target_spp, 1..=4096)
+            .logarithmic(true)
+            .text("samples target (spp)"),
+    )
+    .on_hover_text("Rendering stops (and uses no CPU) once every pixel has this many samples");
+    ui.add(egui::Slider::new(&mut r.resolution_scale, 0.25..=1.0).text("resolution scale"))
+        .on_hover_text("Film pixels per screen pixel: lower is faster while you explore");
+    ui.add(egui::Slider::new(&mut r.threads, 1..=cores.max(1)).text("render threads"));
+    ui.separator();
+    let d = &mut app.display;
+    ui.horizontal(|ui| {
+        ui.add_enabled(
+            !d.auto_exposure,
+            egui::Slider::new(&mut d.exposure_stops, -12.0..=12.0).text("exposure (stops)"),
+        )
+        .on_hover_text("0 stops: 100 cd/m² is display white; +1 doubles");
+    });
+    ui.checkbox(&mut d.auto_exposure, "auto exposure")
+        .on_hover_text("Log-average luminance of the image maps to middle grey");
+    egui::ComboBox::from_label("tone mapping")
+        .selected_text(d.tone_map.name())
+        .show_ui(ui, |ui| {
+            for t in ToneMap::ALL {
+                ui.selectable_value(&mut d.tone_map, t, t.name());
+            }
+        });
+    let fc = &mut app.false_colour;
+    ui.checkbox(&mut fc.enabled, "false colour");
+    ui.add_enabled_ui(fc.enabled, |ui| {
+        ui.horizontal(|ui| {
+            ui.selectable_value(
+                &mut fc.quantity,
+                FalseColourQuantity::Luminance,
+                "luminance (cd/m²)",
+            );
+            ui.selectable_value(
+                &mut fc.quantity,
+                FalseColourQuantity::Illuminance,
+                "illuminance (lx)",
+            );
+        });
+        ui.horizontal(|ui| {
+            ui.selectable_value(&mut fc.scale, FalseColourScale::Log, "log");
+            ui.selectable_value(&mut fc.scale, FalseColourScale::Linear, "linear");
+        });
+        let unit = fc.quantity.unit();
+        ui.horizontal(|ui| {
+            ui.label(format!("range ({unit})"));
+            ui.add(
+                egui::DragValue::new(&mut fc.min)
+                    .speed(0.1)
+                    .range(0.0..=f32::MAX),
+            );
+            ui.add(
+                egui::DragValue::new(&mut fc.max)
+                    .speed(1.0)
+                    .range(0.0..=f32::MAX),
+            );
+        });
+        if fc.max <= fc.min {
+            fc.max = fc.min * 10.0 + 1.0;
+        }
+        if fc.scale == FalseColourScale::Log && fc.min <= 0.0 {
+            fc.min = 0.01;
+        }
+    });
+}

@@ -1,0 +1,246 @@
+//! The viewer's side of the render engine: starts a new generation whenever the scene, its setup
+//! or the render settings change, and keeps a GPU texture of the film through the display mapping,
+//! uploading only the tiles that changed. Never blocks the UI thread for long: the film lock is
+//! held only while a changed rectangle is mapped.
+
+use egui::{ColorImage, TextureHandle, TextureOptions};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use tracer_core::display::DisplaySettings;
+use tracer_core::render::{
+    ProgressiveFilm, RenderSession, RenderSettings, SessionStats, Snapshot, Tile,
+};
+use tracer_core::scene::{CameraBasis, Scene, Setup};
+
+/// What the current generation renders; a change restarts the render.
+#[derive(Clone, Debug)]
+pub struct RenderKey {
+    pub scene: Arc<Scene>,
+    pub setup: Setup,
+    pub settings: RenderSettings,
+    pub threads: usize,
+}
+
+impl PartialEq for RenderKey {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.scene, &other.scene)
+            && self.setup == other.setup
+            && self.settings == other.settings
+            && self.threads == other.threads
+    }
+}
+
+pub struct RenderWorker {
+    session: RenderSession,
+    current: Option<RenderKey>,
+    texture: Option<TextureHandle>,
+    /// Generation and display mapping the texture shows.
+    shown_generation: u64,
+    shown_display: Option<DisplaySettings>,
+    shown_exposure: f32,
+    shown_passes: u32,
+    /// When the current generation was started (for change-to-pixels latency).
+    started_at: Option<Instant>,
+    /// Seconds from the last restart to the first texture upload of the new generation.
+    pub last_change_to_pixels: Option<f64>,
+}
+
+impl std::fmt::Debug for RenderWorker {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RenderWorker")
+            .field("shown_generation", &self.shown_generation)
+            .finish_non_exhaustive()
+    }
+}
+
+impl RenderWorker {
+    pub fn new(ctx: &egui::Context, threads: usize) -> std::io::Result<Self> {
+        let repaint = ctx.clone();
+        let session = RenderSession::new(threads, Arc::new(move || repaint.request_repaint()))?;
+        Ok(Self {
+            session,
+            current: None,
+            texture: None,
+            shown_generation: 0,
+            shown_display: None,
+            shown_exposure: 0.0,
+            shown_passes: 0,
+            started_at: None,
+            last_change_to_pixels: None,
+        })
+    }
+
+    /// Starts a new generation when `key` differs from the running one. Returns whether it did.
+    pub fn sync(&mut self, key: RenderKey) -> bool {
+        if self.current.as_ref() == Some(&key) {
+            return false;
+        }
+        self.session.set_threads(key.threads);
+        self.session.start(Snapshot {
+            scene: Arc::clone(&key.scene),
+            setup: key.setup.clone(),
+            settings: key.settings,
+            time_limit: None,
+        });
+        self.current = Some(key);
+        self.started_at = Some(Instant::now());
+        true
+    }
+
+    pub fn generation(&self) -> u64 {
+        self.session.generation()
+    }
+
+    /// The generation the texture shows.
+    pub fn shown_generation(&self) -> u64 {
+        self.shown_generation
+    }
+
+    pub fn stats(&self) -> SessionStats {
+        self.session.stats()
+    }
+
+    pub fn set_paused(&self, paused: bool) {
+        self.session.set_paused(paused);
+    }
+
+    /// The key of the generation running, with its camera basis (for picking and markers).
+    pub fn current(&self) -> Option<&RenderKey> {
+        self.current.as_ref()
+    }
+
+    pub fn basis(&self) -> Option<CameraBasis> {
+        self.current.as_ref().map(|k| {
+            k.setup
+                .camera
+                .basis(k.setup.handedness, k.settings.width, k.settings.height)
+        })
+    }
+
+    /// Reads the film (the session's lock is held during `f`).
+    pub fn with_film<R>(&self, f: impl FnOnce(Option<&ProgressiveFilm>) -> R) -> R {
+        self.session.with_film(f)
+    }
+
+    /// Brings the texture up to date: changed tiles only, or everything after a new generation
+    /// or a change of the display mapping. Returns the texture to draw, if any.
+    pub fn update_texture(
+        &mut self,
+        ctx: &egui::Context,
+        display: &DisplaySettings,
+    ) -> Option<&TextureHandle> {
+        let dirty = self.session.take_dirty();
+        let stats = self.session.stats();
+        let generation = self.session.with_film(|f| f.map(|f| f.generation));
+        let Some(generation) = generation else {
+            return self.texture.as_ref();
+        };
+        let new_generation = generation != self.shown_generation;
+        // Auto exposure follows the image as it refines: re-check it after each pass.
+        let exposure_stale = display.auto_exposure && stats.passes_done != self.shown_passes;
+        let mut exposure = self.shown_exposure;
+        if new_generation || exposure_stale || self.shown_display.as_ref() != Some(display) {
+            exposure = if display.auto_exposure {
+                self.session
+                    .with_film(|f| f.map(|f| tracer_core::display::auto_exposure_stops(&f.shown())))
+                    .unwrap_or(0.0)
+            } else {
+                display.exposure_stops
+            };
+        }
+        let full = new_generation
+            || self.shown_display.as_ref() != Some(display)
+            || (exposure - self.shown_exposure).abs() > 0.02
+            || self.texture.is_none();
+        self.shown_passes = stats.passes_done;
+        if full {
+            let image = self
+                .session
+                .with_film(|f| f.map(|f| map_rect(f, display, exposure, None)));
+            let Some(image) = image else {
+                return self.texture.as_ref();
+            };
+            match &mut self.texture {
+                Some(t) if t.size() == image.size => t.set(image, TextureOptions::NEAREST),
+                _ => {
+                    self.texture = Some(ctx.load_texture("film", image, TextureOptions::NEAREST));
+                }
+            }
+            self.shown_display = Some(*display);
+            self.shown_exposure = exposure;
+            if new_generation {
+                self.shown_generation = generation;
+                if let Some(t) = self.started_at.take() {
+                    self.last_change_to_pixels = Some(t.elapsed().as_secs_f64());
+                }
+            }
+        } else if let Some(texture) = &mut self.texture {
+            for rect in merge_rows(dirty) {
+                let image = self
+                    .session
+                    .with_film(|f| f.map(|f| map_rect(f, display, exposure, Some(rect))));
+                if let Some(image) = image {
+                    texture.set_partial(
+                        [rect.x0 as usize, rect.y0 as usize],
+                        image,
+                        TextureOptions::NEAREST,
+                    );
+                }
+            }
+        }
+        self.texture.as_ref()
+    }
+
+    /// True while the engine still has work to do for the current generation.
+    pub fn busy(&self) -> bool {
+        let s = self.session.stats();
+        let done = s.finished && s.generation == self.session.generation();
+        !(done || s.paused)
+    }
+
+    /// Waits (for tests and scripts) until the current generation is shown and finished.
+    pub fn wait_finished(&self, timeout: Duration) -> bool {
+        let generation = self.session.generation();
+        self.session
+            .wait_for(timeout, |s| s.generation == generation && s.finished)
+    }
+}
+
+/// Maps a rectangle of the film (all of it for `None`) to display pixels.
+pub fn map_rect(
+    film: &ProgressiveFilm,
+    display: &DisplaySettings,
+    exposure: f32,
+    rect: Option<Tile>,
+) -> ColorImage {
+    let rect = rect.unwrap_or(Tile {
+        x0: 0,
+        y0: 0,
+        x1: film.width(),
+        y1: film.height(),
+    });
+    let scale = DisplaySettings::scale_for(exposure);
+    let mut pixels = Vec::with_capacity(rect.pixel_count());
+    for (x, y) in rect.pixels() {
+        let i = film.accum.index(x, y);
+        let [r, g, b, a] = display.map_pixel(film.shown_rgb(i), film.shown_illuminance(i), scale);
+        pixels.push(egui::Color32::from_rgba_unmultiplied(r, g, b, a));
+    }
+    ColorImage::new([rect.width() as usize, rect.height() as usize], pixels)
+}
+
+/// Fewer, larger uploads: dirty tiles are uploaded one by one, except when there are many,
+/// then their bounding box is uploaded once.
+fn merge_rows(mut dirty: Vec<Tile>) -> Vec<Tile> {
+    if dirty.len() <= 16 {
+        return dirty;
+    }
+    let first = dirty.remove(0);
+    let bbox = dirty.iter().fold(first, |a, t| Tile {
+        x0: a.x0.min(t.x0),
+        y0: a.y0.min(t.y0),
+        x1: a.x1.max(t.x1),
+        y1: a.y1.max(t.y1),
+    });
+    vec![bbox]
+}

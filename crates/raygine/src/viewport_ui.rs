@@ -1,0 +1,280 @@
+//! The viewport: the live film, mouse camera control, hover read-outs, picking, light markers,
+//! the axis triad and the false-colour legend.
+
+use crate::app::{HoverInfo, RaygineApp};
+use crate::camera_control::{dolly, orbit, pan};
+use egui::{Align2, Color32, FontId, Pos2, Rect, Sense, Stroke, Vec2};
+use glam::Vec3;
+use tracer_core::scene::{CameraBasis, luminance};
+
+pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
+    let rect = ui.available_rect_before_wrap();
+    let ppp = ui.ctx().pixels_per_point();
+    let scale = app.render.resolution_scale.clamp(0.25, 1.0);
+    app.viewport_px = [
+        ((rect.width() * ppp * scale).round() as u32).clamp(1, 8192),
+        ((rect.height() * ppp * scale).round() as u32).clamp(1, 8192),
+    ];
+    let response = ui.allocate_rect(rect, Sense::click_and_drag());
+    let display = app_display(app);
+    if let Some(texture) = app.worker.update_texture(ui.ctx(), &display) {
+        let uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
+        ui.painter().image(texture.id(), rect, uv, Color32::WHITE);
+    }
+    handle_mouse(ui, app, &response, rect);
+    let basis = app.worker.basis();
+    if let Some(b) = &basis {
+        draw_light_markers(ui, app, b, rect);
+    }
+    draw_axis_triad(ui, app, rect);
+    if let Some(fc) = display.false_colour {
+        draw_legend(ui, &fc, rect);
+    }
+    draw_overlays(ui, app, rect);
+    // Keep repainting while the engine refines; idle (no CPU) once converged.
+    if app.worker.busy() || app.worker.shown_generation() != app.worker.generation() {
+        ui.ctx().request_repaint();
+    }
+}
+
+fn app_display(app: &RaygineApp) -> tracer_core::display::DisplaySettings {
+    let fc = app.false_colour;
+    tracer_core::display::DisplaySettings {
+        false_colour: fc.enabled.then_some(tracer_core::display::FalseColour {
+            quantity: fc.quantity,
+            scale: fc.scale,
+            min: fc.min,
+            max: fc.max,
+        }),
+        ..app.display
+    }
+}
+
+/// Film pixel under a screen position.
+fn film_pixel(app: &RaygineApp, rect: Rect, pos: Pos2) -> Option<(f32, f32)> {
+    if !rect.contains(pos) {
+        return None;
+    }
+    let settings = app.worker.current()?.settings;
+    let (w, h) = (settings.width, settings.height);
+    let fx = (pos.x - rect.min.x) / rect.width() * w as f32;
+    let fy = (pos.y - rect.min.y) / rect.height() * h as f32;
+    Some((fx, fy))
+}
+
+fn handle_mouse(ui: &egui::Ui, app: &mut RaygineApp, response: &egui::Response, rect: Rect) {
+    let handedness = app.doc.setup.handedness;
+    let camera = app.doc.setup.camera;
+    let (shift, scroll) = ui.input(|i| (i.modifiers.shift, i.smooth_scroll_delta.y));
+    let delta = response.drag_delta();
+    if delta != Vec2::ZERO {
+        let panning = response.dragged_by(egui::PointerButton::Middle)
+            || (response.dragged_by(egui::PointerButton::Primary) && shift);
+        let height_px = rect.height();
+        app.doc.setup.camera = if panning {
+            pan(&camera, handedness, delta.x, delta.y, height_px)
+        } else if response.dragged_by(egui::PointerButton::Primary) {
+            orbit(&camera, handedness, delta.x, delta.y)
+        } else {
+            camera
+        };
+    }
+    if response.hovered() && scroll != 0.0 {
+        app.doc.setup.camera = dolly(&app.doc.setup.camera, scroll * 0.002);
+    }
+    app.hover = response
+        .hover_pos()
+        .and_then(|pos| film_pixel(app, rect, pos))
+        .and_then(|(fx, fy)| hover_info(app, fx, fy));
+    if response.clicked()
+        && let Some(pos) = response.interact_pointer_pos()
+        && let Some((fx, fy)) = film_pixel(app, rect, pos)
+    {
+        app.selected_slot = pick_slot(app, fx, fy);
+    }
+}
+
+/// The material slot of the surface seen at film position (`fx`, `fy`).
+pub fn pick_slot(app: &RaygineApp, fx: f32, fy: f32) -> Option<u32> {
+    let key = app.worker.current()?;
+    let basis = key.setup.camera.basis(
+        key.setup.handedness,
+        key.settings.width,
+        key.settings.height,
+    );
+    let prep = tracer_core::shading::Prepared::new(&key.scene, &key.setup, 0);
+    let hit = prep.closest_visible(&basis.ray(fx, fy))?;
+    key.scene.triangle_slots.get(hit.prim as usize).copied()
+}
+
+fn hover_info(app: &RaygineApp, fx: f32, fy: f32) -> Option<HoverInfo> {
+    let (x, y) = (fx as u32, fy as u32);
+    let (lum, lx) = app.worker.with_film(|f| {
+        let f = f?;
+        if x >= f.width() || y >= f.height() {
+            return None;
+        }
+        let i = f.accum.index(x, y);
+        Some((luminance(f.shown_rgb(i)), f.shown_illuminance(i)))
+    })?;
+    let surface = pick_slot(app, fx, fy).map(|s| app.doc.scene.slot_label(s));
+    Some(HoverInfo {
+        luminance: lum,
+        illuminance: lx,
+        surface,
+        pixel: [x, y],
+    })
+}
+
+fn to_screen(rect: Rect, basis: &CameraBasis, p: Vec3) -> Option<Pos2> {
+    let (x, y) = basis.project(p)?;
+    Some(Pos2::new(
+        rect.min.x + x / basis.width as f32 * rect.width(),
+        rect.min.y + y / basis.height as f32 * rect.height(),
+    ))
+}
+
+fn draw_light_markers(ui: &egui::Ui, app: &RaygineApp, basis: &CameraBasis, rect: Rect) {
+    let painter = ui.painter_at(rect);
+    for (i, light) in app.doc.setup.lights.iter().enumerate() {
+        if let Some(pos) = to_screen(rect, basis, light.position()) {
+            let c = light.color.map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8);
+            painter.circle(
+                pos,
+                6.0,
+                Color32::from_rgb(c[0], c[1], c[2]),
+                Stroke::new(2.0, Color32::BLACK),
+            );
+            painter.text(
+                pos + Vec2::new(9.0, -9.0),
+                Align2::LEFT_BOTTOM,
+                format!("L{} {:.0} cd", i + 1, light.intensity_cd),
+                FontId::proportional(12.0),
+                Color32::YELLOW,
+            );
+        }
+    }
+}
+
+/// X (red), Y (green), Z (blue) in the bottom-left corner, drawn with the camera's basis so the
+/// triad agrees with the picture (mirrored for left-handed scenes).
+fn draw_axis_triad(ui: &egui::Ui, app: &RaygineApp, rect: Rect) {
+    let basis = app.doc.setup.camera.basis(app.doc.setup.handedness, 1, 1);
+    let origin = Pos2::new(rect.min.x + 40.0, rect.max.y - 40.0);
+    let painter = ui.painter_at(rect);
+    for (axis, colour, name) in [
+        (Vec3::X, Color32::from_rgb(230, 60, 60), "X"),
+        (Vec3::Y, Color32::from_rgb(60, 200, 60), "Y"),
+        (Vec3::Z, Color32::from_rgb(80, 120, 255), "Z"),
+    ] {
+        let d = Vec2::new(axis.dot(basis.right), -axis.dot(basis.up)) * 28.0;
+        painter.line_segment([origin, origin + d], Stroke::new(2.0, colour));
+        painter.text(
+            origin + d * 1.25,
+            Align2::CENTER_CENTER,
+            name,
+            FontId::proportional(12.0),
+            colour,
+        );
+    }
+}
+
+fn draw_legend(ui: &egui::Ui, fc: &tracer_core::display::FalseColour, rect: Rect) {
+    let legend = fc.legend(8);
+    let painter = ui.painter_at(rect);
+    let (w, row) = (22.0, 18.0);
+    let top = rect.min.y + 12.0;
+    let x = rect.max.x - 120.0;
+    painter.rect_filled(
+        Rect::from_min_size(
+            Pos2::new(x - 8.0, top - 8.0),
+            Vec2::new(120.0, row * legend.entries.len() as f32 + 30.0),
+        ),
+        4.0,
+        Color32::from_black_alpha(170),
+    );
+    for (k, e) in legend.entries.iter().rev().enumerate() {
+        let y = top + k as f32 * row;
+        let [r, g, b, _] = e.rgba;
+        painter.rect_filled(
+            Rect::from_min_size(Pos2::new(x, y), Vec2::new(w, row - 2.0)),
+            0.0,
+            Color32::from_rgb(r, g, b),
+        );
+        painter.text(
+            Pos2::new(x + w + 6.0, y + row * 0.5),
+            Align2::LEFT_CENTER,
+            format_value(e.value),
+            FontId::monospace(12.0),
+            Color32::WHITE,
+        );
+    }
+    painter.text(
+        Pos2::new(x, top + row * legend.entries.len() as f32 + 4.0),
+        Align2::LEFT_TOP,
+        legend.unit,
+        FontId::proportional(12.0),
+        Color32::WHITE,
+    );
+}
+
+/// A value with 3 significant digits.
+pub fn format_value(v: f32) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let digits = (2 - v.abs().log10().floor() as i32).max(0) as usize;
+    format!("{v:.digits$}")
+}
+
+fn draw_overlays(ui: &egui::Ui, app: &RaygineApp, rect: Rect) {
+    let painter = ui.painter_at(rect);
+    let mut y = rect.min.y + 8.0;
+    let mut line = |text: String, colour: Color32| {
+        let galley = painter.layout(
+            text,
+            FontId::proportional(14.0),
+            colour,
+            rect.width() - 40.0,
+        );
+        let r = Rect::from_min_size(
+            Pos2::new(rect.min.x + 8.0, y),
+            galley.size() + Vec2::new(12.0, 8.0),
+        );
+        painter.rect_filled(r, 4.0, Color32::from_black_alpha(190));
+        painter.galley(r.min + Vec2::new(6.0, 4.0), galley, colour);
+        y = r.max.y + 6.0;
+    };
+    if let Some(l) = &app.loading {
+        line(
+            format!(
+                "Loading {} … {:.1} s",
+                l.path.display(),
+                l.started.elapsed().as_secs_f32()
+            ),
+            Color32::LIGHT_BLUE,
+        );
+    }
+    if let Some(e) = &app.error {
+        line(format!("Error: {e}"), Color32::from_rgb(255, 120, 110));
+    }
+    if let Some(n) = &app.notice {
+        line(n.clone(), Color32::LIGHT_GREEN);
+    }
+    if let Some(h) = &app.hover {
+        let text = format!(
+            "{} cd/m²   {} lx   {}",
+            format_value(h.luminance),
+            format_value(h.illuminance),
+            h.surface.as_deref().unwrap_or("(background)")
+        );
+        let pos = Pos2::new(rect.min.x + 8.0, rect.max.y - 90.0);
+        painter.text(
+            pos,
+            Align2::LEFT_BOTTOM,
+            text,
+            FontId::monospace(13.0),
+            Color32::WHITE,
+        );
+    }
+}
