@@ -122,6 +122,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         .render_path
         .clone()
         .unwrap_or_else(|| default_render_path(args.scene_path.as_deref()));
+    check_output_path(&png_path)?;
+    if let Some(exr) = &args.exr {
+        check_output_path(exr)?;
+    }
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = args.threads {
         pool = pool.num_threads(n as usize);
@@ -169,6 +173,24 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         println!("wrote {} (linear cd/m² per channel)", exr.display());
     }
     Ok(())
+}
+
+/// Fails before rendering when an output path cannot be written (a folder, or a folder that does
+/// not exist), so a long render is not wasted. Writing itself stays atomic in `export`.
+fn check_output_path(path: &Path) -> Result<()> {
+    if path.is_dir() {
+        bail!("{}: is a directory", path.display());
+    }
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => {
+            bail!(
+                "{}: the folder {} does not exist",
+                path.display(),
+                dir.display()
+            )
+        }
+        _ => Ok(()),
+    }
 }
 
 /// The display image of a film with the luminance figures the summary prints.
