@@ -2,9 +2,12 @@
 
 use crate::cli::RenderArgs;
 use anyhow::{Context, Result, bail};
+use glam::Vec3;
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 use tracer_core::display::DisplaySettings;
-use tracer_core::render::{RenderSettings, render};
+use tracer_core::render::{Film, RenderSettings, render};
 use tracer_core::scene::{self, LoadOptions, LoadedScene, PointLight, luminance};
 
 /// Samples per pixel of `-A/--antialiased`.
@@ -90,6 +93,7 @@ pub fn default_render_path(scene_path: Option<&Path>) -> PathBuf {
 }
 
 pub fn run(args: &RenderArgs) -> Result<()> {
+    let started = Instant::now();
     let mut loaded = load_scene(args)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
@@ -118,6 +122,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         .render_path
         .clone()
         .unwrap_or_else(|| default_render_path(args.scene_path.as_deref()));
+    check_output_path(&png_path)?;
+    if let Some(exr) = &args.exr {
+        check_output_path(exr)?;
+    }
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = args.threads {
         pool = pool.num_threads(n as usize);
@@ -125,19 +133,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let pool = pool.build().context("cannot start the render threads")?;
     let threads = pool.current_num_threads();
     let (film, stats) = pool.install(|| render(&loaded.scene, &loaded.setup, &settings));
+    let rendered_at = Instant::now();
     let exposure = display.effective_exposure(&film);
-    let rgba = display.map_film(&film);
-    tracer_core::export::write_png(&png_path, rgba, film.width, film.height)?;
+    let image = pool.install(|| map_film_rgb(&film, &display, exposure));
+    tracer_core::export::write_png_rgb(&png_path, &image.rgb, film.width, film.height)?;
     if let Some(exr) = &args.exr {
         tracer_core::export::write_exr(exr, &film)?;
     }
     let scene = &loaded.scene;
-    let (mut y_max, mut y_sum) = (0.0f32, 0.0f64);
-    for i in 0..film.pixels.len() {
-        let y = luminance(film.mean_rgb(i));
-        y_max = y_max.max(y);
-        y_sum += f64::from(y);
-    }
     println!(
         "{}: {} triangles, {} breps, BVH {:.1} ms; {}x{} px, {} spp, depth {}, {} threads",
         scene.name,
@@ -154,13 +157,201 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         "rendered in {:.1} ms, {:.2} Mrays/s; luminance mean {:.3} cd/m², max {:.3} cd/m²; exposure {:+.2} stops",
         stats.elapsed_secs * 1e3,
         stats.mrays_per_sec(),
-        y_sum / film.pixels.len().max(1) as f64,
-        y_max,
+        image.luminance_sum / film.pixels.len().max(1) as f64,
+        image.luminance_max,
         exposure
+    );
+    println!(
+        "total {:.1} ms (load {:.1} ms, render {:.1} ms, images {:.1} ms)",
+        started.elapsed().as_secs_f64() * 1e3,
+        (rendered_at - started).as_secs_f64() * 1e3 - stats.elapsed_secs * 1e3,
+        stats.elapsed_secs * 1e3,
+        rendered_at.elapsed().as_secs_f64() * 1e3,
     );
     println!("wrote {}", png_path.display());
     if let Some(exr) = &args.exr {
         println!("wrote {} (linear cd/m² per channel)", exr.display());
     }
     Ok(())
+}
+
+/// Fails before rendering when an output path cannot be written (a folder, or a folder that does
+/// not exist), so a long render is not wasted. Writing itself stays atomic in `export`.
+fn check_output_path(path: &Path) -> Result<()> {
+    if path.is_dir() {
+        bail!("{}: is a directory", path.display());
+    }
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => {
+            bail!(
+                "{}: the folder {} does not exist",
+                path.display(),
+                dir.display()
+            )
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The display image of a film with the luminance figures the summary prints.
+#[derive(Debug)]
+pub struct MappedImage {
+    /// RGB8, sRGB-encoded, row-major, top row first.
+    pub rgb: Vec<u8>,
+    /// Sum over pixels of the mean Rec. 709 luminance, cd/m².
+    pub luminance_sum: f64,
+    /// Largest pixel luminance, cd/m².
+    pub luminance_max: f32,
+}
+
+/// Maps the film to display pixels (as [`DisplaySettings::map_film`] does, without alpha) and
+/// gathers its luminance figures in the same pass, rows in parallel on the current rayon pool.
+/// Row sums are added in row order, so the figures do not depend on the thread count.
+pub fn map_film_rgb(film: &Film, display: &DisplaySettings, exposure_stops: f32) -> MappedImage {
+    let scale = DisplaySettings::scale_for(exposure_stops);
+    let lut = ChannelLut::new(display, scale);
+    let width = film.width as usize;
+    let mut rgb = vec![0u8; film.pixels.len() * 3];
+    let rows: Vec<(f64, f32)> = rgb
+        .par_chunks_mut((width * 3).max(1))
+        .zip(film.pixels.par_chunks(width.max(1)))
+        .map(|(out, sums)| {
+            let (mut y_sum, mut y_max) = (0.0f64, 0.0f32);
+            for (o, p) in out.chunks_exact_mut(3).zip(sums) {
+                let (mean, e) = if p.count == 0 {
+                    (Vec3::ZERO, 0.0)
+                } else {
+                    let n = p.count as f32;
+                    (p.rgb / n, p.illuminance_lx / n)
+                };
+                let code = match &lut {
+                    Some(lut) => [lut.code(mean.x), lut.code(mean.y), lut.code(mean.z)],
+                    None => {
+                        let [r, g, b, _] = display.map_pixel(mean, e, scale);
+                        [r, g, b]
+                    }
+                };
+                o.copy_from_slice(&code);
+                let y = luminance(mean);
+                y_sum += f64::from(y);
+                y_max = y_max.max(y);
+            }
+            (y_sum, y_max)
+        })
+        .collect();
+    let (luminance_sum, luminance_max) = rows
+        .iter()
+        .fold((0.0, 0.0f32), |(s, m), &(rs, rm)| (s + rs, m.max(rm)));
+    MappedImage {
+        rgb,
+        luminance_sum,
+        luminance_max,
+    }
+}
+
+/// What [`DisplaySettings::map_pixel`] gives one channel, without its three `powf` calls per
+/// pixel (they cost more than tracing the Cornell box at 1 spp).
+///
+/// The tone curves and the sRGB encoding act on each channel alone and rise with the value, so a
+/// channel's 8-bit code is the number of codes `k` whose threshold `t_k` (the smallest value that
+/// maps to `k` or more) it reaches. Thresholds are found by bisection on the bit patterns of
+/// non-negative floats (ordered like the values), calling `map_pixel` itself, so the table
+/// follows the display code wherever it changes. Bucketing by the top 16 bits of the float makes
+/// most lookups one load. Where f32 rounding makes the curve itself wobble across a code boundary
+/// (a few ulps wide), the table gives the neighbouring code: at most 1 apart, and rare (tested).
+/// [`ChannelLut::new`] checks the per-channel assumption and gives `None` (use `map_pixel`) for
+/// false colour or any curve where it does not hold; values at or above the limit, where the
+/// filmic curve overflows, go to `map_pixel` one by one.
+struct ChannelLut<'a> {
+    display: &'a DisplaySettings,
+    scale: f32,
+    /// Bits of the first value the table does not cover.
+    limit_bits: u32,
+    /// `thresholds[k - 1]`: bits of the smallest value whose code is `k` or more (`u32::MAX`: none
+    /// below the limit).
+    thresholds: [u32; 255],
+    /// Per bucket of 2^16 bit patterns below the limit: the code at its first value and at its last.
+    buckets: Vec<[u8; 2]>,
+}
+
+const BUCKET_SHIFT: u32 = 16;
+
+/// Display values (cd/m² times the exposure scale) up to this are mapped through the table.
+const LUT_MAX_DISPLAY_VALUE: f32 = 1e15;
+
+impl<'a> ChannelLut<'a> {
+    fn new(display: &'a DisplaySettings, scale: f32) -> Option<ChannelLut<'a>> {
+        let limit = LUT_MAX_DISPLAY_VALUE / scale;
+        if display.false_colour.is_some() || !(limit.is_finite() && limit > 0.0) {
+            return None;
+        }
+        let limit_bits = limit.to_bits();
+        let f =
+            |bits: u32| display.map_pixel(Vec3::new(f32::from_bits(bits), 0.0, 0.0), 0.0, scale)[0];
+        let mut thresholds = [u32::MAX; 255];
+        for (i, t) in thresholds.iter_mut().enumerate() {
+            let k = i as u8 + 1;
+            // The smallest bits in [0, limit_bits) with f(bits) >= k, if any.
+            let (mut lo, mut hi) = (0u32, limit_bits);
+            while lo < hi {
+                let mid = lo + (hi - lo) / 2;
+                if f(mid) >= k {
+                    hi = mid;
+                } else {
+                    lo = mid + 1;
+                }
+            }
+            if lo < limit_bits {
+                *t = lo;
+            }
+        }
+        let count = |bits: u32| thresholds.partition_point(|&t| t <= bits) as u8;
+        let buckets = (0..=(limit_bits - 1) >> BUCKET_SHIFT)
+            .map(|b| {
+                let first = b << BUCKET_SHIFT;
+                let last = (first | ((1 << BUCKET_SHIFT) - 1)).min(limit_bits - 1);
+                [count(first), count(last)]
+            })
+            .collect();
+        let lut = ChannelLut {
+            display,
+            scale,
+            limit_bits,
+            thresholds,
+            buckets,
+        };
+        // The per-channel, non-decreasing assumption, checked on sample colours.
+        let probes = [
+            0.0f32, 1e-4, 0.003, 0.02, 0.18, 0.5, 0.9, 1.0, 3.0, 40.0, 1e4, 1e20,
+        ];
+        for &r in &probes {
+            for &g in &probes {
+                for &b in &probes {
+                    let v = Vec3::new(r, g, b) / scale;
+                    let [pr, pg, pb, _] = display.map_pixel(v, 0.0, scale);
+                    if [pr, pg, pb] != [lut.code(v.x), lut.code(v.y), lut.code(v.z)] {
+                        return None;
+                    }
+                }
+            }
+        }
+        Some(lut)
+    }
+
+    /// The 8-bit code of one linear channel value (cd/m²); NaN and negatives map like 0.
+    #[inline]
+    fn code(&self, value: f32) -> u8 {
+        let bits = if value > 0.0 { value.to_bits() } else { 0 };
+        if bits >= self.limit_bits {
+            let v = Vec3::new(value, 0.0, 0.0);
+            return self.display.map_pixel(v, 0.0, self.scale)[0];
+        }
+        let [first, last] = self.buckets[(bits >> BUCKET_SHIFT) as usize];
+        if first == last {
+            first
+        } else {
+            let between = &self.thresholds[first as usize..last as usize];
+            first + between.partition_point(|&t| t <= bits) as u8
+        }
+    }
 }

@@ -3,7 +3,8 @@
 //! any existing file at the destination is untouched.
 
 use crate::render::Film;
-use image::{ImageFormat, Rgb32FImage, RgbaImage};
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ExtendedColorType, ImageEncoder, ImageFormat, Rgb32FImage};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
@@ -17,17 +18,36 @@ pub enum ExportError {
 
 /// Writes RGBA8 pixels (row-major, top row first) as a PNG.
 pub fn write_png(path: &Path, rgba: Vec<u8>, width: u32, height: u32) -> Result<(), ExportError> {
-    let img = RgbaImage::from_raw(width, height, rgba).ok_or_else(|| ExportError::Encode {
-        path: path.to_owned(),
-        reason: "pixel buffer does not match the image size".to_owned(),
-    })?;
+    write_png_pixels(path, &rgba, width, height, ExtendedColorType::Rgba8)
+}
+
+/// Writes RGB8 pixels (row-major, top row first, 3 bytes a pixel) as a PNG. Rendered images are
+/// opaque, so this is the smaller and faster form of [`write_png`].
+pub fn write_png_rgb(path: &Path, rgb: &[u8], width: u32, height: u32) -> Result<(), ExportError> {
+    write_png_pixels(path, rgb, width, height, ExtendedColorType::Rgb8)
+}
+
+fn write_png_pixels(
+    path: &Path,
+    pixels: &[u8],
+    width: u32,
+    height: u32,
+    color: ExtendedColorType,
+) -> Result<(), ExportError> {
+    let expected = width as usize * height as usize * usize::from(color.bits_per_pixel() / 8);
+    if pixels.len() != expected {
+        return Err(ExportError::Encode {
+            path: path.to_owned(),
+            reason: "pixel buffer does not match the image size".to_owned(),
+        });
+    }
     write_atomically(path, |w| {
-        let encoder = image::codecs::png::PngEncoder::new_with_quality(
-            w,
-            image::codecs::png::CompressionType::Fast,
-            image::codecs::png::FilterType::Adaptive,
-        );
-        img.write_with_encoder(encoder).map_err(|e| e.to_string())
+        // Fast deflate with the Up filter: renders compress nearly as well as with adaptive
+        // filtering, at a fraction of the encoding time.
+        let encoder = PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Up);
+        encoder
+            .write_image(pixels, width, height, color)
+            .map_err(|e| e.to_string())
     })
 }
 

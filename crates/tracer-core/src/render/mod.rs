@@ -18,7 +18,6 @@ pub use tiles::{Tile, tiles_centre_out};
 use crate::scene::{Scene, Setup};
 use crate::shading::{Prepared, trace};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Default maximum number of mirror reflections.
 pub const DEFAULT_MAX_DEPTH: u32 = 5;
@@ -62,46 +61,56 @@ impl RenderStats {
     }
 }
 
-/// Tile edge in pixels for one-shot renders.
+/// Tile edge in pixels for one-shot renders: each band of [`BAND_ROWS`] rows is traced in
+/// blocks of this many columns, so neighbouring rays meet the same BVH nodes.
 pub const TILE_SIZE: u32 = 32;
 
+/// Rows per parallel work item of one-shot renders. Bands are written straight into the film
+/// (no per-tile buffers, no merge), and small enough to balance the load on many cores.
+pub const BAND_ROWS: u32 = 8;
+
 /// Renders every sample of every pixel on the current rayon pool. The result does not depend on
-/// the number of threads: each sample's position comes from (pixel, sample index) only.
+/// the number of threads: each sample's position comes from (pixel, sample index) only, and each
+/// pixel's samples are summed in sample order by one thread.
 pub fn render(scene: &Scene, setup: &Setup, settings: &RenderSettings) -> (Film, RenderStats) {
     let started = std::time::Instant::now();
     let prep = Prepared::new(scene, setup, settings.max_depth);
     let basis = setup
         .camera
         .basis(setup.handedness, settings.width, settings.height);
-    let tiles = tiles_centre_out(settings.width, settings.height, TILE_SIZE);
-    let rays = AtomicU64::new(0);
     let spp = settings.samples_per_pixel.max(1);
-    let done: Vec<(Tile, Vec<PixelSum>)> = tiles
-        .into_par_iter()
-        .map(|tile| {
-            let mut out = Vec::with_capacity(tile.pixel_count());
-            let mut tile_rays = 0u64;
-            for (x, y) in tile.pixels() {
-                let mut sum = PixelSum::default();
-                for s in 0..spp {
-                    let (dx, dy) = pixel_sample_offset(x, y, settings.width, s);
-                    let ray = basis.ray(x as f32 + dx, y as f32 + dy);
-                    let sample = trace(&prep, &ray);
-                    tile_rays += u64::from(sample.rays);
-                    sum.add(&sample);
-                }
-                out.push(sum);
-            }
-            rays.fetch_add(tile_rays, Ordering::Relaxed);
-            (tile, out)
-        })
-        .collect();
     let mut film = Film::new(settings.width, settings.height);
-    for (tile, sums) in done {
-        film.add_tile(&tile, &sums);
-    }
+    let width = settings.width as usize;
+    let band_len = width * BAND_ROWS as usize;
+    let rays: u64 = film
+        .pixels
+        .par_chunks_mut(band_len.max(1))
+        .enumerate()
+        .map(|(band, pixels)| {
+            let y0 = band as u32 * BAND_ROWS;
+            let rows = (pixels.len() / width.max(1)) as u32;
+            let mut band_rays = 0u64;
+            for x0 in (0..settings.width).step_by(TILE_SIZE as usize) {
+                let x1 = (x0 + TILE_SIZE).min(settings.width);
+                for y in y0..y0 + rows {
+                    let row = (y - y0) as usize * width;
+                    for x in x0..x1 {
+                        let sum = &mut pixels[row + x as usize];
+                        for s in 0..spp {
+                            let (dx, dy) = pixel_sample_offset(x, y, settings.width, s);
+                            let ray = basis.ray(x as f32 + dx, y as f32 + dy);
+                            let sample = trace(&prep, &ray);
+                            band_rays += u64::from(sample.rays);
+                            sum.add(&sample);
+                        }
+                    }
+                }
+            }
+            band_rays
+        })
+        .sum();
     let stats = RenderStats {
-        rays: rays.into_inner(),
+        rays,
         elapsed_secs: started.elapsed().as_secs_f64(),
     };
     (film, stats)
