@@ -118,7 +118,14 @@ pub fn measure(
 
 /// Warns when a library's hit count strays from raygine's (the first contender) by more than
 /// what edge cases of different triangle tests explain.
-fn check_hits(workload: Workload, mesh: &str, lib: &str, reference: usize, hits: usize, rays: usize) {
+fn check_hits(
+    workload: Workload,
+    mesh: &str,
+    lib: &str,
+    reference: usize,
+    hits: usize,
+    rays: usize,
+) {
     let diff = reference.abs_diff(hits) as f64 / rays.max(1) as f64;
     if diff > 1e-3 {
         eprintln!(

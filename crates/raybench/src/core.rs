@@ -23,7 +23,8 @@ pub fn run(opts: &Options) -> anyhow::Result<()> {
     let shared = crate::shared::require_shared()?;
     let temp = std::env::temp_dir().join(format!("raybench-{}", std::process::id()));
     let mut figures: Vec<Figure> = Vec::new();
-    let mut extra = String::from("| mesh | threads | bytes/tri | L3 load ms |\n|---|---|---|---|\n");
+    let mut extra =
+        String::from("| mesh | threads | bytes/tri | L3 load ms |\n|---|---|---|---|\n");
     for name in &opts.meshes {
         let mesh = meshes::load(name, &shared)?;
         let workloads = workloads_for(&mesh.triangles)?;

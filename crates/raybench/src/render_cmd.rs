@@ -61,7 +61,9 @@ pub fn run(opts: &Options) -> anyhow::Result<()> {
         let args_of = |extra: Option<&Path>| {
             let mut args: Vec<String> = ["render", "-S"].map(String::from).to_vec();
             args.push(scene.display().to_string());
-            args.extend(["-W", "1000", "-H", "1000", "--depth", "5", "--threads"].map(String::from));
+            args.extend(
+                ["-W", "1000", "-H", "1000", "--depth", "5", "--threads"].map(String::from),
+            );
             args.push(threads.to_string());
             args.push("-R".to_owned());
             args.push(png.display().to_string());

@@ -147,8 +147,17 @@ mod tests {
 
     #[test]
     fn ratios_say_faster_above_one() {
-        assert_eq!(speed_ratio(&fig("W1", "raygine", 20.0), &fig("W1", "embree", 10.0)), 2.0);
-        assert_eq!(speed_ratio(&fig("build", "raygine", 50.0), &fig("build", "embree", 100.0)), 2.0);
+        assert_eq!(
+            speed_ratio(&fig("W1", "raygine", 20.0), &fig("W1", "embree", 10.0)),
+            2.0
+        );
+        assert_eq!(
+            speed_ratio(
+                &fig("build", "raygine", 50.0),
+                &fig("build", "embree", 100.0)
+            ),
+            2.0
+        );
     }
 
     #[test]

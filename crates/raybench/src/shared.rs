@@ -17,7 +17,9 @@ pub fn shared_dir() -> Option<PathBuf> {
 /// The shared folder, or an error that says how to point at it.
 pub fn require_shared() -> anyhow::Result<PathBuf> {
     shared_dir().ok_or_else(|| {
-        anyhow::anyhow!("the shared folder was not found: set RAYGINE_SHARED to the folder holding scenes/")
+        anyhow::anyhow!(
+            "the shared folder was not found: set RAYGINE_SHARED to the folder holding scenes/"
+        )
     })
 }
 

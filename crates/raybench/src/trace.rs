@@ -83,11 +83,9 @@ pub fn primary_hits<A: Accel>(pool: &ThreadPool, accel: &A, rays: &[Ray]) -> Vec
     pool.install(|| {
         rays.par_iter()
             .filter_map(|ray| {
-                accel.closest(ray).map(|(t, prim)| PrimaryHit {
-                    ray: *ray,
-                    t,
-                    prim,
-                })
+                accel
+                    .closest(ray)
+                    .map(|(t, prim)| PrimaryHit { ray: *ray, t, prim })
             })
             .collect()
     })

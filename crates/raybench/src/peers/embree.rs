@@ -1,8 +1,11 @@
 //! Intel Embree 3 (the system's libembree3): one triangle geometry, build quality high, single-ray
 //! `rtcIntersect1` / `rtcOccluded1`. The device gets `threads=N` so the build uses the same number
 //! of threads as the others; tracing runs on the benchmark's rayon pool like every library.
+//! Devices are made once per thread count and kept (starting Embree's task system is not part of
+//! a BVH build); the timed build is buffers + `rtcCommitScene`.
 
 use std::ffi::CString;
+use std::sync::{Arc, Mutex};
 
 use anyhow::{bail, ensure};
 use glam::Vec3;
@@ -11,26 +14,57 @@ use tracer_core::Ray;
 use super::Accel;
 use super::embree_ffi as ffi;
 
+/// An Embree device configured for a number of threads.
+#[derive(Debug)]
+struct Device(ffi::RtcDevice);
+
+// SAFETY: Embree devices are thread-safe objects; the handle is only released in `Drop`.
+unsafe impl Send for Device {}
+// SAFETY: as above.
+unsafe impl Sync for Device {}
+
+impl Drop for Device {
+    fn drop(&mut self) {
+        // SAFETY: the handle came from rtcNewDevice and is released exactly once.
+        unsafe { ffi::rtcReleaseDevice(self.0) };
+    }
+}
+
+/// Devices made so far, by thread count (kept for the life of the process).
+static DEVICES: Mutex<Vec<(usize, Arc<Device>)>> = Mutex::new(Vec::new());
+
+fn device(threads: usize) -> anyhow::Result<Arc<Device>> {
+    let mut devices = DEVICES.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, d)) = devices.iter().find(|(n, _)| *n == threads) {
+        return Ok(Arc::clone(d));
+    }
+    let config = CString::new(format!("threads={threads}"))?;
+    // SAFETY: a valid NUL-terminated configuration string.
+    let handle = unsafe { ffi::rtcNewDevice(config.as_ptr()) };
+    ensure!(!handle.is_null(), "rtcNewDevice failed");
+    let d = Arc::new(Device(handle));
+    devices.push((threads, Arc::clone(&d)));
+    Ok(d)
+}
+
 /// A committed Embree scene and the device that owns it.
 #[derive(Debug)]
 pub struct Embree {
-    device: ffi::RtcDevice,
     scene: ffi::RtcScene,
+    /// Keeps the device alive as long as the scene.
+    _device: Arc<Device>,
 }
 
 // SAFETY: Embree documents rtcIntersect1/rtcOccluded1 on a committed scene as thread-safe, and
-// the handles are never mutated after `build`; release happens once, in `Drop`.
+// the handle is never mutated after `build`; release happens once, in `Drop`.
 unsafe impl Send for Embree {}
 // SAFETY: as above: shared references only ever issue thread-safe queries.
 unsafe impl Sync for Embree {}
 
 impl Drop for Embree {
     fn drop(&mut self) {
-        // SAFETY: both handles came from Embree in `build` and are released exactly once.
-        unsafe {
-            ffi::rtcReleaseScene(self.scene);
-            ffi::rtcReleaseDevice(self.device);
-        }
+        // SAFETY: the scene came from rtcNewScene in `build` and is released exactly once.
+        unsafe { ffi::rtcReleaseScene(self.scene) };
     }
 }
 
@@ -51,20 +85,18 @@ impl Accel for Embree {
     const NAME: &'static str = "embree";
 
     fn build(triangles: &[[Vec3; 3]], threads: usize) -> anyhow::Result<Self> {
-        let config = CString::new(format!("threads={threads}"))?;
+        let device = device(threads)?;
         // SAFETY: plain C calls with valid arguments; every returned handle is checked for null,
         // and the buffers Embree allocates are written within the item counts given to it.
         unsafe {
-            let device = ffi::rtcNewDevice(config.as_ptr());
-            ensure!(!device.is_null(), "rtcNewDevice failed");
-            let scene = ffi::rtcNewScene(device);
-            if scene.is_null() {
-                ffi::rtcReleaseDevice(device);
-                bail!("rtcNewScene failed");
-            }
-            let embree = Embree { device, scene };
+            let scene = ffi::rtcNewScene(device.0);
+            ensure!(!scene.is_null(), "rtcNewScene failed");
+            let embree = Embree {
+                scene,
+                _device: Arc::clone(&device),
+            };
             ffi::rtcSetSceneBuildQuality(scene, ffi::RTC_BUILD_QUALITY_HIGH);
-            let geometry = ffi::rtcNewGeometry(device, ffi::RTC_GEOMETRY_TYPE_TRIANGLE);
+            let geometry = ffi::rtcNewGeometry(device.0, ffi::RTC_GEOMETRY_TYPE_TRIANGLE);
             ensure!(!geometry.is_null(), "rtcNewGeometry failed");
             ffi::rtcSetGeometryBuildQuality(geometry, ffi::RTC_BUILD_QUALITY_HIGH);
             let n = triangles.len();
@@ -103,7 +135,7 @@ impl Accel for Embree {
             ffi::rtcAttachGeometry(scene, geometry);
             ffi::rtcReleaseGeometry(geometry);
             ffi::rtcCommitScene(scene);
-            let error = ffi::rtcGetDeviceError(device);
+            let error = ffi::rtcGetDeviceError(device.0);
             if error != ffi::RTC_ERROR_NONE {
                 bail!("Embree reported error {error} while building");
             }

@@ -33,3 +33,42 @@ pub trait Accel: Send + Sync + Sized {
         None
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::trace::{count_hits, pool, workloads_for};
+
+    /// Every library compiled in finds the same hits as raygine on the same rays (up to rays
+    /// grazing shared edges, which different triangle tests may decide differently).
+    fn agrees_with_raygine<A: Accel>() {
+        let triangles = tracer_core::bvh::uv_sphere(48);
+        let w = workloads_for(&triangles).unwrap();
+        let pool = pool(2).unwrap();
+        let own = raygine::Raygine::build(&triangles, 2).unwrap();
+        let peer = pool.install(|| A::build(&triangles, 2)).unwrap();
+        for (rays, any_hit) in [(&w.w1, false), (&w.w2, true), (&w.w3, false)] {
+            let a = count_hits(&pool, &own, rays, any_hit);
+            let b = count_hits(&pool, &peer, rays, any_hit);
+            assert!(a.abs_diff(b) <= rays.len() / 1000, "{}: {a} vs {b}", A::NAME);
+        }
+        assert!(!w.w2.is_empty() && w.w2.len() == w.w3.len());
+    }
+
+    #[test]
+    fn raygine_agrees_with_itself() {
+        agrees_with_raygine::<raygine::Raygine>();
+    }
+
+    #[cfg(feature = "obvhs")]
+    #[test]
+    fn obvhs_agrees_with_raygine() {
+        agrees_with_raygine::<obvhs::Obvhs>();
+    }
+
+    #[cfg(feature = "embree")]
+    #[test]
+    fn embree_agrees_with_raygine() {
+        agrees_with_raygine::<embree::Embree>();
+    }
+}
