@@ -55,17 +55,21 @@ pub fn run(opts: &Options) -> anyhow::Result<()> {
                 mesh.name
             ));
             drop(contenders);
-            let mut loads = Vec::new();
+            let (mut loads, mut parses, mut bvhs) = (Vec::new(), Vec::new(), Vec::new());
             for _ in 0..opts.runs {
                 let start = Instant::now();
                 let loaded = pool.install(|| scene::load(&shp, &LoadOptions::default()))?;
                 loads.push(start.elapsed().as_secs_f64() * 1e3);
+                parses.push(loaded.parse_secs * 1e3);
+                bvhs.push(loaded.scene.bvh_build_secs * 1e3);
                 drop(loaded);
             }
             let load_ms = median(&loads);
             emit(&format!(
-                "L3 mesh={} threads={threads} load_ms={load_ms:.0}",
-                mesh.name
+                "L3 mesh={} threads={threads} load_ms={load_ms:.0} parse_ms={:.0} bvh_ms={:.0}",
+                mesh.name,
+                median(&parses),
+                median(&bvhs)
             ));
             extra += &format!(
                 "| {} | {threads} | {per_tri:.1} | {load_ms:.0} |\n",

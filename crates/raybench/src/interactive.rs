@@ -134,15 +134,18 @@ fn storm(threads: usize, changes: usize) -> anyhow::Result<()> {
     let mut rng = SplitMix64::new(0x5702_4D00);
     let mut last = setup.clone();
     let started = Instant::now();
+    let mut start_ms: Vec<f64> = Vec::with_capacity(changes);
     for _ in 0..changes {
         let jitter = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) - 0.5;
         last = with_light(&setup, base + jitter * extent * 0.3)?;
+        let call = Instant::now();
         session.start(Snapshot {
             scene: Arc::clone(&scene),
             setup: last.clone(),
             settings: settings(),
             time_limit: None,
         });
+        start_ms.push(call.elapsed().as_secs_f64() * 1e3);
         std::thread::sleep(Duration::from_millis(1));
     }
     let storm_secs = started.elapsed().as_secs_f64();
@@ -168,7 +171,10 @@ fn storm(threads: usize, changes: usize) -> anyhow::Result<()> {
     emit(&format!(
         "storm scene=cornell threads={threads} changes={changes} final_matches={matches} \
          rss_mb_before={rss_before:.1} rss_mb_after={rss_after:.1} \
-         peak_mb_before={hwm_before:.1} peak_mb_after={hwm_after:.1} storm_s={storm_secs:.2}"
+         peak_mb_before={hwm_before:.1} peak_mb_after={hwm_after:.1} storm_s={storm_secs:.2} \
+         start_call_ms_median={:.3} start_call_ms_max={:.1}",
+        median(&start_ms),
+        start_ms.iter().copied().fold(0.0, f64::max)
     ));
     Ok(())
 }

@@ -50,7 +50,11 @@ mod tests {
         for (rays, any_hit) in [(&w.w1, false), (&w.w2, true), (&w.w3, false)] {
             let a = count_hits(&pool, &own, rays, any_hit);
             let b = count_hits(&pool, &peer, rays, any_hit);
-            assert!(a.abs_diff(b) <= rays.len() / 1000, "{}: {a} vs {b}", A::NAME);
+            assert!(
+                a.abs_diff(b) <= rays.len() / 1000,
+                "{}: {a} vs {b}",
+                A::NAME
+            );
         }
         assert!(!w.w2.is_empty() && w.w2.len() == w.w3.len());
     }
