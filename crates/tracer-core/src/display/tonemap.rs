@@ -33,7 +33,8 @@ impl ToneMap {
 
     /// Maps linear display values (1.0 = reference white) to 0..=1.
     pub fn apply(self, v: Vec3) -> Vec3 {
-        let v = v.max(Vec3::ZERO);
+        // NaN becomes 0; huge values are capped so the curves' squares cannot overflow to inf/inf.
+        let v = v.max(Vec3::ZERO).min(Vec3::splat(1.0e6));
         let out = match self {
             ToneMap::Clamp => v,
             ToneMap::Reinhard => v / (Vec3::ONE + v),
@@ -95,5 +96,10 @@ mod tests {
             }
         }
         assert!((ToneMap::Reinhard.apply(Vec3::ONE).x - 0.5).abs() < 1e-6);
+        // Enormous values (a point light next to a wall) are white, never NaN or black.
+        for t in ToneMap::ALL {
+            let y = t.apply(Vec3::splat(1.0e21));
+            assert!(y.min_element() > 0.999, "{t:?}: {y}");
+        }
     }
 }

@@ -30,6 +30,15 @@ impl ProgressiveFilm {
         }
     }
 
+    /// Empties the film for reuse by `generation` (no allocation).
+    pub fn reset(&mut self, generation: u64) {
+        self.generation = generation;
+        self.accum.pixels.fill(PixelSum::default());
+        self.preview_rgb.fill(Vec3::ZERO);
+        self.preview_lx.fill(0.0);
+        self.has_preview = false;
+    }
+
     pub fn width(&self) -> u32 {
         self.accum.width
     }

@@ -71,6 +71,8 @@ struct State {
     film: Option<ProgressiveFilm>,
     /// The newest generation's film before its first preview is complete.
     pending: Option<ProgressiveFilm>,
+    /// A film no longer shown, kept for reuse so restarts do not allocate.
+    spare: Option<ProgressiveFilm>,
     dirty: Vec<Tile>,
     stats: SessionStats,
     paused: bool,
@@ -125,6 +127,7 @@ impl RenderSession {
                 job: None,
                 film: None,
                 pending: None,
+                spare: None,
                 dirty: Vec::new(),
                 stats: SessionStats {
                     threads,
@@ -288,6 +291,9 @@ fn run_generation(
             ..SessionStats::default()
         };
     }
+    if !prepare_film(shared, generation, s) {
+        return;
+    }
     let prep = Prepared::new(&snap.scene, &snap.setup, s.max_depth);
     let basis = snap
         .setup
@@ -328,7 +334,7 @@ fn run_generation(
                 st.stats.first_preview_secs = Some(elapsed);
                 // The first complete preview replaces the previous generation's picture.
                 if let Some(film) = st.pending.take() {
-                    st.film = Some(film);
+                    st.spare = st.film.replace(film);
                     st.dirty = vec![full_frame(s)];
                 }
             }
@@ -354,6 +360,30 @@ fn run_generation(
     drop(st);
     shared.wake.notify_all();
     (shared.notify)();
+}
+
+/// Readies this generation's film as `pending`, reusing a spare film of the same size. The
+/// allocation or clearing happens outside the lock, so `start` and readers never wait for it.
+/// Returns false when the generation went stale meanwhile.
+fn prepare_film(shared: &Shared, generation: u64, s: &RenderSettings) -> bool {
+    let recycled = {
+        let mut st = shared.lock();
+        st.spare.take().or_else(|| st.pending.take())
+    };
+    let film = match recycled {
+        Some(mut f) if f.width() == s.width && f.height() == s.height => {
+            f.reset(generation);
+            f
+        }
+        _ => ProgressiveFilm::new(generation, s.width, s.height),
+    };
+    let mut st = shared.lock();
+    if !shared.is_current(generation) {
+        st.spare = Some(film);
+        return false;
+    }
+    st.pending = Some(film);
+    true
 }
 
 fn full_frame(s: &RenderSettings) -> Tile {
@@ -472,15 +502,13 @@ impl PassContext<'_> {
             (self.shared.notify)();
             return;
         }
-        let (w, h) = (self.basis.width, self.basis.height);
-        if st
+        // Before the first preview is complete the tile goes to the pending film, prepared
+        // (allocated) by the coordinator outside the lock.
+        if let Some(film) = st
             .pending
-            .as_ref()
-            .is_none_or(|f| f.generation != self.generation)
+            .as_mut()
+            .filter(|f| f.generation == self.generation)
         {
-            st.pending = Some(ProgressiveFilm::new(self.generation, w, h));
-        }
-        if let Some(film) = st.pending.as_mut() {
             apply(film);
         }
     }

@@ -17,10 +17,10 @@ pub enum SceneError {
     BadIndex { brep: String, triangle: usize },
     #[error("{}: the scene has no triangles", path.display())]
     NoTriangles { path: PathBuf },
-    #[error("{}: cannot read the sidecar: {source}", path.display())]
+    #[error("{}: cannot read the sidecar: {error}", path.display())]
     SidecarIo {
         path: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
     #[error("{}: {message}", path.display())]
     Sidecar { path: PathBuf, message: String },

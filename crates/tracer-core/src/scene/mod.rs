@@ -61,9 +61,9 @@ pub fn load(path: &Path, options: &LoadOptions<'_>) -> Result<LoadedScene, Scene
         .unwrap_or_else(|| sidecar_path(path));
     let sidecar = match options.sidecar {
         Some(p) => Some(Sidecar::parse(
-            &std::fs::read_to_string(p).map_err(|source| SceneError::SidecarIo {
+            &std::fs::read_to_string(p).map_err(|error| SceneError::SidecarIo {
                 path: p.to_owned(),
-                source,
+                error,
             })?,
             p,
         )?),

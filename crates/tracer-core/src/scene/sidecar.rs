@@ -94,9 +94,9 @@ impl Sidecar {
         match std::fs::read_to_string(path) {
             Ok(text) => Self::parse(&text, path).map(Some),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
-            Err(source) => Err(SceneError::SidecarIo {
+            Err(error) => Err(SceneError::SidecarIo {
                 path: path.to_owned(),
-                source,
+                error,
             }),
         }
     }

@@ -9,11 +9,11 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 pub enum ShpError {
     /// The file could not be read at all.
-    #[error("{}: cannot read the file: {source}", path.display())]
+    #[error("{}: cannot read the file: {error}", path.display())]
     Io {
         path: PathBuf,
-        #[source]
-        source: io::Error,
+        /// Shown in the message, not chained as a source (the message already says it).
+        error: io::Error,
     },
 
     /// The bytes are not text: an ESRI shapefile (same extension) or some other binary file.

@@ -39,9 +39,9 @@ pub use error::ShpError;
 /// Reads a `.shp` file; for every `set breps NAME` whose geometry is not defined in the file,
 /// loads `NAME.brs` from the same folder (matching the file name's case loosely if need be).
 pub fn load(path: &Path) -> Result<ShpDescription, ShpError> {
-    let bytes = fs::read(path).map_err(|source| ShpError::Io {
+    let bytes = fs::read(path).map_err(|error| ShpError::Io {
         path: path.to_path_buf(),
-        source,
+        error,
     })?;
     let mut desc = parse_shp(&bytes, path)?;
     resolve::load_missing_breps(&mut desc)?;

@@ -37,10 +37,10 @@ pub(crate) fn load_missing_breps(desc: &mut ShpDescription) -> Result<(), ShpErr
         let bytes = match fs::read(&brs_path) {
             Ok(bytes) => bytes,
             Err(e) if e.kind() == io::ErrorKind::NotFound => return Err(missing()),
-            Err(source) => {
+            Err(error) => {
                 return Err(ShpError::Io {
                     path: brs_path,
-                    source,
+                    error,
                 });
             }
         };
