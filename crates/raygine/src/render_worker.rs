@@ -56,7 +56,12 @@ impl std::fmt::Debug for RenderWorker {
 impl RenderWorker {
     pub fn new(ctx: &egui::Context, threads: usize) -> std::io::Result<Self> {
         let repaint = ctx.clone();
-        let session = RenderSession::new(threads, Arc::new(move || repaint.request_repaint()))?;
+        // New tiles wake the UI, but at most about 30 times a second: every frame also costs the
+        // (often software) OpenGL renderer, which competes with the render threads.
+        let session = RenderSession::new(
+            threads,
+            Arc::new(move || repaint.request_repaint_after(Duration::from_millis(33))),
+        )?;
         Ok(Self {
             session,
             current: None,

@@ -31,9 +31,9 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         draw_legend(ui, &fc, rect);
     }
     draw_overlays(ui, app, rect);
-    // Keep repainting while the engine refines; idle (no CPU) once converged.
+    // Keep repainting (about 30 frames a second) while the engine refines; idle once converged.
     if app.worker.busy() || app.worker.shown_generation() != app.worker.generation() {
-        ui.ctx().request_repaint();
+        ui.ctx().request_repaint_after(std::time::Duration::from_millis(33));
     }
 }
 

@@ -257,6 +257,7 @@ fn coordinator(shared: &Shared) {
             let built = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .thread_name(|i| format!("raygine-worker-{i}"))
+                .start_handler(|_| lower_thread_priority())
                 .build();
             match built {
                 Ok(p) => pool = Some((threads, p)),
@@ -267,6 +268,20 @@ fn coordinator(shared: &Shared) {
         let Some((_, p)) = pool.as_ref() else { return };
         run_generation(shared, p, generation, &snapshot, threads);
         done_generation = generation;
+    }
+}
+
+/// Render workers yield the CPU to the interactive thread (the viewer's UI, the desktop's
+/// software OpenGL): on Linux each thread has its own nice value, raised here by 10.
+fn lower_thread_priority() {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: `nice` takes a plain integer and only changes the calling thread's scheduling
+        // priority; it touches no memory of ours. A failure (-1 with errno) leaves the priority
+        // as it was, which is harmless, so the result is deliberately ignored.
+        unsafe {
+            libc::nice(10);
+        }
     }
 }
 
