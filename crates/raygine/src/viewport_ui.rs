@@ -33,7 +33,8 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     draw_overlays(ui, app, rect);
     // Keep repainting (about 30 frames a second) while the engine refines; idle once converged.
     if app.worker.busy() || app.worker.shown_generation() != app.worker.generation() {
-        ui.ctx().request_repaint_after(std::time::Duration::from_millis(33));
+        ui.ctx()
+            .request_repaint_after(std::time::Duration::from_millis(33));
     }
 }
 

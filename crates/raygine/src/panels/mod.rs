@@ -212,6 +212,25 @@ pub fn status_bar(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 "{}x{} px · {} threads",
                 app.viewport_px[0], app.viewport_px[1], s.threads
             ));
+            if let Some(l) = &app.loading {
+                ui.separator();
+                ui.spinner();
+                ui.label(format!(
+                    "loading {} ({:.1} s)",
+                    l.path.file_name().map_or_else(
+                        || l.path.display().to_string(),
+                        |n| n.to_string_lossy().into_owned()
+                    ),
+                    l.started.elapsed().as_secs_f32()
+                ));
+                if ui
+                    .button("Cancel")
+                    .on_hover_text("Keep the current scene")
+                    .clicked()
+                {
+                    app.loading = None;
+                }
+            }
             if let Some(p95) = app.p95_frame_ms() {
                 ui.separator();
                 ui.label(format!("UI p95 {p95:.0} ms"));
