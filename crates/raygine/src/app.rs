@@ -222,7 +222,8 @@ impl RaygineApp {
         }
     }
 
-    fn effective_display(&self) -> DisplaySettings {
+    /// The display mapping in force: the display settings plus the false-colour view.
+    pub fn effective_display(&self) -> DisplaySettings {
         let fc = self.false_colour;
         DisplaySettings {
             false_colour: fc.enabled.then_some(FalseColour {

@@ -16,7 +16,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         ((rect.height() * ppp * scale).round() as u32).clamp(1, 8192),
     ];
     let response = ui.allocate_rect(rect, Sense::click_and_drag());
-    let display = app_display(app);
+    let display = app.effective_display();
     if let Some(texture) = app.worker.update_texture(ui.ctx(), &display) {
         let uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
         ui.painter().image(texture.id(), rect, uv, Color32::WHITE);
@@ -35,19 +35,6 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     if app.worker.busy() || app.worker.shown_generation() != app.worker.generation() {
         ui.ctx()
             .request_repaint_after(std::time::Duration::from_millis(33));
-    }
-}
-
-fn app_display(app: &RaygineApp) -> tracer_core::display::DisplaySettings {
-    let fc = app.false_colour;
-    tracer_core::display::DisplaySettings {
-        false_colour: fc.enabled.then_some(tracer_core::display::FalseColour {
-            quantity: fc.quantity,
-            scale: fc.scale,
-            min: fc.min,
-            max: fc.max,
-        }),
-        ..app.display
     }
 }
 
