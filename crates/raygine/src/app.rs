@@ -20,6 +20,7 @@ pub const SHORTCUT_OPEN: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COM
 pub const SHORTCUT_SAVE: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::S);
 pub const SHORTCUT_EXPORT: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::E);
 pub const SHORTCUT_UNDO: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Z);
+pub const SHORTCUT_QUIT: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Q);
 pub const SHORTCUT_REDO: KeyboardShortcut =
     KeyboardShortcut::new(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
 
@@ -469,6 +470,9 @@ impl RaygineApp {
 
     fn handle_shortcuts(&mut self, ctx: &egui::Context) {
         let typing = ctx.text_edit_focused();
+        if ctx.input_mut(|i| i.consume_shortcut(&SHORTCUT_QUIT)) {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
         let (open, save, export, undo, redo, frame, pause) = ctx.input_mut(|i| {
             // Redo first: Ctrl+Shift+Z also matches Ctrl+Z's modifiers loosely.
             let redo = i.consume_shortcut(&SHORTCUT_REDO)

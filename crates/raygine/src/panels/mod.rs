@@ -176,7 +176,13 @@ fn file_menu_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         ui.close();
     }
     ui.separator();
-    if ui.button("Quit").clicked() {
+    if ui
+        .add(
+            egui::Button::new("Quit")
+                .shortcut_text(ctx.format_shortcut(&crate::app::SHORTCUT_QUIT)),
+        )
+        .clicked()
+    {
         ctx.send_viewport_cmd(egui::ViewportCommand::Close);
     }
 }

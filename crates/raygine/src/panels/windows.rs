@@ -148,6 +148,7 @@ fn help_ui(ctx: &egui::Context, app: &mut RaygineApp) {
                     ("Ctrl+Z / Ctrl+Shift+Z", "undo / redo scene edits"),
                     ("F", "frame the scene"),
                     ("P", "pause / resume rendering"),
+                    ("Ctrl+Q", "quit (settings and recent files are kept)"),
                     ("drag", "orbit about the look-at point"),
                     ("shift-drag, middle-drag", "pan"),
                     ("wheel", "dolly"),
