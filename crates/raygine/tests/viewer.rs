@@ -246,7 +246,11 @@ fn assert_listed(h: &Viewer, names: &[&str]) {
 fn open(h: &mut Viewer, path: &Path) {
     h.state_mut().open_path(path);
     h.state_mut().finish_loading_blocking(TIMEOUT);
-    assert!(h.state().loading.is_none(), "loading {} hung", path.display());
+    assert!(
+        h.state().loading.is_none(),
+        "loading {} hung",
+        path.display()
+    );
     h.state_mut().render.target_spp = TEST_SPP;
     settle(h);
 }
@@ -291,7 +295,12 @@ fn dragging_the_light_slider_restarts_the_render_and_changes_the_film() {
     assert_eq!(mirror.film(size).pixels, expected_texture(h.state()).pixels);
 
     let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
-    drag(&mut h, slider.center(), Vec2::new(slider.width() * 0.3, 0.0));
+    // Left: the light moves towards the green wall and stays inside the box.
+    drag(
+        &mut h,
+        slider.center(),
+        Vec2::new(-slider.width() * 0.15, 0.0),
+    );
     let x1 = light_x(h.state());
     assert!(
         (x1 - x0).abs() > 10.0,
@@ -306,7 +315,11 @@ fn dragging_the_light_slider_restarts_the_render_and_changes_the_film() {
     let (size_after, after) = film_rgb(app);
     assert_eq!(size, size_after);
     let changed = changed_fraction(&before, &after);
-    assert!(changed > 0.2, "only {:.1} % of pixels changed", changed * 1e2);
+    assert!(
+        changed > 0.2,
+        "only {:.1} % of pixels changed",
+        changed * 1e2
+    );
     // The viewport shows the new film through the display mapping.
     assert_eq!(mirror.film(size).pixels, expected_texture(app).pixels);
 }
@@ -324,7 +337,11 @@ fn exposure_remaps_the_texture_without_restarting() {
 
     let app = h.state();
     assert_eq!(app.display.exposure_stops, 2.0);
-    assert_eq!(app.worker.generation(), generation, "exposure restarted the render");
+    assert_eq!(
+        app.worker.generation(),
+        generation,
+        "exposure restarted the render"
+    );
     assert!(app.worker.stats().finished);
     assert_eq!(film_rgb(app).1, film_before, "the film changed");
     let texture_after = mirror.film(size);
@@ -340,8 +357,11 @@ fn opening_a_scene_by_typed_path_lists_its_breps() {
 
     h.key_press_modifiers(Modifiers::COMMAND, Key::O);
     h.step();
-    assert!(h.state().prompt.is_some(), "Ctrl+O did not open the path window");
-    let field = h.get_by_role(Role::TextInput);
+    assert!(
+        h.state().prompt.is_some(),
+        "Ctrl+O did not open the path window"
+    );
+    let field = h.get_by_role_and_label(Role::TextInput, "Path:");
     field.focus();
     field.type_text(&path.display().to_string());
     h.step();
@@ -356,7 +376,10 @@ fn opening_a_scene_by_typed_path_lists_its_breps() {
     assert_eq!(app.doc.path.as_deref(), Some(path.as_path()));
     assert_eq!(brep_names(app), ["floor", "lamp_shade"]);
     assert_listed(&h, &["floor", "lamp_shade"]);
-    assert!(h.query_by_label("red_wall").is_none(), "the old scene is still listed");
+    assert!(
+        h.query_by_label("red_wall").is_none(),
+        "the old scene is still listed"
+    );
     settle(&mut h);
 }
 
@@ -399,13 +422,22 @@ fn a_broken_file_shows_an_error_and_keeps_the_scene() {
 
     let app = h.state();
     let error = app.error.as_deref().expect("no error shown");
-    assert!(error.contains("broken.shp"), "error without the file: {error}");
+    assert!(
+        error.contains("broken.shp"),
+        "error without the file: {error}"
+    );
     assert!(
         error.contains(&format!("line {bad_line}")),
         "error without line {bad_line}: {error}"
     );
-    assert!(error.contains("vertex 7"), "error without the cause: {error}");
-    assert!(Arc::ptr_eq(&app.doc.scene, &scene), "the scene was replaced");
+    assert!(
+        error.contains("vertex 7"),
+        "error without the cause: {error}"
+    );
+    assert!(
+        Arc::ptr_eq(&app.doc.scene, &scene),
+        "the scene was replaced"
+    );
     assert_eq!(app.doc.path.as_deref(), Some(good.as_path()));
     assert_eq!(brep_names(app), ["floor", "lamp_shade"]);
     assert_eq!(app.worker.generation(), generation, "the render restarted");
@@ -466,7 +498,10 @@ fn undo_and_redo_restore_the_light_position() {
     assert_eq!(light_x(h.state()), x0, "Ctrl+Z did not restore the light");
     settle(&mut h);
     let current = h.state().worker.current().unwrap();
-    assert_eq!(current.setup.lights[0].position[0], x0, "renders the undone light");
+    assert_eq!(
+        current.setup.lights[0].position[0], x0,
+        "renders the undone light"
+    );
 
     h.key_press_modifiers(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
     h.step();
@@ -474,11 +509,19 @@ fn undo_and_redo_restore_the_light_position() {
 
     // A whole pointer drag is one step: one undo returns to where the drag started.
     let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
-    drag(&mut h, slider.center(), Vec2::new(slider.width() * 0.25, 0.0));
+    drag(
+        &mut h,
+        slider.center(),
+        Vec2::new(slider.width() * 0.25, 0.0),
+    );
     assert_ne!(light_x(h.state()), x1);
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.step();
-    assert_eq!(light_x(h.state()), x1, "one undo did not undo the whole drag");
+    assert_eq!(
+        light_x(h.state()),
+        x1,
+        "one undo did not undo the whole drag"
+    );
 }
 
 #[test]
@@ -491,7 +534,8 @@ fn clicking_the_left_wall_selects_its_red_material() {
 
     let app = h.state();
     let slot = app.selected_slot.expect("the click selected nothing");
-    assert_eq!(app.doc.scene.slot_label(slot), "red_wall");
+    let label = app.doc.scene.slot_label(slot);
+    assert!(label.starts_with("red_wall"), "selected {label}");
     let kd = app.doc.setup.materials[slot as usize].kd;
     assert!(kd[0] > 4.0 * kd[1], "not a red material: {kd:?}");
     h.step();
@@ -530,5 +574,47 @@ fn every_input_widget_has_a_name() {
     h.get_by_label("red_wall").click();
     h.run_steps(3);
     let unnamed = h.unnamed_widgets();
-    assert!(unnamed.is_empty(), "unnamed widgets:\n{}", unnamed.join("\n"));
+    assert!(
+        unnamed.is_empty(),
+        "unnamed widgets:\n{}",
+        unnamed.join("\n")
+    );
+}
+
+/// The screen positions `scripts/smoke_viewer.sh` clicks and samples hold for the window size the
+/// viewer opens with (1400x860 points, 1 pixel per point under Xvfb).
+#[test]
+fn smoke_script_layout_holds() {
+    let mut h = Harness::builder()
+        .with_size(Vec2::new(1400.0, 860.0))
+        .with_accessibility_check(false)
+        .build_eframe(|cc| {
+            RaygineApp::new(
+                cc,
+                AppOptions {
+                    scene: None,
+                    threads: 1,
+                    ignore_last_scene: true,
+                },
+            )
+            .unwrap()
+        });
+    h.step();
+    let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
+    let view = h.get_by_label("viewport").rect();
+    eprintln!("light x slider {slider:?}, viewport {view:?}");
+    // scripts/smoke_viewer.sh: SLIDER_X/SLIDER_Y, PANEL_W and BAR_H.
+    assert!(
+        slider.contains(Pos2::new(76.0, 134.0)),
+        "slider moved: {slider:?}"
+    );
+    assert!(
+        (view.min.x - 378.0).abs() < 12.0,
+        "viewport moved: {view:?}"
+    );
+    assert!((view.min.y - 25.0).abs() < 6.0, "viewport moved: {view:?}");
+    assert!(
+        (860.0 - view.max.y - 25.0).abs() < 6.0,
+        "viewport moved: {view:?}"
+    );
 }
