@@ -16,6 +16,9 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         ((rect.height() * ppp * scale).round() as u32).clamp(1, 8192),
     ];
     let response = ui.allocate_rect(rect, Sense::click_and_drag());
+    // A name for screen readers and UI tests.
+    response
+        .widget_info(|| egui::WidgetInfo::labeled(egui::accesskit::Role::Image, true, "viewport"));
     let display = app.effective_display();
     if let Some(texture) = app.worker.update_texture(ui.ctx(), &display) {
         let uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));

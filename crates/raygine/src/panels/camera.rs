@@ -25,8 +25,9 @@ pub fn camera_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
 fn vec3_row(ui: &mut egui::Ui, label: &str, v: &mut [f32; 3], speed: f32, unit: &str) {
     ui.horizontal(|ui| {
         ui.label(format!("{label} ({unit})"));
-        for c in v.iter_mut() {
-            ui.add(egui::DragValue::new(c).speed(speed).max_decimals(3));
+        for (c, axis) in v.iter_mut().zip(["x", "y", "z"]) {
+            ui.add(egui::DragValue::new(c).speed(speed).max_decimals(3))
+                .on_hover_text(format!("camera {label} {axis} ({unit})"));
         }
     });
 }

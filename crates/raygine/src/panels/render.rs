@@ -61,12 +61,16 @@ pub fn render_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 egui::DragValue::new(&mut fc.min)
                     .speed(0.1)
                     .range(0.0..=f32::MAX),
-            );
+            )
+            .on_hover_text(format!("false colour: value of the lowest colour ({unit})"));
             ui.add(
                 egui::DragValue::new(&mut fc.max)
                     .speed(1.0)
                     .range(0.0..=f32::MAX),
-            );
+            )
+            .on_hover_text(format!(
+                "false colour: value of the highest colour ({unit})"
+            ));
         });
         if fc.max <= fc.min {
             fc.max = fc.min * 10.0 + 1.0;

@@ -32,9 +32,10 @@ fn path_prompt_ui(ctx: &egui::Context, app: &mut RaygineApp) {
         .open(&mut open)
         .show(ctx, |ui| {
             ui.horizontal(|ui| {
-                ui.label("Path:");
-                let edit =
-                    ui.add(egui::TextEdit::singleline(&mut prompt.text).desired_width(360.0));
+                let label = ui.label("Path:");
+                let edit = ui
+                    .add(egui::TextEdit::singleline(&mut prompt.text).desired_width(360.0))
+                    .labelled_by(label.id);
                 if edit.changed() {
                     prompt.confirm_overwrite = false;
                 }

@@ -1,0 +1,620 @@
+//! UI tests that drive the real viewer (`RaygineApp`) headlessly with egui_kittest.
+//!
+//! Real render threads run during these tests. A test never sleeps for a fixed time to "let the
+//! render finish": it steps frames until the engine reports the current generation finished and
+//! the texture shows it (`settle`), with a timeout.
+//!
+//! A `TextureMirror` stands in for the GPU: it applies every texture upload the app makes (whole
+//! textures and the partial tile updates), so the tests can check what the viewport would show.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use egui::accesskit::Role;
+use egui::{ColorImage, Event, ImageData, Key, Modifiers, PointerButton, Pos2, TextureId, Vec2};
+use egui_kittest::kittest::Queryable;
+use egui_kittest::{Harness, TestRenderer};
+use glam::Vec3;
+use raygine::app::{AppOptions, RaygineApp};
+use raygine::render_worker::map_rect;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+use tracer_core::scene::framing_camera;
+
+/// Samples per pixel the tests render to: enough to be a real progressive render, fast in debug.
+const TEST_SPP: u32 = 4;
+/// Longest wait for a render, a load or a write.
+const TIMEOUT: Duration = Duration::from_secs(15);
+const LIGHT_X: &str = "light x (mm)";
+const EXPOSURE: &str = "exposure (stops)";
+
+// ---------------------------------------------------------------------------------------------
+// Harness and helpers
+// ---------------------------------------------------------------------------------------------
+
+/// A headless stand-in for the GPU: the latest content of every texture.
+#[derive(Clone, Default)]
+struct TextureMirror(Arc<Mutex<HashMap<TextureId, ColorImage>>>);
+
+impl TestRenderer for TextureMirror {
+    fn handle_delta(&mut self, delta: &mut egui::TexturesDelta) {
+        let mut textures = self.0.lock().unwrap();
+        for (id, deltas) in delta.set.drain() {
+            for d in deltas {
+                let ImageData::Color(patch) = &d.image;
+                match d.pos {
+                    None => {
+                        textures.insert(id, (**patch).clone());
+                    }
+                    Some([x0, y0]) => {
+                        let texture = textures
+                            .get_mut(&id)
+                            .expect("a partial update of a texture that was never set");
+                        let [w, h] = patch.size;
+                        for y in 0..h {
+                            let dst = (y0 + y) * texture.size[0] + x0;
+                            texture.pixels[dst..dst + w]
+                                .copy_from_slice(&patch.pixels[y * w..(y + 1) * w]);
+                        }
+                    }
+                }
+            }
+        }
+        for id in delta.free.drain() {
+            textures.remove(&id);
+        }
+    }
+}
+
+impl TextureMirror {
+    /// The film texture: the one texture of the film's size that is not the font atlas.
+    fn film(&self, size: [usize; 2]) -> ColorImage {
+        let textures = self.0.lock().unwrap();
+        let found: Vec<&ColorImage> = textures
+            .iter()
+            .filter(|(id, t)| **id != TextureId::default() && t.size == size)
+            .map(|(_, t)| t)
+            .collect();
+        assert_eq!(found.len(), 1, "expected one film texture of {size:?}");
+        found[0].clone()
+    }
+}
+
+type Viewer = Harness<'static, RaygineApp>;
+
+/// The real app in a 960x640 window, built-in Cornell box, 2 render threads, fast sample target.
+fn viewer() -> (Viewer, TextureMirror) {
+    let mirror = TextureMirror::default();
+    let mut h = Harness::builder()
+        .with_size(Vec2::new(960.0, 640.0))
+        // Checked once, explicitly, in `every_input_widget_has_a_name`.
+        .with_accessibility_check(false)
+        .renderer(mirror.clone())
+        .build_eframe(|cc| {
+            RaygineApp::new(
+                cc,
+                AppOptions {
+                    scene: None,
+                    threads: 2,
+                    ignore_last_scene: true,
+                },
+            )
+            .unwrap()
+        });
+    h.state_mut().render.target_spp = TEST_SPP;
+    settle(&mut h);
+    (h, mirror)
+}
+
+fn render_done(app: &RaygineApp) -> bool {
+    let w = &app.worker;
+    let s = w.stats();
+    app.loading.is_none()
+        && w.current().is_some()
+        && s.finished
+        && s.generation == w.generation()
+        && w.shown_generation() == w.generation()
+}
+
+/// Steps frames until the current generation is finished and a frame after that has uploaded
+/// its last tiles, or panics after [`TIMEOUT`].
+fn settle(h: &mut Viewer) {
+    let deadline = Instant::now() + TIMEOUT;
+    loop {
+        let done_before = render_done(h.state());
+        h.step();
+        if done_before && render_done(h.state()) {
+            return;
+        }
+        assert!(Instant::now() < deadline, "the render did not finish");
+        h.state().worker.wait_finished(Duration::from_millis(20));
+        std::thread::sleep(Duration::from_millis(2));
+    }
+}
+
+/// Steps frames (the app polls its background work each frame) until `done` holds.
+fn step_until(h: &mut Viewer, what: &str, done: impl Fn(&RaygineApp) -> bool) {
+    let deadline = Instant::now() + TIMEOUT;
+    while !done(h.state()) {
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        h.step();
+        std::thread::sleep(Duration::from_millis(10));
+    }
+}
+
+/// The film as shown (linear cd/m² per channel), with its size.
+fn film_rgb(app: &RaygineApp) -> ([usize; 2], Vec<Vec3>) {
+    app.worker
+        .with_film(|f| {
+            let f = f?;
+            let n = f.width() as usize * f.height() as usize;
+            let rgb = (0..n).map(|i| f.shown_rgb(i)).collect();
+            Some(([f.width() as usize, f.height() as usize], rgb))
+        })
+        .expect("no film yet")
+}
+
+/// The film through the app's current display mapping, as the texture should hold it.
+fn expected_texture(app: &RaygineApp) -> ColorImage {
+    assert!(!app.display.auto_exposure && !app.false_colour.enabled);
+    app.worker
+        .with_film(|f| f.map(|f| map_rect(f, &app.display, app.display.exposure_stops, None)))
+        .expect("no film yet")
+}
+
+/// Fraction of pixels whose colour differs by more than 1 % (relative) between two films.
+fn changed_fraction(a: &[Vec3], b: &[Vec3]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let changed = a
+        .iter()
+        .zip(b)
+        .filter(|(p, q)| (**p - **q).abs().max_element() > 0.01 * p.max(**q).max_element() + 1e-6)
+        .count();
+    changed as f64 / a.len() as f64
+}
+
+fn light_x(app: &RaygineApp) -> f32 {
+    app.doc.setup.lights[0].position[0]
+}
+
+/// A directory of its own for one test under cargo's scratch space.
+fn scratch_dir(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("viewer-{test}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A small Lumicept scene with two breps, "floor" and "lamp_shade". `floor_triangle` is the
+/// floor's second triangle (a bad vertex index makes the file broken).
+fn two_brep_scene(floor_triangle: &str) -> String {
+    format!(
+        ";; written by raygine's UI tests\n\
+         define breps floor\n\
+         vertices 4\n\
+         0 0 0\n\
+         1000 0 0\n\
+         1000 0 -1000\n\
+         0 0 -1000\n\
+         triangles 2\n\
+         0 1 2\n\
+         {floor_triangle}\n\
+         parts 1\n\
+         0 0\n\
+         enddef\n\
+         \n\
+         define breps lamp_shade\n\
+         vertices 3\n\
+         400 800 -400\n\
+         600 800 -400\n\
+         500 800 -600\n\
+         triangles 1\n\
+         0 1 2\n\
+         parts 1\n\
+         0\n\
+         enddef\n\
+         \n\
+         set breps floor\n\
+         rotation 0 0 0\n\
+         translation 0 0 0\n\
+         scale 1 1 1\n\
+         enddef\n\
+         set breps lamp_shade\n\
+         rotation 0 0 0\n\
+         translation 0 0 0\n\
+         scale 1 1 1\n\
+         enddef\n"
+    )
+}
+
+fn brep_names(app: &RaygineApp) -> Vec<String> {
+    app.doc.scene.breps.iter().map(|b| b.name.clone()).collect()
+}
+
+/// Asserts that the side panel lists each brep name.
+fn assert_listed(h: &Viewer, names: &[&str]) {
+    for name in names {
+        assert!(
+            h.query_by_label(name).is_some(),
+            "the side panel does not list brep {name}"
+        );
+    }
+}
+
+/// Loads `path` through the app's own loader (as a dropped file or a recent file would).
+fn open(h: &mut Viewer, path: &Path) {
+    h.state_mut().open_path(path);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    assert!(
+        h.state().loading.is_none(),
+        "loading {} hung",
+        path.display()
+    );
+    h.state_mut().render.target_spp = TEST_SPP;
+    settle(h);
+}
+
+/// A primary-button click at `pos` without moving (egui sees a click, not a drag).
+fn click_at(h: &mut Viewer, pos: Pos2) {
+    h.hover_at(pos);
+    for pressed in [true, false] {
+        h.event(Event::PointerButton {
+            pos,
+            button: PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+    }
+    h.step();
+}
+
+/// A primary-button drag from `from` by `by`, in a few moves, released at the end.
+fn drag(h: &mut Viewer, from: Pos2, by: Vec2) {
+    h.hover_at(from);
+    h.drag_at(from);
+    h.step();
+    for k in 1..=4 {
+        h.hover_at(from + by * (k as f32 / 4.0));
+        h.step();
+    }
+    h.drop_at(from + by);
+    h.step();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tests
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn dragging_the_light_slider_restarts_the_render_and_changes_the_film() {
+    let (mut h, mirror) = viewer();
+    let generation = h.state().worker.generation();
+    let x0 = light_x(h.state());
+    let (size, before) = film_rgb(h.state());
+    assert_eq!(mirror.film(size).pixels, expected_texture(h.state()).pixels);
+
+    let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
+    // Left: the light moves towards the green wall and stays inside the box.
+    drag(
+        &mut h,
+        slider.center(),
+        Vec2::new(-slider.width() * 0.15, 0.0),
+    );
+    let x1 = light_x(h.state());
+    assert!(
+        (x1 - x0).abs() > 10.0,
+        "the drag moved the light from {x0} only to {x1}"
+    );
+
+    settle(&mut h);
+    let app = h.state();
+    assert!(app.worker.generation() > generation, "no new generation");
+    let key = app.worker.current().unwrap();
+    assert_eq!(key.setup.lights[0].position[0], x1, "renders a stale light");
+    let (size_after, after) = film_rgb(app);
+    assert_eq!(size, size_after);
+    let changed = changed_fraction(&before, &after);
+    assert!(
+        changed > 0.2,
+        "only {:.1} % of pixels changed",
+        changed * 1e2
+    );
+    // The viewport shows the new film through the display mapping.
+    assert_eq!(mirror.film(size).pixels, expected_texture(app).pixels);
+}
+
+#[test]
+fn exposure_remaps_the_texture_without_restarting() {
+    let (mut h, mirror) = viewer();
+    let generation = h.state().worker.generation();
+    let (size, film_before) = film_rgb(h.state());
+    let texture_before = mirror.film(size);
+
+    h.get_by_role_and_label(Role::Slider, EXPOSURE)
+        .set_value_accesskit(2.0);
+    h.run_steps(3);
+
+    let app = h.state();
+    assert_eq!(app.display.exposure_stops, 2.0);
+    assert_eq!(
+        app.worker.generation(),
+        generation,
+        "exposure restarted the render"
+    );
+    assert!(app.worker.stats().finished);
+    assert_eq!(film_rgb(app).1, film_before, "the film changed");
+    let texture_after = mirror.film(size);
+    assert_ne!(texture_after.pixels, texture_before.pixels, "no re-map");
+    assert_eq!(texture_after.pixels, expected_texture(app).pixels);
+}
+
+#[test]
+fn opening_a_scene_by_typed_path_lists_its_breps() {
+    let (mut h, _mirror) = viewer();
+    let path = scratch_dir("open").join("two_breps.shp");
+    std::fs::write(&path, two_brep_scene("0 2 3")).unwrap();
+
+    h.key_press_modifiers(Modifiers::COMMAND, Key::O);
+    h.step();
+    assert!(
+        h.state().prompt.is_some(),
+        "Ctrl+O did not open the path window"
+    );
+    let field = h.get_by_role_and_label(Role::TextInput, "Path:");
+    field.focus();
+    field.type_text(&path.display().to_string());
+    h.step();
+    h.get_by_role_and_label(Role::Button, "Open").click();
+    h.step();
+    step_until(&mut h, "the scene to load", |app| app.loading.is_none());
+    h.step();
+
+    let app = h.state();
+    assert!(app.error.is_none(), "{:?}", app.error);
+    assert!(app.prompt.is_none(), "the path window stayed open");
+    assert_eq!(app.doc.path.as_deref(), Some(path.as_path()));
+    assert_eq!(brep_names(app), ["floor", "lamp_shade"]);
+    assert_listed(&h, &["floor", "lamp_shade"]);
+    assert!(
+        h.query_by_label("red_wall").is_none(),
+        "the old scene is still listed"
+    );
+    settle(&mut h);
+}
+
+#[test]
+fn opening_the_course_cornell_box_lists_its_breps() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/scenes/cornell/cornel_box0.shp");
+    if !path.is_file() {
+        eprintln!(
+            "skipped: {} is absent (the shared scenes are not on this machine)",
+            path.display()
+        );
+        return;
+    }
+    let (mut h, _mirror) = viewer();
+    open(&mut h, &path);
+    h.step();
+    let names = ["brs_0", "brs_1", "brs_2", "brs_3", "brs_4"];
+    assert_eq!(brep_names(h.state()), names);
+    assert_listed(&h, &names);
+}
+
+#[test]
+fn a_broken_file_shows_an_error_and_keeps_the_scene() {
+    let (mut h, _mirror) = viewer();
+    let dir = scratch_dir("broken");
+    let good = dir.join("two_breps.shp");
+    std::fs::write(&good, two_brep_scene("0 2 3")).unwrap();
+    open(&mut h, &good);
+    let scene = Arc::clone(&h.state().doc.scene);
+    let generation = h.state().worker.generation();
+
+    let broken = dir.join("broken.shp");
+    let text = two_brep_scene("0 2 7");
+    let bad_line = text.lines().position(|l| l == "0 2 7").unwrap() + 1;
+    std::fs::write(&broken, text).unwrap();
+    h.state_mut().open_path(&broken);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.step();
+
+    let app = h.state();
+    let error = app.error.as_deref().expect("no error shown");
+    assert!(
+        error.contains("broken.shp"),
+        "error without the file: {error}"
+    );
+    assert!(
+        error.contains(&format!("line {bad_line}")),
+        "error without line {bad_line}: {error}"
+    );
+    assert!(
+        error.contains("vertex 7"),
+        "error without the cause: {error}"
+    );
+    assert!(
+        Arc::ptr_eq(&app.doc.scene, &scene),
+        "the scene was replaced"
+    );
+    assert_eq!(app.doc.path.as_deref(), Some(good.as_path()));
+    assert_eq!(brep_names(app), ["floor", "lamp_shade"]);
+    assert_eq!(app.worker.generation(), generation, "the render restarted");
+    assert_listed(&h, &["floor", "lamp_shade"]);
+}
+
+#[test]
+fn exported_png_matches_an_independent_render() {
+    let (mut h, _mirror) = viewer();
+    // A non-default exposure, so the export must apply the display mapping, not a default one.
+    h.get_by_role_and_label(Role::Slider, EXPOSURE)
+        .set_value_accesskit(1.5);
+    h.step();
+    settle(&mut h);
+
+    let path = scratch_dir("export").join("view.png");
+    let ctx = h.state().ctx.clone();
+    h.state_mut().export_png(&ctx, path.clone());
+    step_until(&mut h, "the PNG write", |app| app.writes.is_empty());
+    let app = h.state();
+    assert!(app.error.is_none(), "{:?}", app.error);
+    let notice = app.notice.as_deref().unwrap_or_default();
+    assert!(notice.contains("view.png"), "notice: {notice}");
+
+    let key = app.worker.current().unwrap().clone();
+    assert_eq!(key.settings.samples_per_pixel, TEST_SPP);
+    let (film, _) = tracer_core::render::render(&key.scene, &key.setup, &key.settings);
+    let expected = app.display.map_film(&film);
+    let png = image::open(&path).unwrap().to_rgba8();
+    assert_eq!(
+        [png.width(), png.height()],
+        [key.settings.width, key.settings.height]
+    );
+    let worst = png
+        .as_raw()
+        .iter()
+        .zip(&expected)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap();
+    assert!(worst <= 1, "the PNG differs by up to {worst} code values");
+}
+
+#[test]
+fn undo_and_redo_restore_the_light_position() {
+    let (mut h, _mirror) = viewer();
+    let x0 = light_x(h.state());
+
+    // A typed or assistive-technology value: committed on the next frame (no pointer held).
+    h.get_by_role_and_label(Role::Slider, LIGHT_X)
+        .set_value_accesskit(f64::from(x0) + 120.0);
+    h.run_steps(2);
+    let x1 = light_x(h.state());
+    assert_eq!(x1, x0 + 120.0);
+
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert_eq!(light_x(h.state()), x0, "Ctrl+Z did not restore the light");
+    settle(&mut h);
+    let current = h.state().worker.current().unwrap();
+    assert_eq!(
+        current.setup.lights[0].position[0], x0,
+        "renders the undone light"
+    );
+
+    h.key_press_modifiers(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
+    h.step();
+    assert_eq!(light_x(h.state()), x1, "Ctrl+Shift+Z did not redo");
+
+    // A whole pointer drag is one step: one undo returns to where the drag started.
+    let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
+    drag(
+        &mut h,
+        slider.center(),
+        Vec2::new(slider.width() * 0.25, 0.0),
+    );
+    assert_ne!(light_x(h.state()), x1);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert_eq!(
+        light_x(h.state()),
+        x1,
+        "one undo did not undo the whole drag"
+    );
+}
+
+#[test]
+fn clicking_the_left_wall_selects_its_red_material() {
+    let (mut h, _mirror) = viewer();
+    assert_eq!(h.state().selected_slot, None);
+    let view = h.get_by_label("viewport").rect();
+    // The red wall fills the left part of the picture between the opening and the back wall.
+    click_at(&mut h, view.lerp_inside(Vec2::new(0.15, 0.5)));
+
+    let app = h.state();
+    let slot = app.selected_slot.expect("the click selected nothing");
+    let label = app.doc.scene.slot_label(slot);
+    assert!(label.starts_with("red_wall"), "selected {label}");
+    let kd = app.doc.setup.materials[slot as usize].kd;
+    assert!(kd[0] > 4.0 * kd[1], "not a red material: {kd:?}");
+    h.step();
+    assert!(
+        h.query_by_label_contains("Material of red_wall").is_some(),
+        "the materials panel does not show the selection"
+    );
+}
+
+#[test]
+fn orbit_then_f_frames_the_scene() {
+    let (mut h, _mirror) = viewer();
+    let start = h.state().doc.setup.camera;
+    let view = h.get_by_label("viewport").rect();
+    drag(&mut h, view.center(), Vec2::new(120.0, 40.0));
+    let orbited = h.state().doc.setup.camera;
+    assert_ne!(orbited, start, "dragging the viewport did not orbit");
+    assert_eq!(h.state().selected_slot, None, "a drag is not a click");
+
+    h.key_press(Key::F);
+    h.step();
+    let app = h.state();
+    let framed = framing_camera(&app.doc.scene, orbited.fov_deg);
+    assert_eq!(app.doc.setup.camera, framed, "F did not frame the scene");
+    settle(&mut h);
+    let current = h.state().worker.current().unwrap();
+    assert_eq!(current.setup.camera, framed, "renders a stale camera");
+}
+
+#[test]
+fn every_input_widget_has_a_name() {
+    let (mut h, _mirror) = viewer();
+    // Open the path window too, and select a material so its editors show.
+    h.key_press_modifiers(Modifiers::COMMAND, Key::O);
+    h.step();
+    h.get_by_label("red_wall").click();
+    h.run_steps(3);
+    let unnamed = h.unnamed_widgets();
+    assert!(
+        unnamed.is_empty(),
+        "unnamed widgets:\n{}",
+        unnamed.join("\n")
+    );
+}
+
+/// The screen positions `scripts/smoke_viewer.sh` clicks and samples hold for the window size the
+/// viewer opens with (1400x860 points, 1 pixel per point under Xvfb).
+#[test]
+fn smoke_script_layout_holds() {
+    let mut h = Harness::builder()
+        .with_size(Vec2::new(1400.0, 860.0))
+        .with_accessibility_check(false)
+        .build_eframe(|cc| {
+            RaygineApp::new(
+                cc,
+                AppOptions {
+                    scene: None,
+                    threads: 1,
+                    ignore_last_scene: true,
+                },
+            )
+            .unwrap()
+        });
+    h.step();
+    let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
+    let view = h.get_by_label("viewport").rect();
+    eprintln!("light x slider {slider:?}, viewport {view:?}");
+    // scripts/smoke_viewer.sh: SLIDER_X/SLIDER_Y, PANEL_W and BAR_H.
+    assert!(
+        slider.contains(Pos2::new(76.0, 134.0)),
+        "slider moved: {slider:?}"
+    );
+    assert!(
+        (view.min.x - 378.0).abs() < 12.0,
+        "viewport moved: {view:?}"
+    );
+    assert!((view.min.y - 25.0).abs() < 6.0, "viewport moved: {view:?}");
+    assert!(
+        (860.0 - view.max.y - 25.0).abs() < 6.0,
+        "viewport moved: {view:?}"
+    );
+}
