@@ -117,6 +117,9 @@ pub struct RaygineApp {
     pub viewport_px: [u32; 2],
     /// Recent UI frame intervals while rendering (for the p95 in the status bar).
     pub frame_times: VecDeque<f32>,
+    /// Time the app itself spent in recent frames while rendering (the rest is egui's
+    /// tessellation, OpenGL and waiting for the next frame).
+    pub frame_work: VecDeque<f32>,
     last_frame: Option<Instant>,
     frame_log: Option<Instant>,
 }
@@ -183,6 +186,7 @@ impl RaygineApp {
             show_help: false,
             viewport_px: [0, 0],
             frame_times: VecDeque::new(),
+            frame_work: VecDeque::new(),
             last_frame: None,
             frame_log: std::env::var_os("RAYGINE_FRAME_STATS").map(|_| Instant::now()),
         };
@@ -565,7 +569,8 @@ impl RaygineApp {
             if let Some(p95) = self.p95_frame_ms() {
                 let s = self.worker.stats();
                 eprintln!(
-                    "frame-stats p95_ms={p95:.1} frames={} spp={} busy={} change_to_pixels_ms={:.1}",
+                    "frame-stats p95_ms={p95:.1} app_work_p95_ms={:.1} frames={} spp={} busy={} change_to_pixels_ms={:.1}",
+                    p95_ms(&self.frame_work).unwrap_or(f32::NAN),
                     self.frame_times.len(),
                     s.samples_per_pixel,
                     self.worker.busy(),
@@ -577,17 +582,12 @@ impl RaygineApp {
 
     /// The 95th percentile of recent UI frame intervals while rendering, milliseconds.
     pub fn p95_frame_ms(&self) -> Option<f32> {
-        if self.frame_times.len() < 10 {
-            return None;
-        }
-        let mut v: Vec<f32> = self.frame_times.iter().copied().collect();
-        v.sort_by(f32::total_cmp);
-        let i = ((v.len() as f32 * 0.95) as usize).min(v.len() - 1);
-        Some(v[i] * 1e3)
+        p95_ms(&self.frame_times)
     }
 
     /// One frame: background results, shortcuts, panels, viewport, then the render sync.
     pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
+        let started = Instant::now();
         let ctx = ui.ctx().clone();
         self.record_frame_time();
         self.poll_background();
@@ -610,6 +610,12 @@ impl RaygineApp {
             self.history.commit(&self.doc.setup);
         }
         self.sync_render();
+        if self.worker.busy() {
+            self.frame_work.push_back(started.elapsed().as_secs_f32());
+            if self.frame_work.len() > 600 {
+                self.frame_work.pop_front();
+            }
+        }
         if self.loading.is_some()
             || self.dialog.is_some()
             || !self.writes.is_empty()
@@ -618,6 +624,17 @@ impl RaygineApp {
             ctx.request_repaint_after(Duration::from_millis(100));
         }
     }
+}
+
+/// The 95th percentile of a window of durations (seconds), in milliseconds.
+fn p95_ms(window: &VecDeque<f32>) -> Option<f32> {
+    if window.len() < 10 {
+        return None;
+    }
+    let mut v: Vec<f32> = window.iter().copied().collect();
+    v.sort_by(f32::total_cmp);
+    let i = ((v.len() as f32 * 0.95) as usize).min(v.len() - 1);
+    Some(v[i] * 1e3)
 }
 
 impl eframe::App for RaygineApp {
