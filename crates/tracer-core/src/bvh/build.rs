@@ -1,11 +1,13 @@
 //! Binned SAH build: 16 bins on centroid bounds, subtrees above a few thousand triangles built
-//! in parallel with `rayon::join` and stitched into one flat node array at the end.
+//! in parallel with `rayon::join` and stitched into one flat binary node array, which
+//! [`wide::collapse`] then turns into 4-wide nodes.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::Bvh;
 use super::triangle::Triangle;
-use super::{Bvh, Node};
+use super::wide;
 use crate::geometry::Aabb;
 
 const BINS: usize = 16;
@@ -18,6 +20,41 @@ const PARALLEL_SUBTREE: usize = 4096;
 /// Ranges larger than this scan (bounds, binning) in parallel chunks.
 const PARALLEL_SCAN: usize = 1 << 16;
 const SCAN_CHUNK: usize = 1 << 14;
+
+/// A node of the binary tree the build makes before [`wide::collapse`] turns it into 4-wide
+/// nodes: children adjacent (`index`, `index + 1`) and after their parent.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Node {
+    pub min: [f32; 3],
+    /// Interior: index of the left child (the right child is `index + 1`).
+    /// Leaf: position of the first triangle in BVH order.
+    pub index: u32,
+    pub max: [f32; 3],
+    /// Number of triangles in a leaf; 0 marks an interior node.
+    pub count: u32,
+}
+
+impl Node {
+    fn new(bounds: Aabb, index: u32, count: u32) -> Self {
+        Self {
+            min: bounds.min.to_array(),
+            index,
+            max: bounds.max.to_array(),
+            count,
+        }
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        Aabb {
+            min: Vec3::from_array(self.min),
+            max: Vec3::from_array(self.max),
+        }
+    }
+
+    pub fn is_leaf(&self) -> bool {
+        self.count > 0
+    }
+}
 
 /// A triangle's bounds during the build; `index` is its position in the caller's slice.
 #[derive(Clone, Copy)]
@@ -343,24 +380,6 @@ fn flatten(tree: Subtree, slot: usize, nodes: &mut Vec<Node>) {
     }
 }
 
-/// Edges on the longest root-to-leaf path; relies on children coming after their parent.
-pub(crate) fn tree_depth(nodes: &[Node]) -> usize {
-    let mut depth = vec![0usize; nodes.len()];
-    let mut max = 0;
-    for (i, n) in nodes.iter().enumerate() {
-        let d = depth[i];
-        max = max.max(d);
-        if !n.is_leaf() {
-            for c in [n.index as usize, n.index as usize + 1] {
-                if let Some(child) = depth.get_mut(c) {
-                    *child = d + 1;
-                }
-            }
-        }
-    }
-    max
-}
-
 impl Bvh {
     /// Builds a BVH over `triangles` (binned SAH, parallel for large inputs). Degenerate
     /// triangles are kept (they are never hit); coordinates must not be NaN and there must be
@@ -390,7 +409,8 @@ impl Bvh {
             .map(|p| Triangle::new(&triangles[p.index as usize]))
             .collect();
         let prim_ids = prims.iter().map(|p| p.index).collect();
-        let depth = tree_depth(&nodes);
+        let nodes = wide::collapse(&nodes);
+        let depth = wide::tree_depth(&nodes);
         Bvh {
             nodes,
             triangles: tris,

@@ -8,9 +8,11 @@
 //! bvh.validate()?;
 //! ```
 //!
-//! Layout: one `Vec` of 32-byte [`Node`]s, root at index 0, the two children of an interior node
-//! adjacent (`left`, `left + 1`) and always after their parent. Leaves hold a range of triangles
-//! stored in BVH order as their three vertices; `prim_ids` maps that order back to the caller's slice.
+//! Layout: one `Vec` of 128-byte 4-wide nodes (`wide.rs`), root at index 0, children always after
+//! their parent; each node holds its four children's boxes side by side and one reference per
+//! child (node index, leaf triangle range, or empty). The build makes a binary SAH tree and
+//! collapses it. Leaves hold a range of triangles stored in BVH order as their three vertices;
+//! `prim_ids` maps that order back to the caller's slice.
 //!
 //! Triangle test: watertight (Woop, Benthin, Wald 2013), two-sided, edges and vertices
 //! inclusive, so rays through shared edges of closed meshes never leak (see `triangle.rs` for
@@ -21,8 +23,7 @@ mod sphere;
 mod traverse;
 mod triangle;
 mod validate;
-
-use glam::Vec3;
+mod wide;
 
 use crate::geometry::Aabb;
 
@@ -30,6 +31,7 @@ pub use sphere::uv_sphere;
 pub use triangle::{intersect_brute_force, occluded_brute_force};
 
 use triangle::Triangle;
+use wide::Node4;
 
 /// A closest hit: ray parameter `t`, barycentrics `(u, v)` of `v1` and `v2`, and the index of
 /// the triangle in the slice given to [`Bvh::build`].
@@ -41,51 +43,17 @@ pub struct Hit {
     pub prim: u32,
 }
 
-/// One BVH node: 32 bytes, plain data.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C, align(32))]
-pub(crate) struct Node {
-    pub min: [f32; 3],
-    /// Interior: index of the left child (the right child is `index + 1`).
-    /// Leaf: position of the first triangle in BVH order.
-    pub index: u32,
-    pub max: [f32; 3],
-    /// Number of triangles in a leaf; 0 marks an interior node.
-    pub count: u32,
-}
-
-impl Node {
-    fn new(bounds: Aabb, index: u32, count: u32) -> Self {
-        Self {
-            min: bounds.min.to_array(),
-            index,
-            max: bounds.max.to_array(),
-            count,
-        }
-    }
-
-    fn bounds(&self) -> Aabb {
-        Aabb {
-            min: Vec3::from_array(self.min),
-            max: Vec3::from_array(self.max),
-        }
-    }
-
-    fn is_leaf(&self) -> bool {
-        self.count > 0
-    }
-}
-
 /// A BVH that owns a copy of its triangles in BVH order.
 #[derive(Clone, Default)]
 pub struct Bvh {
-    /// Root first; children adjacent and after their parent. Empty iff there are no triangles.
-    nodes: Vec<Node>,
+    /// 4-wide nodes, root first, children after their parent. Empty iff there are no triangles.
+    nodes: Vec<Node4>,
     /// Triangles in BVH order (leaves index into this).
     triangles: Vec<Triangle>,
     /// `prim_ids[i]`: index in the caller's slice of `triangles[i]`.
     prim_ids: Vec<u32>,
-    /// Edges on the longest root-to-leaf path (bounds the traversal stack).
+    /// Edges on the longest path from the root to a leaf reference (bounds the traversal
+    /// stack: at most `WIDTH - 1` entries per level).
     depth: usize,
 }
 
@@ -103,7 +71,7 @@ impl std::fmt::Debug for Bvh {
 impl Bvh {
     /// Bounds of all triangles ([`Aabb::EMPTY`] when there are none).
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::EMPTY, Node::bounds)
+        self.nodes.first().map_or(Aabb::EMPTY, Node4::bounds)
     }
 
     pub fn triangle_count(&self) -> usize {
@@ -114,26 +82,15 @@ impl Bvh {
         self.nodes.len()
     }
 
-    /// Edges on the longest path from the root to a leaf.
+    /// Edges on the longest path from the root node to a leaf (4-wide nodes).
     pub fn depth(&self) -> usize {
         self.depth
     }
 
     /// Bytes held: nodes, triangle data and the index array.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * size_of::<Node>()
+        self.nodes.len() * size_of::<Node4>()
             + self.triangles.len() * size_of::<Triangle>()
             + self.prim_ids.len() * size_of::<u32>()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn node_is_32_bytes() {
-        assert_eq!(size_of::<Node>(), 32);
-        assert_eq!(align_of::<Node>(), 32);
     }
 }

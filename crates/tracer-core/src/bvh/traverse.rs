@@ -1,23 +1,27 @@
-//! Closest-hit and any-hit traversal: slab test with a precomputed reciprocal direction,
-//! nearer child first, an explicit stack, and early exit when a box starts beyond the best hit.
-
-use glam::Vec3;
+//! Closest-hit and any-hit traversal of the 4-wide tree: one ray against a node's four boxes at
+//! once (slab test with a precomputed reciprocal direction, lanes written so the compiler turns
+//! them into one vector instruction per step), the hit children visited nearest first from an
+//! explicit stack, and early exit when a box starts beyond the best hit.
 
 use super::triangle::RayTriangles;
-use super::{Bvh, Hit, Node};
+use super::wide::{EMPTY, LEAF_BIT, Node4, WIDTH, leaf_range};
+use super::{Bvh, Hit};
 use crate::geometry::Ray;
 
-/// Stack size used when the tree is shallow enough (almost always); deeper trees use a `Vec`.
-const STACK_SIZE: usize = 64;
+/// Levels handled by the fixed-size stack (almost always enough); deeper trees use a `Vec`.
+const STACK_LEVELS: usize = 48;
+const STACK_SIZE: usize = STACK_LEVELS * (WIDTH - 1) + 1;
 
-/// Scales each slab's exit distance up by 2 gamma(3) so rounding never culls a box the ray
-/// touches (Ize, "Robust BVH Ray Traversal", 2013).
-const EXIT_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+/// Scales each slab's exit distance up so rounding never culls a box the ray touches: 2 gamma(4)
+/// covers the subtraction, the product and the rounded reciprocal and its scaling (Ize, "Robust
+/// BVH Ray Traversal", 2013).
+const EXIT_SCALE: f32 = 1.0 + 2.0 * (4.0 * f32::EPSILON * 0.5) / (1.0 - 4.0 * f32::EPSILON * 0.5);
 
 #[derive(Clone, Copy, Default)]
 struct StackEntry {
-    node: u32,
-    /// Where the ray enters the node's box.
+    /// A child reference (see `wide.rs`).
+    child: u32,
+    /// Where the ray enters the child's box.
     t_enter: f32,
 }
 
@@ -25,182 +29,192 @@ struct StackEntry {
 struct RayBoxes {
     origin: [f32; 3],
     inv_dir: [f32; 3],
-    /// Per axis: is the direction negative (then the near slab plane is `max`)?
+    /// `inv_dir` scaled by [`EXIT_SCALE`], for exit distances.
+    inv_dir_exit: [f32; 3],
+    /// Per axis: is the direction negative (then the near slab plane is the maximum)?
     negative: [bool; 3],
     t_min: f32,
 }
 
 impl RayBoxes {
     fn new(ray: &Ray) -> Self {
-        let inv = Vec3::ONE / ray.dir;
+        let inv = [1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z];
         Self {
             origin: ray.origin.to_array(),
-            inv_dir: inv.to_array(),
-            negative: [
-                inv.x.is_sign_negative(),
-                inv.y.is_sign_negative(),
-                inv.z.is_sign_negative(),
-            ],
+            inv_dir: inv,
+            inv_dir_exit: inv.map(|i| i * EXIT_SCALE),
+            negative: inv.map(f32::is_sign_negative),
             t_min: ray.t_min,
         }
     }
 
-    /// Where the ray enters `node`'s box within `[t_min, t_max]`, or `f32::INFINITY` if it
-    /// misses. `t_max` must be finite. A zero direction component gives `±inf` or NaN slab
-    /// distances; NaN (origin on the slab plane) is dropped by the comparisons, which keeps
-    /// boxes closed.
+    /// Per lane: where the ray enters that child's box within `[t_min, t_max]`, or
+    /// `f32::INFINITY` if it misses. `t_max` must be finite. A zero direction component gives
+    /// `±inf` or NaN slab distances; NaN (origin on the slab plane) is dropped by the
+    /// comparisons, which keeps boxes closed. Empty lanes (`+inf` minima, `-inf` maxima) miss.
     #[inline(always)]
-    fn enter(&self, node: &Node, t_max: f32) -> f32 {
-        let mut near = self.t_min;
-        let mut far = t_max;
+    fn enter(&self, node: &Node4, t_max: f32) -> [f32; WIDTH] {
+        let mut near = [self.t_min; WIDTH];
+        let mut far = [t_max; WIDTH];
         for axis in 0..3 {
-            let (n, f) = if self.negative[axis] {
-                (node.max[axis], node.min[axis])
+            let (lo, hi) = if self.negative[axis] {
+                (&node.bounds[3 + axis], &node.bounds[axis])
             } else {
-                (node.min[axis], node.max[axis])
+                (&node.bounds[axis], &node.bounds[3 + axis])
             };
-            let tn = (n - self.origin[axis]) * self.inv_dir[axis];
-            let tf = (f - self.origin[axis]) * self.inv_dir[axis] * EXIT_SCALE;
-            near = if tn > near { tn } else { near };
-            far = if tf < far { tf } else { far };
+            let (o, inv, inv_exit) = (
+                self.origin[axis],
+                self.inv_dir[axis],
+                self.inv_dir_exit[axis],
+            );
+            for lane in 0..WIDTH {
+                let tn = (lo[lane] - o) * inv;
+                let tf = (hi[lane] - o) * inv_exit;
+                near[lane] = if tn > near[lane] { tn } else { near[lane] };
+                far[lane] = if tf < far[lane] { tf } else { far[lane] };
+            }
         }
-        if near <= far { near } else { f32::INFINITY }
+        let mut enter = [f32::INFINITY; WIDTH];
+        for lane in 0..WIDTH {
+            enter[lane] = if near[lane] <= far[lane] {
+                near[lane]
+            } else {
+                f32::INFINITY
+            };
+        }
+        enter
     }
 }
 
 impl Bvh {
     /// The closest hit with `t` in `[ray.t_min, ray.t_max]`; both sides of a triangle count.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        if self.depth < STACK_SIZE {
+        if self.depth <= STACK_LEVELS {
             self.closest(ray, &mut [StackEntry::default(); STACK_SIZE])
         } else {
-            self.closest(ray, &mut vec![StackEntry::default(); self.depth + 1])
+            let size = self.depth * (WIDTH - 1) + 1;
+            self.closest(ray, &mut vec![StackEntry::default(); size])
         }
     }
 
     /// Whether anything is hit with `t` in `[ray.t_min, ray.t_max]`; stops at the first hit.
     pub fn occluded(&self, ray: &Ray) -> bool {
-        if self.depth < STACK_SIZE {
+        if self.depth <= STACK_LEVELS {
             self.any(ray, &mut [0; STACK_SIZE])
         } else {
-            self.any(ray, &mut vec![0; self.depth + 1])
+            self.any(ray, &mut vec![0; self.depth * (WIDTH - 1) + 1])
         }
     }
 
     fn closest(&self, ray: &Ray, stack: &mut [StackEntry]) -> Option<Hit> {
-        let root = self.nodes.first()?;
+        if self.nodes.is_empty() {
+            return None;
+        }
         let boxes = RayBoxes::new(ray);
         let tri_ray = RayTriangles::new(ray);
         let mut best_t = ray.t_max;
-        // Box tests need a finite limit; no hit lies at t = inf.
-        let limit = |t: f32| t.min(f32::MAX);
-        if boxes.enter(root, limit(best_t)) == f32::INFINITY {
-            return None;
-        }
         let mut best: Option<(usize, f32, f32)> = None;
         let mut sp = 0;
-        let mut current = 0;
+        let mut current = 0u32;
         loop {
-            let node = &self.nodes[current];
-            let mut next = None;
-            if node.is_leaf() {
-                let first = node.index as usize;
-                let end = first + node.count as usize;
-                for (i, tri) in self.triangles[first..end].iter().enumerate() {
+            if current & LEAF_BIT == 0 {
+                let node = &self.nodes[current as usize];
+                // Box tests need a finite limit; no hit lies at t = inf.
+                let enter = boxes.enter(node, best_t.min(f32::MAX));
+                let mut hits = [StackEntry::default(); WIDTH];
+                let mut n = 0;
+                for (&t_enter, &child) in enter.iter().zip(&node.children) {
+                    if t_enter != f32::INFINITY {
+                        hits[n] = StackEntry { child, t_enter };
+                        n += 1;
+                    }
+                }
+                if n == 1 {
+                    current = hits[0].child;
+                    continue;
+                }
+                if n > 1 {
+                    // Farthest first, so the nearest is visited now and the next nearest pops next.
+                    for i in 1..n {
+                        let mut j = i;
+                        while j > 0 && hits[j - 1].t_enter < hits[j].t_enter {
+                            hits.swap(j - 1, j);
+                            j -= 1;
+                        }
+                    }
+                    stack[sp..sp + n - 1].copy_from_slice(&hits[..n - 1]);
+                    sp += n - 1;
+                    current = hits[n - 1].child;
+                    continue;
+                }
+            } else {
+                let (first, count) = leaf_range(current);
+                for (i, tri) in self.triangles[first..first + count].iter().enumerate() {
                     if let Some((t, u, v)) = tri.intersect(&tri_ray, best_t) {
                         best_t = t;
                         best = Some((first + i, u, v));
                     }
                 }
-            } else {
-                let left = node.index as usize;
-                let t_left = boxes.enter(&self.nodes[left], limit(best_t));
-                let t_right = boxes.enter(&self.nodes[left + 1], limit(best_t));
-                let (near, t_near, far, t_far) = if t_left <= t_right {
-                    (left, t_left, left + 1, t_right)
-                } else {
-                    (left + 1, t_right, left, t_left)
-                };
-                if t_near != f32::INFINITY {
-                    next = Some(near);
-                    if t_far != f32::INFINITY {
-                        stack[sp] = StackEntry {
-                            node: far as u32,
-                            t_enter: t_far,
-                        };
-                        sp += 1;
-                    }
-                }
             }
-            current = match next {
-                Some(n) => n,
-                None => loop {
-                    if sp == 0 {
-                        return best.map(|(i, u, v)| Hit {
-                            t: best_t,
-                            u,
-                            v,
-                            prim: self.prim_ids[i],
-                        });
-                    }
-                    sp -= 1;
-                    let entry = stack[sp];
-                    if entry.t_enter <= best_t {
-                        break entry.node as usize;
-                    }
-                },
+            current = loop {
+                if sp == 0 {
+                    return best.map(|(i, u, v)| Hit {
+                        t: best_t,
+                        u,
+                        v,
+                        prim: self.prim_ids[i],
+                    });
+                }
+                sp -= 1;
+                let entry = stack[sp];
+                if entry.t_enter <= best_t {
+                    break entry.child;
+                }
             };
         }
     }
 
     fn any(&self, ray: &Ray, stack: &mut [u32]) -> bool {
-        let Some(root) = self.nodes.first() else {
+        if self.nodes.is_empty() {
             return false;
-        };
+        }
         let boxes = RayBoxes::new(ray);
         let tri_ray = RayTriangles::new(ray);
         let limit = ray.t_max.min(f32::MAX);
-        if boxes.enter(root, limit) == f32::INFINITY {
-            return false;
-        }
         let mut sp = 0;
-        let mut current = 0;
+        let mut current = 0u32;
         loop {
-            let node = &self.nodes[current];
-            let mut next = None;
-            if node.is_leaf() {
-                let first = node.index as usize;
-                let end = first + node.count as usize;
-                let hit = self.triangles[first..end]
+            if current & LEAF_BIT == 0 {
+                let node = &self.nodes[current as usize];
+                let enter = boxes.enter(node, limit);
+                let mut next = EMPTY;
+                for (&t_enter, &child) in enter.iter().zip(&node.children) {
+                    if t_enter != f32::INFINITY {
+                        if next != EMPTY {
+                            stack[sp] = next;
+                            sp += 1;
+                        }
+                        next = child;
+                    }
+                }
+                if next != EMPTY {
+                    current = next;
+                    continue;
+                }
+            } else {
+                let (first, count) = leaf_range(current);
+                let hit = self.triangles[first..first + count]
                     .iter()
                     .any(|tri| tri.intersect(&tri_ray, ray.t_max).is_some());
                 if hit {
                     return true;
                 }
-            } else {
-                let left = node.index as usize;
-                let hit_left = boxes.enter(&self.nodes[left], limit) != f32::INFINITY;
-                let hit_right = boxes.enter(&self.nodes[left + 1], limit) != f32::INFINITY;
-                if hit_left {
-                    next = Some(left);
-                    if hit_right {
-                        stack[sp] = left as u32 + 1;
-                        sp += 1;
-                    }
-                } else if hit_right {
-                    next = Some(left + 1);
-                }
             }
-            current = match next {
-                Some(n) => n,
-                None => {
-                    if sp == 0 {
-                        return false;
-                    }
-                    sp -= 1;
-                    stack[sp] as usize
-                }
-            };
+            if sp == 0 {
+                return false;
+            }
+            sp -= 1;
+            current = stack[sp];
         }
     }
 }

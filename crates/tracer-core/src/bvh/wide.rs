@@ -1,0 +1,204 @@
+//! The 4-wide node the traversal walks, and [`collapse`], which makes such nodes from the binary
+//! SAH tree by pulling up grandchildren (largest surface area first) until a node has four
+//! children or only leaves below it.
+//!
+//! A node stores its children's boxes structure-of-arrays (one lane per child) so one ray is
+//! tested against all four boxes with the same few vector instructions, and a child reference
+//! per lane:
+//!
+//! | reference                 | meaning                                                    |
+//! |---------------------------|------------------------------------------------------------|
+//! | [`EMPTY`]                 | unused lane; its box is empty (`+inf` minima, `-inf` maxima) |
+//! | bit 31 clear              | index of an interior node, always after its parent         |
+//! | bit 31 set                | leaf: first triangle in bits 4..=30, count in bits 0..=3   |
+
+use super::build;
+use crate::geometry::Aabb;
+
+pub(crate) const WIDTH: usize = 4;
+/// An unused lane.
+pub(crate) const EMPTY: u32 = u32::MAX;
+pub(crate) const LEAF_BIT: u32 = 1 << 31;
+const COUNT_BITS: u32 = 4;
+/// Leaves can start at triangles below this (so a BVH holds at most 2^27 triangles).
+pub(crate) const MAX_LEAF_START: usize = 1 << (31 - COUNT_BITS);
+
+/// Four children's boxes and references: 128 bytes, two cache lines.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub(crate) struct Node4 {
+    /// `bounds[axis][lane]`: minima; `bounds[3 + axis][lane]`: maxima.
+    pub bounds: [[f32; WIDTH]; 6],
+    pub children: [u32; WIDTH],
+    _pad: [u32; WIDTH],
+}
+
+/// A decoded child reference.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Child {
+    Empty,
+    Node(usize),
+    Leaf { first: usize, count: usize },
+}
+
+pub(crate) fn leaf_ref(first: usize, count: usize) -> u32 {
+    debug_assert!(first < MAX_LEAF_START && (1..1 << COUNT_BITS).contains(&count));
+    LEAF_BIT | (first as u32) << COUNT_BITS | count as u32
+}
+
+/// First triangle and count of a leaf reference (bit 31 set, not [`EMPTY`]).
+#[inline(always)]
+pub(crate) fn leaf_range(r: u32) -> (usize, usize) {
+    let first = ((r & !LEAF_BIT) >> COUNT_BITS) as usize;
+    (first, (r & ((1 << COUNT_BITS) - 1)) as usize)
+}
+
+pub(crate) fn decode(r: u32) -> Child {
+    if r == EMPTY {
+        Child::Empty
+    } else if r & LEAF_BIT != 0 {
+        let (first, count) = leaf_range(r);
+        Child::Leaf { first, count }
+    } else {
+        Child::Node(r as usize)
+    }
+}
+
+impl Node4 {
+    pub const EMPTY: Self = Self {
+        bounds: [
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+        ],
+        children: [EMPTY; WIDTH],
+        _pad: [0; WIDTH],
+    };
+
+    pub fn lane_bounds(&self, lane: usize) -> Aabb {
+        let b = &self.bounds;
+        Aabb {
+            min: glam::Vec3::new(b[0][lane], b[1][lane], b[2][lane]),
+            max: glam::Vec3::new(b[3][lane], b[4][lane], b[5][lane]),
+        }
+    }
+
+    pub fn set_lane(&mut self, lane: usize, bounds: Aabb, child: u32) {
+        for axis in 0..3 {
+            self.bounds[axis][lane] = bounds.min[axis];
+            self.bounds[3 + axis][lane] = bounds.max[axis];
+        }
+        self.children[lane] = child;
+    }
+
+    /// Union of the lanes' boxes.
+    pub fn bounds(&self) -> Aabb {
+        (0..WIDTH).fold(Aabb::EMPTY, |b, lane| b.union(self.lane_bounds(lane)))
+    }
+}
+
+/// 4-wide nodes from a binary tree (root at 0, children adjacent and after their parent).
+/// Children of a node stay in the binary tree's left-to-right order; nodes are laid out depth
+/// first, each node's interior children allocated together.
+pub(crate) fn collapse(binary: &[build::Node]) -> Vec<Node4> {
+    if binary.is_empty() {
+        return Vec::new();
+    }
+    let mut nodes = Vec::with_capacity(binary.len() / 3 + 1);
+    nodes.push(Node4::EMPTY);
+    let mut todo = vec![(0usize, 0usize)];
+    while let Some((b, slot)) = todo.pop() {
+        let mut kids = [0usize; WIDTH];
+        let mut n = if binary[b].is_leaf() {
+            kids[0] = b;
+            1
+        } else {
+            let l = binary[b].index as usize;
+            kids[0] = l;
+            kids[1] = l + 1;
+            2
+        };
+        while n < WIDTH {
+            let widest = (0..n)
+                .filter(|&i| !binary[kids[i]].is_leaf())
+                .max_by(|&i, &j| {
+                    let (a, c) = (binary[kids[i]].bounds(), binary[kids[j]].bounds());
+                    a.area().total_cmp(&c.area())
+                });
+            let Some(i) = widest else { break };
+            let l = binary[kids[i]].index as usize;
+            // Keep left-to-right order: the pair replaces its parent in place.
+            kids.copy_within(i + 1..n, i + 2);
+            kids[i] = l;
+            kids[i + 1] = l + 1;
+            n += 1;
+        }
+        let mut node = Node4::EMPTY;
+        let mut interior = Vec::new();
+        for (lane, &k) in kids[..n].iter().enumerate() {
+            let child = &binary[k];
+            let r = if child.is_leaf() {
+                leaf_ref(child.index as usize, child.count as usize)
+            } else {
+                let s = nodes.len();
+                nodes.push(Node4::EMPTY);
+                interior.push((k, s));
+                s as u32
+            };
+            node.set_lane(lane, child.bounds(), r);
+        }
+        nodes[slot] = node;
+        todo.extend(interior.into_iter().rev());
+    }
+    nodes
+}
+
+/// Edges on the longest path from the root to a leaf reference; relies on children coming
+/// after their parent.
+pub(crate) fn tree_depth(nodes: &[Node4]) -> usize {
+    let mut depth = vec![0usize; nodes.len()];
+    let mut max = 0;
+    for (i, n) in nodes.iter().enumerate() {
+        let d = depth[i];
+        for &r in &n.children {
+            match decode(r) {
+                Child::Node(c) => {
+                    if let Some(child) = depth.get_mut(c) {
+                        *child = d + 1;
+                    }
+                }
+                Child::Leaf { .. } => max = max.max(d + 1),
+                Child::Empty => {}
+            }
+        }
+    }
+    max
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn node_is_two_cache_lines() {
+        assert_eq!(size_of::<Node4>(), 128);
+        assert_eq!(align_of::<Node4>(), 64);
+    }
+
+    #[test]
+    fn references_round_trip() {
+        assert_eq!(decode(EMPTY), Child::Empty);
+        assert_eq!(decode(7), Child::Node(7));
+        let r = leaf_ref(MAX_LEAF_START - 1, 8);
+        assert_eq!(
+            decode(r),
+            Child::Leaf {
+                first: MAX_LEAF_START - 1,
+                count: 8
+            }
+        );
+    }
+}
