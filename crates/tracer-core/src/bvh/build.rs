@@ -5,9 +5,9 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::Bvh;
-use super::triangle::Triangle;
+use super::triangle::{PACK, Tri4};
 use super::wide;
+use super::{Bvh, PADDING};
 use crate::geometry::Aabb;
 
 const BINS: usize = 16;
@@ -380,10 +380,39 @@ fn flatten(tree: Subtree, slot: usize, nodes: &mut Vec<Node>) {
     }
 }
 
+/// Copies each leaf's triangles (BVH order in `prims`) into packs of four, in the order the
+/// nodes reference them, and points the leaf references at their packs.
+fn pack_leaves(
+    nodes: &mut [wide::Node4],
+    prims: &[PrimRef],
+    triangles: &[[Vec3; 3]],
+) -> (Vec<Tri4>, Vec<u32>) {
+    let mut packs = Vec::with_capacity(prims.len() / 2 + 1);
+    let mut ids = Vec::with_capacity(prims.len() * 2 + PACK);
+    let mut scratch = Vec::with_capacity(PACK);
+    for node in nodes {
+        for r in &mut node.children {
+            let wide::Child::Leaf { first, count } = wide::decode(*r) else {
+                continue;
+            };
+            let start = packs.len();
+            for chunk in prims[first..first + count].chunks(PACK) {
+                scratch.clear();
+                scratch.extend(chunk.iter().map(|p| triangles[p.index as usize]));
+                packs.push(Tri4::new(&scratch));
+                ids.extend(chunk.iter().map(|p| p.index));
+                ids.extend(std::iter::repeat_n(PADDING, PACK - chunk.len()));
+            }
+            *r = wide::leaf_ref(start, packs.len() - start);
+        }
+    }
+    (packs, ids)
+}
+
 impl Bvh {
     /// Builds a BVH over `triangles` (binned SAH, parallel for large inputs). Degenerate
     /// triangles are kept (they are never hit); coordinates must not be NaN and there must be
-    /// fewer than 2^32 triangles.
+    /// fewer than 2^27 triangles.
     pub fn build(triangles: &[[Vec3; 3]]) -> Bvh {
         if triangles.is_empty() {
             return Bvh::default();
@@ -403,18 +432,14 @@ impl Bvh {
         let mut nodes = Vec::with_capacity(2 * prims.len());
         nodes.push(Node::new(range.bounds, 0, 0));
         flatten(tree, 0, &mut nodes);
-        let tris = prims
-            .par_iter()
-            .with_min_len(SCAN_CHUNK)
-            .map(|p| Triangle::new(&triangles[p.index as usize]))
-            .collect();
-        let prim_ids = prims.iter().map(|p| p.index).collect();
-        let nodes = wide::collapse(&nodes);
+        let mut nodes = wide::collapse(&nodes);
+        let (tris, prim_ids) = pack_leaves(&mut nodes, &prims, triangles);
         let depth = wide::tree_depth(&nodes);
         Bvh {
             nodes,
             triangles: tris,
             prim_ids,
+            triangle_count: triangles.len(),
             depth,
         }
     }

@@ -11,14 +11,16 @@
 //! Layout: one `Vec` of 128-byte 4-wide nodes (`wide.rs`), root at index 0, children always after
 //! their parent; each node holds its four children's boxes side by side and one reference per
 //! child (node index, leaf triangle range, or empty). The build makes a binary SAH tree and
-//! collapses it. Leaves hold a range of triangles stored in BVH order as their three vertices;
-//! `prim_ids` maps that order back to the caller's slice.
+//! collapses it. Leaves hold a range of packs of four triangles (`Tri4`, vertices
+//! structure-of-arrays, unused lanes degenerate) tested together; `prim_ids` maps each lane back
+//! to the caller's slice.
 //!
 //! Triangle test: watertight (Woop, Benthin, Wald 2013), two-sided, edges and vertices
 //! inclusive, so rays through shared edges of closed meshes never leak (see `triangle.rs` for
 //! why not Möller–Trumbore). Box tests are conservative (slab exit scaled up by a few ulps).
 
 mod build;
+mod simd;
 mod sphere;
 mod traverse;
 mod triangle;
@@ -30,7 +32,7 @@ use crate::geometry::Aabb;
 pub use sphere::uv_sphere;
 pub use triangle::{intersect_brute_force, occluded_brute_force};
 
-use triangle::Triangle;
+use triangle::Tri4;
 use wide::Node4;
 
 /// A closest hit: ray parameter `t`, barycentrics `(u, v)` of `v1` and `v2`, and the index of
@@ -43,15 +45,21 @@ pub struct Hit {
     pub prim: u32,
 }
 
+/// `prim_ids` entry of an unused lane in a triangle pack.
+const PADDING: u32 = u32::MAX;
+
 /// A BVH that owns a copy of its triangles in BVH order.
 #[derive(Clone, Default)]
 pub struct Bvh {
     /// 4-wide nodes, root first, children after their parent. Empty iff there are no triangles.
     nodes: Vec<Node4>,
-    /// Triangles in BVH order (leaves index into this).
-    triangles: Vec<Triangle>,
-    /// `prim_ids[i]`: index in the caller's slice of `triangles[i]`.
+    /// Triangles in BVH order, four to a pack (leaves reference a range of packs).
+    triangles: Vec<Tri4>,
+    /// `prim_ids[PACK * pack + lane]`: index in the caller's slice of that triangle, or
+    /// [`PADDING`] for an unused lane.
     prim_ids: Vec<u32>,
+    /// Triangles given to the build.
+    triangle_count: usize,
     /// Edges on the longest path from the root to a leaf reference (bounds the traversal
     /// stack: at most `WIDTH - 1` entries per level).
     depth: usize,
@@ -60,7 +68,8 @@ pub struct Bvh {
 impl std::fmt::Debug for Bvh {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Bvh")
-            .field("triangles", &self.triangles.len())
+            .field("triangles", &self.triangle_count)
+            .field("packs", &self.triangles.len())
             .field("nodes", &self.nodes.len())
             .field("depth", &self.depth)
             .field("bounds", &self.bounds())
@@ -75,7 +84,7 @@ impl Bvh {
     }
 
     pub fn triangle_count(&self) -> usize {
-        self.triangles.len()
+        self.triangle_count
     }
 
     pub fn node_count(&self) -> usize {
@@ -90,7 +99,7 @@ impl Bvh {
     /// Bytes held: nodes, triangle data and the index array.
     pub fn memory_bytes(&self) -> usize {
         self.nodes.len() * size_of::<Node4>()
-            + self.triangles.len() * size_of::<Triangle>()
+            + self.triangles.len() * size_of::<Tri4>()
             + self.prim_ids.len() * size_of::<u32>()
     }
 }

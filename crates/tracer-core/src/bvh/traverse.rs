@@ -3,8 +3,9 @@
 //! them into one vector instruction per step), the hit children visited nearest first from an
 //! explicit stack, and early exit when a box starts beyond the best hit.
 
-use super::triangle::RayTriangles;
-use super::wide::{EMPTY, LEAF_BIT, Node4, WIDTH, leaf_range};
+use super::simd::F4;
+use super::triangle::{PACK, RayTriangles};
+use super::wide::{LEAF_BIT, Node4, WIDTH, leaf_range};
 use super::{Bvh, Hit};
 use crate::geometry::Ray;
 
@@ -48,41 +49,27 @@ impl RayBoxes {
         }
     }
 
-    /// Per lane: where the ray enters that child's box within `[t_min, t_max]`, or
-    /// `f32::INFINITY` if it misses. `t_max` must be finite. A zero direction component gives
-    /// `±inf` or NaN slab distances; NaN (origin on the slab plane) is dropped by the
-    /// comparisons, which keeps boxes closed. Empty lanes (`+inf` minima, `-inf` maxima) miss.
+    /// Which children's boxes the ray meets within `[t_min, t_max]` (bit per lane) and where
+    /// it enters each. `t_max` must be finite. A zero direction component gives `±inf` or NaN
+    /// slab distances; NaN (origin on the slab plane) is dropped by the min/max, which keeps
+    /// boxes closed. Empty lanes (`+inf` minima, `-inf` maxima) miss.
     #[inline(always)]
-    fn enter(&self, node: &Node4, t_max: f32) -> [f32; WIDTH] {
-        let mut near = [self.t_min; WIDTH];
-        let mut far = [t_max; WIDTH];
+    fn enter(&self, node: &Node4, t_max: f32) -> (u32, [f32; WIDTH]) {
+        let mut near = F4::splat(self.t_min);
+        let mut far = F4::splat(t_max);
         for axis in 0..3 {
             let (lo, hi) = if self.negative[axis] {
                 (&node.bounds[3 + axis], &node.bounds[axis])
             } else {
                 (&node.bounds[axis], &node.bounds[3 + axis])
             };
-            let (o, inv, inv_exit) = (
-                self.origin[axis],
-                self.inv_dir[axis],
-                self.inv_dir_exit[axis],
-            );
-            for lane in 0..WIDTH {
-                let tn = (lo[lane] - o) * inv;
-                let tf = (hi[lane] - o) * inv_exit;
-                near[lane] = if tn > near[lane] { tn } else { near[lane] };
-                far[lane] = if tf < far[lane] { tf } else { far[lane] };
-            }
+            let o = F4::splat(self.origin[axis]);
+            let tn = (F4::load(lo) - o) * F4::splat(self.inv_dir[axis]);
+            let tf = (F4::load(hi) - o) * F4::splat(self.inv_dir_exit[axis]);
+            near = tn.max_or(near);
+            far = tf.min_or(far);
         }
-        let mut enter = [f32::INFINITY; WIDTH];
-        for lane in 0..WIDTH {
-            enter[lane] = if near[lane] <= far[lane] {
-                near[lane]
-            } else {
-                f32::INFINITY
-            };
-        }
-        enter
+        (near.le(far).bits(), near.to_array())
     }
 }
 
@@ -120,14 +107,17 @@ impl Bvh {
             if current & LEAF_BIT == 0 {
                 let node = &self.nodes[current as usize];
                 // Box tests need a finite limit; no hit lies at t = inf.
-                let enter = boxes.enter(node, best_t.min(f32::MAX));
+                let (mut bits, enter) = boxes.enter(node, best_t.min(f32::MAX));
                 let mut hits = [StackEntry::default(); WIDTH];
                 let mut n = 0;
-                for (&t_enter, &child) in enter.iter().zip(&node.children) {
-                    if t_enter != f32::INFINITY {
-                        hits[n] = StackEntry { child, t_enter };
-                        n += 1;
-                    }
+                while bits != 0 {
+                    let lane = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    hits[n] = StackEntry {
+                        child: node.children[lane],
+                        t_enter: enter[lane],
+                    };
+                    n += 1;
                 }
                 if n == 1 {
                     current = hits[0].child;
@@ -149,10 +139,10 @@ impl Bvh {
                 }
             } else {
                 let (first, count) = leaf_range(current);
-                for (i, tri) in self.triangles[first..first + count].iter().enumerate() {
-                    if let Some((t, u, v)) = tri.intersect(&tri_ray, best_t) {
+                for (i, pack) in self.triangles[first..first + count].iter().enumerate() {
+                    if let Some((lane, t, u, v)) = pack.intersect(&tri_ray, best_t) {
                         best_t = t;
-                        best = Some((first + i, u, v));
+                        best = Some(((first + i) * PACK + lane, u, v));
                     }
                 }
             }
@@ -186,26 +176,22 @@ impl Bvh {
         loop {
             if current & LEAF_BIT == 0 {
                 let node = &self.nodes[current as usize];
-                let enter = boxes.enter(node, limit);
-                let mut next = EMPTY;
-                for (&t_enter, &child) in enter.iter().zip(&node.children) {
-                    if t_enter != f32::INFINITY {
-                        if next != EMPTY {
-                            stack[sp] = next;
-                            sp += 1;
-                        }
-                        next = child;
+                let mut bits = boxes.enter(node, limit).0;
+                if bits != 0 {
+                    current = node.children[bits.trailing_zeros() as usize];
+                    bits &= bits - 1;
+                    while bits != 0 {
+                        stack[sp] = node.children[bits.trailing_zeros() as usize];
+                        sp += 1;
+                        bits &= bits - 1;
                     }
-                }
-                if next != EMPTY {
-                    current = next;
                     continue;
                 }
             } else {
                 let (first, count) = leaf_range(current);
                 let hit = self.triangles[first..first + count]
                     .iter()
-                    .any(|tri| tri.intersect(&tri_ray, ray.t_max).is_some());
+                    .any(|pack| pack.occludes(&tri_ray, ray.t_max));
                 if hit {
                     return true;
                 }

@@ -1,8 +1,9 @@
 //! `Bvh::validate`: the structural invariants traversal relies on.
 
-use super::Bvh;
 use super::build::MAX_LEAF;
+use super::triangle::PACK;
 use super::wide::{Child, MAX_LEAF_START, WIDTH, decode, tree_depth};
+use super::{Bvh, PADDING};
 use crate::geometry::Aabb;
 
 /// Slack for box tightness (a few ulps of the box's largest coordinate).
@@ -22,15 +23,17 @@ fn tight(outer: &Aabb, inner: &Aabb, tol: f32) -> bool {
 impl Bvh {
     /// Checks that nodes form a tree rooted at 0 with children after their parent, every node
     /// has at least one child, unused lanes hold the empty box, indices are in range, every
-    /// triangle is in exactly one leaf of 1..=8 triangles, each lane's box contains and tightly
+    /// triangle is in exactly one leaf of 1..=2 packs of four (unused lanes degenerate), each lane's box contains and tightly
     /// fits its child node's boxes or its triangles, `prim_ids` is a permutation, and the
     /// recorded depth is right.
     pub fn validate(&self) -> Result<(), String> {
-        let (nodes, n_tris) = (&self.nodes, self.triangles.len());
-        if self.prim_ids.len() != n_tris {
+        let (nodes, n_tris) = (&self.nodes, self.triangle_count);
+        let slots = self.triangles.len() * PACK;
+        if self.prim_ids.len() != slots {
             return Err(format!(
-                "{} prim ids for {n_tris} triangles",
-                self.prim_ids.len()
+                "{} prim ids for {} packs",
+                self.prim_ids.len(),
+                self.triangles.len()
             ));
         }
         if nodes.is_empty() != (n_tris == 0) {
@@ -38,12 +41,21 @@ impl Bvh {
         }
         let mut seen_prim = vec![false; n_tris];
         for (i, &p) in self.prim_ids.iter().enumerate() {
+            if p == PADDING {
+                if !self.triangles[i / PACK].is_degenerate(i % PACK) {
+                    return Err(format!("padding lane {i} holds a triangle"));
+                }
+                continue;
+            }
             match seen_prim.get_mut(p as usize) {
                 Some(seen) if !*seen => *seen = true,
                 _ => return Err(format!("prim id {p} at {i} out of range or repeated")),
             }
         }
-        let mut tri_refs = vec![0u32; n_tris];
+        if let Some(p) = seen_prim.iter().position(|s| !s) {
+            return Err(format!("triangle {p} is in no pack"));
+        }
+        let mut slot_refs = vec![0u32; slots];
         let mut visited = vec![false; nodes.len()];
         let mut todo = if nodes.is_empty() { vec![] } else { vec![0] };
         while let Some(i) = todo.pop() {
@@ -80,7 +92,7 @@ impl Bvh {
                         todo.push(c);
                     }
                     Child::Leaf { first, count } => {
-                        self.validate_leaf(i, lane, (first, count), &b, &mut tri_refs, tol)?;
+                        self.validate_leaf(i, lane, (first, count), &b, &mut slot_refs, tol)?;
                     }
                     Child::Empty => {}
                 }
@@ -92,8 +104,8 @@ impl Bvh {
         if let Some(i) = visited.iter().position(|v| !v) {
             return Err(format!("node {i} unreachable"));
         }
-        if let Some(i) = tri_refs.iter().position(|&c| c != 1) {
-            return Err(format!("triangle {i} referenced {} times", tri_refs[i]));
+        if let Some(i) = slot_refs.iter().position(|&c| c != 1) {
+            return Err(format!("pack lane {i} referenced {} times", slot_refs[i]));
         }
         let depth = tree_depth(nodes);
         if depth != self.depth {
@@ -111,21 +123,19 @@ impl Bvh {
         refs: &mut [u32],
         tol: f32,
     ) -> Result<(), String> {
-        if !(1..=MAX_LEAF).contains(&count)
+        if !(1..=MAX_LEAF.div_ceil(PACK)).contains(&count)
             || first >= MAX_LEAF_START
             || first + count > self.triangles.len()
         {
             return Err(format!(
-                "node {i} lane {lane}: triangles {first}..+{count} invalid"
+                "node {i} lane {lane}: packs {first}..+{count} invalid"
             ));
         }
         let mut fit = Aabb::EMPTY;
-        for (t, r) in self.triangles[first..first + count]
-            .iter()
-            .zip(&mut refs[first..])
-        {
+        for (pack, r) in (first * PACK..(first + count) * PACK).zip(&mut refs[first * PACK..]) {
             *r += 1;
-            fit = t.v.iter().fold(fit, |b, &p| b.grow(p));
+            let tri = &self.triangles[pack / PACK];
+            fit = (0..3).fold(fit, |b, v| b.grow(tri.vertex(pack % PACK, v)));
         }
         if !b.contains(&fit) || !tight(b, &fit, tol) {
             return Err(format!(
@@ -207,7 +217,7 @@ mod tests {
     fn catches_oversized_leaf_filled_empty_lane_and_bad_prim_ids() {
         let mut bvh = sphere_bvh();
         let (i, lane) = lanes(&bvh, true)[0];
-        bvh.nodes[i].children[lane] = leaf_ref(0, MAX_LEAF + 1);
+        bvh.nodes[i].children[lane] = leaf_ref(0, MAX_LEAF.div_ceil(PACK) + 1);
         assert!(bvh.validate().is_err());
         let mut bvh = sphere_bvh();
         bvh.nodes[0].bounds[0][0] = f32::INFINITY;

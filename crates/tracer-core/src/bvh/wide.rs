@@ -10,7 +10,11 @@
 //! |---------------------------|------------------------------------------------------------|
 //! | [`EMPTY`]                 | unused lane; its box is empty (`+inf` minima, `-inf` maxima) |
 //! | bit 31 clear              | index of an interior node, always after its parent         |
-//! | bit 31 set                | leaf: first triangle in bits 4..=30, count in bits 0..=3   |
+//! | bit 31 set                | leaf: first pack in bits 4..=30, pack count in bits 0..=3  |
+
+//!
+//! During [`collapse`] a leaf reference holds a triangle range of the binary tree; `build.rs` then
+//! copies the triangles into packs and rewrites the reference to the pack range.
 
 use super::build;
 use crate::geometry::Aabb;
@@ -20,7 +24,7 @@ pub(crate) const WIDTH: usize = 4;
 pub(crate) const EMPTY: u32 = u32::MAX;
 pub(crate) const LEAF_BIT: u32 = 1 << 31;
 const COUNT_BITS: u32 = 4;
-/// Leaves can start at triangles below this (so a BVH holds at most 2^27 triangles).
+/// Leaves can start at triangles (and packs) below this: a BVH holds fewer than 2^27 triangles.
 pub(crate) const MAX_LEAF_START: usize = 1 << (31 - COUNT_BITS);
 
 /// Four children's boxes and references: 128 bytes, two cache lines.
