@@ -12,8 +12,8 @@ use crate::geometry::Aabb;
 
 const BINS: usize = 16;
 /// Largest leaf; bigger ranges are always split.
-pub(crate) const MAX_LEAF: usize = 8;
-/// Cost of one node visit relative to one triangle test.
+pub(crate) const MAX_LEAF: usize = 4;
+/// Cost of one node visit relative to one test of a pack of four triangles.
 const TRAVERSAL_COST: f32 = 1.0;
 /// Ranges larger than this are split with `rayon::join`.
 const PARALLEL_SUBTREE: usize = 4096;
@@ -183,6 +183,12 @@ fn merge_bins(mut a: Bins, b: Bins) -> Bins {
     a
 }
 
+/// Triangle packs needed for `count` triangles: leaves test four triangles at once, so the SAH
+/// counts packs, not triangles (Embree's builders count blocks the same way).
+fn packs(count: u32) -> f32 {
+    count.div_ceil(PACK as u32) as f32
+}
+
 /// The best SAH split: primitives in bins `< split` of `axis` go left.
 struct Split {
     axis: usize,
@@ -217,7 +223,7 @@ fn find_split(prims: &[PrimRef], binning: &Binning) -> Option<Split> {
             if left.1 == 0 || rc == 0 {
                 continue;
             }
-            let cost = left.0.area() * left.1 as f32 + rb.area() * rc as f32;
+            let cost = left.0.area() * packs(left.1) + rb.area() * packs(rc);
             if best.as_ref().is_none_or(|b| cost < b.cost) {
                 best = Some(Split {
                     axis,
@@ -278,7 +284,7 @@ fn decide(prims: &mut [PrimRef], range: &RangeBounds) -> Decision {
         let area = range.bounds.area();
         let worth_it = split
             .as_ref()
-            .is_some_and(|s| area > 0.0 && TRAVERSAL_COST + s.cost / area < n as f32);
+            .is_some_and(|s| area > 0.0 && TRAVERSAL_COST + s.cost / area < packs(n as u32));
         if !worth_it {
             return Decision::Leaf;
         }

@@ -10,7 +10,7 @@ use super::{Bvh, Hit};
 use crate::geometry::Ray;
 
 /// Levels handled by the fixed-size stack (almost always enough); deeper trees use a `Vec`.
-const STACK_LEVELS: usize = 48;
+const STACK_LEVELS: usize = 24;
 const STACK_SIZE: usize = STACK_LEVELS * (WIDTH - 1) + 1;
 
 /// Scales each slab's exit distance up so rounding never culls a box the ray touches: 2 gamma(4)
@@ -76,28 +76,37 @@ impl RayBoxes {
 impl Bvh {
     /// The closest hit with `t` in `[ray.t_min, ray.t_max]`; both sides of a triangle count.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        // Rays that miss everything (most primary rays of a small object) cost one node test:
+        // no stack, no triangle set-up.
+        let boxes = RayBoxes::new(ray);
+        if boxes.enter(self.nodes.first()?, ray.t_max.min(f32::MAX)).0 == 0 {
+            return None;
+        }
         if self.depth <= STACK_LEVELS {
-            self.closest(ray, &mut [StackEntry::default(); STACK_SIZE])
+            self.closest(ray, &boxes, &mut [StackEntry::default(); STACK_SIZE])
         } else {
             let size = self.depth * (WIDTH - 1) + 1;
-            self.closest(ray, &mut vec![StackEntry::default(); size])
+            self.closest(ray, &boxes, &mut vec![StackEntry::default(); size])
         }
     }
 
     /// Whether anything is hit with `t` in `[ray.t_min, ray.t_max]`; stops at the first hit.
     pub fn occluded(&self, ray: &Ray) -> bool {
+        let boxes = RayBoxes::new(ray);
+        let Some(root) = self.nodes.first() else {
+            return false;
+        };
+        if boxes.enter(root, ray.t_max.min(f32::MAX)).0 == 0 {
+            return false;
+        }
         if self.depth <= STACK_LEVELS {
-            self.any(ray, &mut [0; STACK_SIZE])
+            self.any(ray, &boxes, &mut [0; STACK_SIZE])
         } else {
-            self.any(ray, &mut vec![0; self.depth * (WIDTH - 1) + 1])
+            self.any(ray, &boxes, &mut vec![0; self.depth * (WIDTH - 1) + 1])
         }
     }
 
-    fn closest(&self, ray: &Ray, stack: &mut [StackEntry]) -> Option<Hit> {
-        if self.nodes.is_empty() {
-            return None;
-        }
-        let boxes = RayBoxes::new(ray);
+    fn closest(&self, ray: &Ray, boxes: &RayBoxes, stack: &mut [StackEntry]) -> Option<Hit> {
         let tri_ray = RayTriangles::new(ray);
         let mut best_t = ray.t_max;
         let mut best: Option<(usize, f32, f32)> = None;
@@ -164,11 +173,7 @@ impl Bvh {
         }
     }
 
-    fn any(&self, ray: &Ray, stack: &mut [u32]) -> bool {
-        if self.nodes.is_empty() {
-            return false;
-        }
-        let boxes = RayBoxes::new(ray);
+    fn any(&self, ray: &Ray, boxes: &RayBoxes, stack: &mut [u32]) -> bool {
         let tri_ray = RayTriangles::new(ray);
         let limit = ray.t_max.min(f32::MAX);
         let mut sp = 0;
