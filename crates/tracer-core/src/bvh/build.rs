@@ -1,6 +1,6 @@
 //! Binned SAH build: 16 bins on centroid bounds, subtrees above a few thousand triangles built
 //! in parallel with `rayon::join` and stitched into one flat binary node array, which
-//! [`wide::collapse`] then turns into 4-wide nodes.
+//! [`wide::collapse`] then turns into 8-wide nodes.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -21,7 +21,7 @@ const PARALLEL_SUBTREE: usize = 4096;
 const PARALLEL_SCAN: usize = 1 << 16;
 const SCAN_CHUNK: usize = 1 << 14;
 
-/// A node of the binary tree the build makes before [`wide::collapse`] turns it into 4-wide
+/// A node of the binary tree the build makes before [`wide::collapse`] turns it into 8-wide
 /// nodes: children adjacent (`index`, `index + 1`) and after their parent.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Node {
@@ -389,7 +389,7 @@ fn flatten(tree: Subtree, slot: usize, nodes: &mut Vec<Node>) {
 /// Copies each leaf's triangles (BVH order in `prims`) into packs of four, in the order the
 /// nodes reference them, and points the leaf references at their packs.
 fn pack_leaves(
-    nodes: &mut [wide::Node4],
+    nodes: &mut [wide::WideNode],
     prims: &[PrimRef],
     triangles: &[[Vec3; 3]],
 ) -> (Vec<Tri4>, Vec<u32>) {

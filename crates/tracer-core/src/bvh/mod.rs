@@ -8,8 +8,8 @@
 //! bvh.validate()?;
 //! ```
 //!
-//! Layout: one `Vec` of 128-byte 4-wide nodes (`wide.rs`), root at index 0, children always after
-//! their parent; each node holds its four children's boxes side by side and one reference per
+//! Layout: one `Vec` of 256-byte 8-wide nodes (`wide.rs`), root at index 0, children always after
+//! their parent; each node holds its eight children's boxes side by side and one reference per
 //! child (node index, leaf triangle range, or empty). The build makes a binary SAH tree and
 //! collapses it. Leaves hold a range of packs of four triangles (`Tri4`, vertices
 //! structure-of-arrays, unused lanes degenerate) tested together; `prim_ids` maps each lane back
@@ -33,7 +33,7 @@ pub use sphere::uv_sphere;
 pub use triangle::{intersect_brute_force, occluded_brute_force};
 
 use triangle::Tri4;
-use wide::Node4;
+use wide::WideNode;
 
 /// A closest hit: ray parameter `t`, barycentrics `(u, v)` of `v1` and `v2`, and the index of
 /// the triangle in the slice given to [`Bvh::build`].
@@ -51,8 +51,8 @@ const PADDING: u32 = u32::MAX;
 /// A BVH that owns a copy of its triangles in BVH order.
 #[derive(Clone, Default)]
 pub struct Bvh {
-    /// 4-wide nodes, root first, children after their parent. Empty iff there are no triangles.
-    nodes: Vec<Node4>,
+    /// 8-wide nodes, root first, children after their parent. Empty iff there are no triangles.
+    nodes: Vec<WideNode>,
     /// Triangles in BVH order, four to a pack (leaves reference a range of packs).
     triangles: Vec<Tri4>,
     /// `prim_ids[PACK * pack + lane]`: index in the caller's slice of that triangle, or
@@ -80,7 +80,7 @@ impl std::fmt::Debug for Bvh {
 impl Bvh {
     /// Bounds of all triangles ([`Aabb::EMPTY`] when there are none).
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::EMPTY, Node4::bounds)
+        self.nodes.first().map_or(Aabb::EMPTY, WideNode::bounds)
     }
 
     pub fn triangle_count(&self) -> usize {
@@ -98,7 +98,7 @@ impl Bvh {
 
     /// Bytes held: nodes, triangle data and the index array.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * size_of::<Node4>()
+        self.nodes.len() * size_of::<WideNode>()
             + self.triangles.len() * size_of::<Tri4>()
             + self.prim_ids.len() * size_of::<u32>()
     }

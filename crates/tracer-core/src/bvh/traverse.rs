@@ -1,11 +1,10 @@
-//! Closest-hit and any-hit traversal of the 4-wide tree: one ray against a node's four boxes at
-//! once (slab test with a precomputed reciprocal direction, lanes written so the compiler turns
-//! them into one vector instruction per step), the hit children visited nearest first from an
+//! Closest-hit and any-hit traversal of the wide tree: one ray against a node's boxes four at a
+//! time (slab test with a precomputed reciprocal direction, SSE lanes), the hit children visited nearest first from an
 //! explicit stack, and early exit when a box starts beyond the best hit.
 
 use super::simd::F4;
 use super::triangle::{PACK, RayTriangles};
-use super::wide::{LEAF_BIT, Node4, WIDTH, leaf_range};
+use super::wide::{GROUPS, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit};
 use crate::geometry::Ray;
 
@@ -54,22 +53,28 @@ impl RayBoxes {
     /// slab distances; NaN (origin on the slab plane) is dropped by the min/max, which keeps
     /// boxes closed. Empty lanes (`+inf` minima, `-inf` maxima) miss.
     #[inline(always)]
-    fn enter(&self, node: &Node4, t_max: f32) -> (u32, [f32; WIDTH]) {
-        let mut near = F4::splat(self.t_min);
-        let mut far = F4::splat(t_max);
-        for axis in 0..3 {
-            let (lo, hi) = if self.negative[axis] {
-                (&node.bounds[3 + axis], &node.bounds[axis])
-            } else {
-                (&node.bounds[axis], &node.bounds[3 + axis])
-            };
-            let o = F4::splat(self.origin[axis]);
-            let tn = (F4::load(lo) - o) * F4::splat(self.inv_dir[axis]);
-            let tf = (F4::load(hi) - o) * F4::splat(self.inv_dir_exit[axis]);
-            near = tn.max_or(near);
-            far = tf.min_or(far);
+    fn enter(&self, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]) {
+        let mut bits = 0;
+        let mut enter = [f32::INFINITY; WIDTH];
+        for group in 0..GROUPS {
+            let mut near = F4::splat(self.t_min);
+            let mut far = F4::splat(t_max);
+            for axis in 0..3 {
+                let (lo, hi) = if self.negative[axis] {
+                    (&node.bounds[3 + axis][group], &node.bounds[axis][group])
+                } else {
+                    (&node.bounds[axis][group], &node.bounds[3 + axis][group])
+                };
+                let o = F4::splat(self.origin[axis]);
+                let tn = (F4::load(lo) - o) * F4::splat(self.inv_dir[axis]);
+                let tf = (F4::load(hi) - o) * F4::splat(self.inv_dir_exit[axis]);
+                near = tn.max_or(near);
+                far = tf.min_or(far);
+            }
+            bits |= near.le(far).bits() << (LANES * group);
+            enter[LANES * group..][..LANES].copy_from_slice(&near.to_array());
         }
-        (near.le(far).bits(), near.to_array())
+        (bits, enter)
     }
 }
 

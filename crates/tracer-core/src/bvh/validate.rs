@@ -181,7 +181,7 @@ mod tests {
     fn catches_shrunken_leaf_box() {
         let mut bvh = sphere_bvh();
         let (i, lane) = lanes(&bvh, true)[0];
-        bvh.nodes[i].bounds[3][lane] = bvh.nodes[i].bounds[0][lane];
+        *bvh.nodes[i].bound_mut(3, lane) = *bvh.nodes[i].bound_mut(0, lane);
         assert!(bvh.validate().is_err());
     }
 
@@ -189,7 +189,7 @@ mod tests {
     fn catches_loose_box() {
         let mut bvh = sphere_bvh();
         let (i, lane) = lanes(&bvh, true)[0];
-        bvh.nodes[i].bounds[1][lane] -= 0.5;
+        *bvh.nodes[i].bound_mut(1, lane) -= 0.5;
         assert!(bvh.validate().is_err());
     }
 
@@ -220,8 +220,8 @@ mod tests {
         bvh.nodes[i].children[lane] = leaf_ref(0, MAX_LEAF.div_ceil(PACK) + 1);
         assert!(bvh.validate().is_err());
         let mut bvh = sphere_bvh();
-        bvh.nodes[0].bounds[0][0] = f32::INFINITY;
-        bvh.nodes[0].bounds[3][0] = f32::NEG_INFINITY;
+        *bvh.nodes[0].bound_mut(0, 0) = f32::INFINITY;
+        *bvh.nodes[0].bound_mut(3, 0) = f32::NEG_INFINITY;
         assert!(bvh.validate().is_err());
         let mut bvh = sphere_bvh();
         bvh.prim_ids[0] = bvh.prim_ids[1];

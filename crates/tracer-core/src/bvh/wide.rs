@@ -1,9 +1,9 @@
-//! The 4-wide node the traversal walks, and [`collapse`], which makes such nodes from the binary
-//! SAH tree by pulling up grandchildren (largest surface area first) until a node has four
+//! The wide (8 children) node the traversal walks, and [`collapse`], which makes such nodes from the binary
+//! SAH tree by pulling up grandchildren (largest surface area first) until a node has eight
 //! children or only leaves below it.
 //!
 //! A node stores its children's boxes structure-of-arrays (one lane per child) so one ray is
-//! tested against all four boxes with the same few vector instructions, and a child reference
+//! tested against all its boxes with the same few vector instructions, and a child reference
 //! per lane:
 //!
 //! | reference                 | meaning                                                    |
@@ -19,7 +19,11 @@
 use super::build;
 use crate::geometry::Aabb;
 
-pub(crate) const WIDTH: usize = 4;
+/// Children per node: groups of four lanes, each group one SSE register.
+pub(crate) const WIDTH: usize = 8;
+pub(crate) const GROUPS: usize = WIDTH / LANES;
+/// Lanes of one SIMD group.
+pub(crate) const LANES: usize = 4;
 /// An unused lane.
 pub(crate) const EMPTY: u32 = u32::MAX;
 pub(crate) const LEAF_BIT: u32 = 1 << 31;
@@ -27,12 +31,13 @@ const COUNT_BITS: u32 = 4;
 /// Leaves can start at triangles (and packs) below this: a BVH holds fewer than 2^27 triangles.
 pub(crate) const MAX_LEAF_START: usize = 1 << (31 - COUNT_BITS);
 
-/// Four children's boxes and references: 128 bytes, two cache lines.
+/// [`WIDTH`] children's boxes and references (256 bytes, four cache lines, when 8 wide).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
-pub(crate) struct Node4 {
-    /// `bounds[axis][lane]`: minima; `bounds[3 + axis][lane]`: maxima.
-    pub bounds: [[f32; WIDTH]; 6],
+pub(crate) struct WideNode {
+    /// `bounds[axis][group][lane]`: minima; `bounds[3 + axis][group][lane]`: maxima; child
+    /// `LANES * group + lane`.
+    pub bounds: [[[f32; LANES]; GROUPS]; 6],
     pub children: [u32; WIDTH],
     _pad: [u32; WIDTH],
 }
@@ -68,32 +73,37 @@ pub(crate) fn decode(r: u32) -> Child {
     }
 }
 
-impl Node4 {
+impl WideNode {
     pub const EMPTY: Self = Self {
         bounds: [
-            [f32::INFINITY; WIDTH],
-            [f32::INFINITY; WIDTH],
-            [f32::INFINITY; WIDTH],
-            [f32::NEG_INFINITY; WIDTH],
-            [f32::NEG_INFINITY; WIDTH],
-            [f32::NEG_INFINITY; WIDTH],
+            [[f32::INFINITY; LANES]; GROUPS],
+            [[f32::INFINITY; LANES]; GROUPS],
+            [[f32::INFINITY; LANES]; GROUPS],
+            [[f32::NEG_INFINITY; LANES]; GROUPS],
+            [[f32::NEG_INFINITY; LANES]; GROUPS],
+            [[f32::NEG_INFINITY; LANES]; GROUPS],
         ],
         children: [EMPTY; WIDTH],
         _pad: [0; WIDTH],
     };
 
+    /// Row `row` (min x, y, z, max x, y, z) of child `lane`.
+    pub fn bound_mut(&mut self, row: usize, lane: usize) -> &mut f32 {
+        &mut self.bounds[row][lane / LANES][lane % LANES]
+    }
+
     pub fn lane_bounds(&self, lane: usize) -> Aabb {
-        let b = &self.bounds;
+        let r = |row: usize| self.bounds[row][lane / LANES][lane % LANES];
         Aabb {
-            min: glam::Vec3::new(b[0][lane], b[1][lane], b[2][lane]),
-            max: glam::Vec3::new(b[3][lane], b[4][lane], b[5][lane]),
+            min: glam::Vec3::new(r(0), r(1), r(2)),
+            max: glam::Vec3::new(r(3), r(4), r(5)),
         }
     }
 
     pub fn set_lane(&mut self, lane: usize, bounds: Aabb, child: u32) {
         for axis in 0..3 {
-            self.bounds[axis][lane] = bounds.min[axis];
-            self.bounds[3 + axis][lane] = bounds.max[axis];
+            *self.bound_mut(axis, lane) = bounds.min[axis];
+            *self.bound_mut(3 + axis, lane) = bounds.max[axis];
         }
         self.children[lane] = child;
     }
@@ -107,12 +117,12 @@ impl Node4 {
 /// 4-wide nodes from a binary tree (root at 0, children adjacent and after their parent).
 /// Children of a node stay in the binary tree's left-to-right order; nodes are laid out depth
 /// first, each node's interior children allocated together.
-pub(crate) fn collapse(binary: &[build::Node]) -> Vec<Node4> {
+pub(crate) fn collapse(binary: &[build::Node]) -> Vec<WideNode> {
     if binary.is_empty() {
         return Vec::new();
     }
     let mut nodes = Vec::with_capacity(binary.len() / 3 + 1);
-    nodes.push(Node4::EMPTY);
+    nodes.push(WideNode::EMPTY);
     let mut todo = vec![(0usize, 0usize)];
     while let Some((b, slot)) = todo.pop() {
         let mut kids = [0usize; WIDTH];
@@ -140,7 +150,7 @@ pub(crate) fn collapse(binary: &[build::Node]) -> Vec<Node4> {
             kids[i + 1] = l + 1;
             n += 1;
         }
-        let mut node = Node4::EMPTY;
+        let mut node = WideNode::EMPTY;
         let mut interior = Vec::new();
         for (lane, &k) in kids[..n].iter().enumerate() {
             let child = &binary[k];
@@ -148,7 +158,7 @@ pub(crate) fn collapse(binary: &[build::Node]) -> Vec<Node4> {
                 leaf_ref(child.index as usize, child.count as usize)
             } else {
                 let s = nodes.len();
-                nodes.push(Node4::EMPTY);
+                nodes.push(WideNode::EMPTY);
                 interior.push((k, s));
                 s as u32
             };
@@ -162,7 +172,7 @@ pub(crate) fn collapse(binary: &[build::Node]) -> Vec<Node4> {
 
 /// Edges on the longest path from the root to a leaf reference; relies on children coming
 /// after their parent.
-pub(crate) fn tree_depth(nodes: &[Node4]) -> usize {
+pub(crate) fn tree_depth(nodes: &[WideNode]) -> usize {
     let mut depth = vec![0usize; nodes.len()];
     let mut max = 0;
     for (i, n) in nodes.iter().enumerate() {
@@ -187,9 +197,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn node_is_two_cache_lines() {
-        assert_eq!(size_of::<Node4>(), 128);
-        assert_eq!(align_of::<Node4>(), 64);
+    fn node_is_whole_cache_lines() {
+        assert_eq!(size_of::<WideNode>(), 32 * WIDTH);
+        assert_eq!(align_of::<WideNode>(), 64);
     }
 
     #[test]
