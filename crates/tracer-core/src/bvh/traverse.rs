@@ -78,20 +78,73 @@ impl RayBoxes {
     }
 }
 
+/// Pushes the children hit (`bits`, entry distances `enter`) of `node` farthest first and
+/// returns the nearest, which is visited next; `None` when no child is hit.
+#[inline(always)]
+fn visit_sorted(
+    node: &WideNode,
+    (mut bits, enter): (u32, [f32; WIDTH]),
+    stack: &mut [StackEntry],
+    sp: &mut usize,
+) -> Option<u32> {
+    let mut hits = [StackEntry::default(); WIDTH];
+    let mut n = 0;
+    while bits != 0 {
+        let lane = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        hits[n] = StackEntry {
+            child: node.children[lane],
+            t_enter: enter[lane],
+        };
+        n += 1;
+    }
+    if n <= 1 {
+        return (n == 1).then_some(hits[0].child);
+    }
+    // Farthest first, so the nearest is visited now and the next nearest pops next.
+    for i in 1..n {
+        let mut j = i;
+        while j > 0 && hits[j - 1].t_enter < hits[j].t_enter {
+            hits.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    stack[*sp..*sp + n - 1].copy_from_slice(&hits[..n - 1]);
+    *sp += n - 1;
+    Some(hits[n - 1].child)
+}
+
+/// Pushes all children hit but one, which it returns; `None` when no child is hit.
+#[inline(always)]
+fn visit_any(node: &WideNode, mut bits: u32, stack: &mut [u32], sp: &mut usize) -> Option<u32> {
+    if bits == 0 {
+        return None;
+    }
+    let next = node.children[bits.trailing_zeros() as usize];
+    bits &= bits - 1;
+    while bits != 0 {
+        stack[*sp] = node.children[bits.trailing_zeros() as usize];
+        *sp += 1;
+        bits &= bits - 1;
+    }
+    Some(next)
+}
+
 impl Bvh {
     /// The closest hit with `t` in `[ray.t_min, ray.t_max]`; both sides of a triangle count.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         // Rays that miss everything (most primary rays of a small object) cost one node test:
         // no stack, no triangle set-up.
         let boxes = RayBoxes::new(ray);
-        if boxes.enter(self.nodes.first()?, ray.t_max.min(f32::MAX)).0 == 0 {
+        let root = boxes.enter(self.nodes.first()?, ray.t_max.min(f32::MAX));
+        if root.0 == 0 {
             return None;
         }
         if self.depth <= STACK_LEVELS {
-            self.closest(ray, &boxes, &mut [StackEntry::default(); STACK_SIZE])
+            self.closest(ray, &boxes, root, &mut [StackEntry::default(); STACK_SIZE])
         } else {
             let size = self.depth * (WIDTH - 1) + 1;
-            self.closest(ray, &boxes, &mut vec![StackEntry::default(); size])
+            self.closest(ray, &boxes, root, &mut vec![StackEntry::default(); size])
         }
     }
 
@@ -101,56 +154,59 @@ impl Bvh {
         let Some(root) = self.nodes.first() else {
             return false;
         };
-        if boxes.enter(root, ray.t_max.min(f32::MAX)).0 == 0 {
+        let root = boxes.enter(root, ray.t_max.min(f32::MAX)).0;
+        if root == 0 {
             return false;
         }
         if self.depth <= STACK_LEVELS {
-            self.any(ray, &boxes, &mut [0; STACK_SIZE])
+            self.any(ray, &boxes, root, &mut [0; STACK_SIZE])
         } else {
-            self.any(ray, &boxes, &mut vec![0; self.depth * (WIDTH - 1) + 1])
+            self.any(
+                ray,
+                &boxes,
+                root,
+                &mut vec![0; self.depth * (WIDTH - 1) + 1],
+            )
         }
     }
 
-    fn closest(&self, ray: &Ray, boxes: &RayBoxes, stack: &mut [StackEntry]) -> Option<Hit> {
+    /// Closest hit; `root` is the root node's box test, already known to hit.
+    fn closest(
+        &self,
+        ray: &Ray,
+        boxes: &RayBoxes,
+        root: (u32, [f32; WIDTH]),
+        stack: &mut [StackEntry],
+    ) -> Option<Hit> {
         let tri_ray = RayTriangles::new(ray);
         let mut best_t = ray.t_max;
         let mut best: Option<(usize, f32, f32)> = None;
         let mut sp = 0;
-        let mut current = 0u32;
+        let mut next = visit_sorted(&self.nodes[0], root, stack, &mut sp);
         loop {
+            let current = match next {
+                Some(c) => c,
+                None => loop {
+                    if sp == 0 {
+                        return best.map(|(i, u, v)| Hit {
+                            t: best_t,
+                            u,
+                            v,
+                            prim: self.prim_ids[i],
+                        });
+                    }
+                    sp -= 1;
+                    let entry = stack[sp];
+                    if entry.t_enter <= best_t {
+                        break entry.child;
+                    }
+                },
+            };
             if current & LEAF_BIT == 0 {
                 let node = &self.nodes[current as usize];
                 // Box tests need a finite limit; no hit lies at t = inf.
-                let (mut bits, enter) = boxes.enter(node, best_t.min(f32::MAX));
-                let mut hits = [StackEntry::default(); WIDTH];
-                let mut n = 0;
-                while bits != 0 {
-                    let lane = bits.trailing_zeros() as usize;
-                    bits &= bits - 1;
-                    hits[n] = StackEntry {
-                        child: node.children[lane],
-                        t_enter: enter[lane],
-                    };
-                    n += 1;
-                }
-                if n == 1 {
-                    current = hits[0].child;
-                    continue;
-                }
-                if n > 1 {
-                    // Farthest first, so the nearest is visited now and the next nearest pops next.
-                    for i in 1..n {
-                        let mut j = i;
-                        while j > 0 && hits[j - 1].t_enter < hits[j].t_enter {
-                            hits.swap(j - 1, j);
-                            j -= 1;
-                        }
-                    }
-                    stack[sp..sp + n - 1].copy_from_slice(&hits[..n - 1]);
-                    sp += n - 1;
-                    current = hits[n - 1].child;
-                    continue;
-                }
+                let hits = boxes.enter(node, best_t.min(f32::MAX));
+                next = visit_sorted(node, hits, stack, &mut sp);
             } else {
                 let (first, count) = leaf_range(current);
                 for (i, pack) in self.triangles[first..first + count].iter().enumerate() {
@@ -159,44 +215,29 @@ impl Bvh {
                         best = Some(((first + i) * PACK + lane, u, v));
                     }
                 }
+                next = None;
             }
-            current = loop {
-                if sp == 0 {
-                    return best.map(|(i, u, v)| Hit {
-                        t: best_t,
-                        u,
-                        v,
-                        prim: self.prim_ids[i],
-                    });
-                }
-                sp -= 1;
-                let entry = stack[sp];
-                if entry.t_enter <= best_t {
-                    break entry.child;
-                }
-            };
         }
     }
 
-    fn any(&self, ray: &Ray, boxes: &RayBoxes, stack: &mut [u32]) -> bool {
+    /// Any hit; `root` is the root node's box test bits, already known to be non-zero.
+    fn any(&self, ray: &Ray, boxes: &RayBoxes, root: u32, stack: &mut [u32]) -> bool {
         let tri_ray = RayTriangles::new(ray);
         let limit = ray.t_max.min(f32::MAX);
         let mut sp = 0;
-        let mut current = 0u32;
+        let mut next = visit_any(&self.nodes[0], root, stack, &mut sp);
         loop {
+            let current = match next {
+                Some(c) => c,
+                None if sp == 0 => return false,
+                None => {
+                    sp -= 1;
+                    stack[sp]
+                }
+            };
             if current & LEAF_BIT == 0 {
                 let node = &self.nodes[current as usize];
-                let mut bits = boxes.enter(node, limit).0;
-                if bits != 0 {
-                    current = node.children[bits.trailing_zeros() as usize];
-                    bits &= bits - 1;
-                    while bits != 0 {
-                        stack[sp] = node.children[bits.trailing_zeros() as usize];
-                        sp += 1;
-                        bits &= bits - 1;
-                    }
-                    continue;
-                }
+                next = visit_any(node, boxes.enter(node, limit).0, stack, &mut sp);
             } else {
                 let (first, count) = leaf_range(current);
                 let hit = self.triangles[first..first + count]
@@ -205,12 +246,8 @@ impl Bvh {
                 if hit {
                     return true;
                 }
+                next = None;
             }
-            if sp == 0 {
-                return false;
-            }
-            sp -= 1;
-            current = stack[sp];
         }
     }
 }
