@@ -91,7 +91,7 @@ impl Bvh {
         self.nodes.len()
     }
 
-    /// Edges on the longest path from the root node to a leaf (4-wide nodes).
+    /// Edges on the longest path from the root node to a leaf (wide nodes).
     pub fn depth(&self) -> usize {
         self.depth
     }

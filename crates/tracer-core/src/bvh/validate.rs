@@ -23,9 +23,9 @@ fn tight(outer: &Aabb, inner: &Aabb, tol: f32) -> bool {
 impl Bvh {
     /// Checks that nodes form a tree rooted at 0 with children after their parent, every node
     /// has at least one child, unused lanes hold the empty box, indices are in range, every
-    /// triangle is in exactly one leaf of 1..=2 packs of four (unused lanes degenerate), each lane's box contains and tightly
-    /// fits its child node's boxes or its triangles, `prim_ids` is a permutation, and the
-    /// recorded depth is right.
+    /// triangle is in exactly one pack lane of one leaf (leaves of `MAX_LEAF / 4` packs at most,
+    /// unused lanes degenerate), each lane's box contains and tightly fits its child node's
+    /// boxes or its triangles, `prim_ids` is a permutation, and the recorded depth is right.
     pub fn validate(&self) -> Result<(), String> {
         let (nodes, n_tris) = (&self.nodes, self.triangle_count);
         let slots = self.triangles.len() * PACK;

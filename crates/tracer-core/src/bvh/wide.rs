@@ -114,7 +114,7 @@ impl WideNode {
     }
 }
 
-/// 4-wide nodes from a binary tree (root at 0, children adjacent and after their parent).
+/// Wide nodes from a binary tree (root at 0, children adjacent and after their parent).
 /// Children of a node stay in the binary tree's left-to-right order; nodes are laid out depth
 /// first, each node's interior children allocated together.
 pub(crate) fn collapse(binary: &[build::Node]) -> Vec<WideNode> {
