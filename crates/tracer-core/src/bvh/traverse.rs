@@ -4,7 +4,7 @@
 
 use super::simd::F4;
 use super::triangle::{PACK, RayTriangles};
-use super::wide::{GROUPS, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
+use super::wide::{EMPTY, GROUPS, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit};
 use crate::geometry::Ray;
 
@@ -57,6 +57,10 @@ impl RayBoxes {
         let mut bits = 0;
         let mut enter = [f32::INFINITY; WIDTH];
         for group in 0..GROUPS {
+            // Lanes fill in order: a group starting with an unused lane is unused.
+            if group > 0 && node.children[LANES * group] == EMPTY {
+                break;
+            }
             let mut near = F4::splat(self.t_min);
             let mut far = F4::splat(t_max);
             for axis in 0..3 {
