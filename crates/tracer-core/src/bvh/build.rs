@@ -1,23 +1,60 @@
 //! Binned SAH build: 16 bins on centroid bounds, subtrees above a few thousand triangles built
-//! in parallel with `rayon::join` and stitched into one flat node array at the end.
+//! in parallel with `rayon::join` and stitched into one flat binary node array, which
+//! [`wide::collapse`] then turns into 8-wide nodes.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::triangle::Triangle;
-use super::{Bvh, Node};
+use super::triangle::{PACK, Tri4};
+use super::wide;
+use super::{Bvh, PADDING};
 use crate::geometry::Aabb;
 
 const BINS: usize = 16;
 /// Largest leaf; bigger ranges are always split.
-pub(crate) const MAX_LEAF: usize = 8;
-/// Cost of one node visit relative to one triangle test.
+pub(crate) const MAX_LEAF: usize = 4;
+/// Cost of one node visit relative to one test of a pack of four triangles.
 const TRAVERSAL_COST: f32 = 1.0;
 /// Ranges larger than this are split with `rayon::join`.
 const PARALLEL_SUBTREE: usize = 4096;
 /// Ranges larger than this scan (bounds, binning) in parallel chunks.
 const PARALLEL_SCAN: usize = 1 << 16;
 const SCAN_CHUNK: usize = 1 << 14;
+
+/// A node of the binary tree the build makes before [`wide::collapse`] turns it into 8-wide
+/// nodes: children adjacent (`index`, `index + 1`) and after their parent.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Node {
+    pub min: [f32; 3],
+    /// Interior: index of the left child (the right child is `index + 1`).
+    /// Leaf: position of the first triangle in BVH order.
+    pub index: u32,
+    pub max: [f32; 3],
+    /// Number of triangles in a leaf; 0 marks an interior node.
+    pub count: u32,
+}
+
+impl Node {
+    fn new(bounds: Aabb, index: u32, count: u32) -> Self {
+        Self {
+            min: bounds.min.to_array(),
+            index,
+            max: bounds.max.to_array(),
+            count,
+        }
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        Aabb {
+            min: Vec3::from_array(self.min),
+            max: Vec3::from_array(self.max),
+        }
+    }
+
+    pub fn is_leaf(&self) -> bool {
+        self.count > 0
+    }
+}
 
 /// A triangle's bounds during the build; `index` is its position in the caller's slice.
 #[derive(Clone, Copy)]
@@ -146,6 +183,12 @@ fn merge_bins(mut a: Bins, b: Bins) -> Bins {
     a
 }
 
+/// Triangle packs needed for `count` triangles: leaves test four triangles at once, so the SAH
+/// counts packs, not triangles (Embree's builders count blocks the same way).
+fn packs(count: u32) -> f32 {
+    count.div_ceil(PACK as u32) as f32
+}
+
 /// The best SAH split: primitives in bins `< split` of `axis` go left.
 struct Split {
     axis: usize,
@@ -180,7 +223,7 @@ fn find_split(prims: &[PrimRef], binning: &Binning) -> Option<Split> {
             if left.1 == 0 || rc == 0 {
                 continue;
             }
-            let cost = left.0.area() * left.1 as f32 + rb.area() * rc as f32;
+            let cost = left.0.area() * packs(left.1) + rb.area() * packs(rc);
             if best.as_ref().is_none_or(|b| cost < b.cost) {
                 best = Some(Split {
                     axis,
@@ -241,7 +284,7 @@ fn decide(prims: &mut [PrimRef], range: &RangeBounds) -> Decision {
         let area = range.bounds.area();
         let worth_it = split
             .as_ref()
-            .is_some_and(|s| area > 0.0 && TRAVERSAL_COST + s.cost / area < n as f32);
+            .is_some_and(|s| area > 0.0 && TRAVERSAL_COST + s.cost / area < packs(n as u32));
         if !worth_it {
             return Decision::Leaf;
         }
@@ -343,28 +386,39 @@ fn flatten(tree: Subtree, slot: usize, nodes: &mut Vec<Node>) {
     }
 }
 
-/// Edges on the longest root-to-leaf path; relies on children coming after their parent.
-pub(crate) fn tree_depth(nodes: &[Node]) -> usize {
-    let mut depth = vec![0usize; nodes.len()];
-    let mut max = 0;
-    for (i, n) in nodes.iter().enumerate() {
-        let d = depth[i];
-        max = max.max(d);
-        if !n.is_leaf() {
-            for c in [n.index as usize, n.index as usize + 1] {
-                if let Some(child) = depth.get_mut(c) {
-                    *child = d + 1;
-                }
+/// Copies each leaf's triangles (BVH order in `prims`) into packs of four, in the order the
+/// nodes reference them, and points the leaf references at their packs.
+fn pack_leaves(
+    nodes: &mut [wide::WideNode],
+    prims: &[PrimRef],
+    triangles: &[[Vec3; 3]],
+) -> (Vec<Tri4>, Vec<u32>) {
+    let mut packs = Vec::with_capacity(prims.len() / 2 + 1);
+    let mut ids = Vec::with_capacity(prims.len() * 2 + PACK);
+    let mut scratch = Vec::with_capacity(PACK);
+    for node in nodes {
+        for r in &mut node.children {
+            let wide::Child::Leaf { first, count } = wide::decode(*r) else {
+                continue;
+            };
+            let start = packs.len();
+            for chunk in prims[first..first + count].chunks(PACK) {
+                scratch.clear();
+                scratch.extend(chunk.iter().map(|p| triangles[p.index as usize]));
+                packs.push(Tri4::new(&scratch));
+                ids.extend(chunk.iter().map(|p| p.index));
+                ids.extend(std::iter::repeat_n(PADDING, PACK - chunk.len()));
             }
+            *r = wide::leaf_ref(start, packs.len() - start);
         }
     }
-    max
+    (packs, ids)
 }
 
 impl Bvh {
     /// Builds a BVH over `triangles` (binned SAH, parallel for large inputs). Degenerate
     /// triangles are kept (they are never hit); coordinates must not be NaN and there must be
-    /// fewer than 2^32 triangles.
+    /// fewer than 2^27 triangles.
     pub fn build(triangles: &[[Vec3; 3]]) -> Bvh {
         if triangles.is_empty() {
             return Bvh::default();
@@ -384,17 +438,14 @@ impl Bvh {
         let mut nodes = Vec::with_capacity(2 * prims.len());
         nodes.push(Node::new(range.bounds, 0, 0));
         flatten(tree, 0, &mut nodes);
-        let tris = prims
-            .par_iter()
-            .with_min_len(SCAN_CHUNK)
-            .map(|p| Triangle::new(&triangles[p.index as usize]))
-            .collect();
-        let prim_ids = prims.iter().map(|p| p.index).collect();
-        let depth = tree_depth(&nodes);
+        let mut nodes = wide::collapse(&nodes);
+        let (tris, prim_ids) = pack_leaves(&mut nodes, &prims, triangles);
+        let depth = wide::tree_depth(&nodes);
         Bvh {
             nodes,
             triangles: tris,
             prim_ids,
+            triangle_count: triangles.len(),
             depth,
         }
     }

@@ -8,28 +8,32 @@
 //! bvh.validate()?;
 //! ```
 //!
-//! Layout: one `Vec` of 32-byte [`Node`]s, root at index 0, the two children of an interior node
-//! adjacent (`left`, `left + 1`) and always after their parent. Leaves hold a range of triangles
-//! stored in BVH order as their three vertices; `prim_ids` maps that order back to the caller's slice.
+//! Layout: one `Vec` of 256-byte 8-wide nodes (`wide.rs`), root at index 0, children always after
+//! their parent; each node holds its eight children's boxes side by side and one reference per
+//! child (node index, leaf triangle range, or empty). The build makes a binary SAH tree and
+//! collapses it. Leaves hold a range of packs of four triangles (`Tri4`, vertices
+//! structure-of-arrays, unused lanes degenerate) tested together; `prim_ids` maps each lane back
+//! to the caller's slice.
 //!
 //! Triangle test: watertight (Woop, Benthin, Wald 2013), two-sided, edges and vertices
 //! inclusive, so rays through shared edges of closed meshes never leak (see `triangle.rs` for
 //! why not Möller–Trumbore). Box tests are conservative (slab exit scaled up by a few ulps).
 
 mod build;
+mod simd;
 mod sphere;
 mod traverse;
 mod triangle;
 mod validate;
-
-use glam::Vec3;
+mod wide;
 
 use crate::geometry::Aabb;
 
 pub use sphere::uv_sphere;
 pub use triangle::{intersect_brute_force, occluded_brute_force};
 
-use triangle::Triangle;
+use triangle::Tri4;
+use wide::WideNode;
 
 /// A closest hit: ray parameter `t`, barycentrics `(u, v)` of `v1` and `v2`, and the index of
 /// the triangle in the slice given to [`Bvh::build`].
@@ -41,58 +45,31 @@ pub struct Hit {
     pub prim: u32,
 }
 
-/// One BVH node: 32 bytes, plain data.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C, align(32))]
-pub(crate) struct Node {
-    pub min: [f32; 3],
-    /// Interior: index of the left child (the right child is `index + 1`).
-    /// Leaf: position of the first triangle in BVH order.
-    pub index: u32,
-    pub max: [f32; 3],
-    /// Number of triangles in a leaf; 0 marks an interior node.
-    pub count: u32,
-}
-
-impl Node {
-    fn new(bounds: Aabb, index: u32, count: u32) -> Self {
-        Self {
-            min: bounds.min.to_array(),
-            index,
-            max: bounds.max.to_array(),
-            count,
-        }
-    }
-
-    fn bounds(&self) -> Aabb {
-        Aabb {
-            min: Vec3::from_array(self.min),
-            max: Vec3::from_array(self.max),
-        }
-    }
-
-    fn is_leaf(&self) -> bool {
-        self.count > 0
-    }
-}
+/// `prim_ids` entry of an unused lane in a triangle pack.
+const PADDING: u32 = u32::MAX;
 
 /// A BVH that owns a copy of its triangles in BVH order.
 #[derive(Clone, Default)]
 pub struct Bvh {
-    /// Root first; children adjacent and after their parent. Empty iff there are no triangles.
-    nodes: Vec<Node>,
-    /// Triangles in BVH order (leaves index into this).
-    triangles: Vec<Triangle>,
-    /// `prim_ids[i]`: index in the caller's slice of `triangles[i]`.
+    /// 8-wide nodes, root first, children after their parent. Empty iff there are no triangles.
+    nodes: Vec<WideNode>,
+    /// Triangles in BVH order, four to a pack (leaves reference a range of packs).
+    triangles: Vec<Tri4>,
+    /// `prim_ids[PACK * pack + lane]`: index in the caller's slice of that triangle, or
+    /// [`PADDING`] for an unused lane.
     prim_ids: Vec<u32>,
-    /// Edges on the longest root-to-leaf path (bounds the traversal stack).
+    /// Triangles given to the build.
+    triangle_count: usize,
+    /// Edges on the longest path from the root to a leaf reference (bounds the traversal
+    /// stack: at most `WIDTH - 1` entries per level).
     depth: usize,
 }
 
 impl std::fmt::Debug for Bvh {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Bvh")
-            .field("triangles", &self.triangles.len())
+            .field("triangles", &self.triangle_count)
+            .field("packs", &self.triangles.len())
             .field("nodes", &self.nodes.len())
             .field("depth", &self.depth)
             .field("bounds", &self.bounds())
@@ -103,37 +80,26 @@ impl std::fmt::Debug for Bvh {
 impl Bvh {
     /// Bounds of all triangles ([`Aabb::EMPTY`] when there are none).
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::EMPTY, Node::bounds)
+        self.nodes.first().map_or(Aabb::EMPTY, WideNode::bounds)
     }
 
     pub fn triangle_count(&self) -> usize {
-        self.triangles.len()
+        self.triangle_count
     }
 
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
 
-    /// Edges on the longest path from the root to a leaf.
+    /// Edges on the longest path from the root node to a leaf (wide nodes).
     pub fn depth(&self) -> usize {
         self.depth
     }
 
     /// Bytes held: nodes, triangle data and the index array.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * size_of::<Node>()
-            + self.triangles.len() * size_of::<Triangle>()
+        self.nodes.len() * size_of::<WideNode>()
+            + self.triangles.len() * size_of::<Tri4>()
             + self.prim_ids.len() * size_of::<u32>()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn node_is_32_bytes() {
-        assert_eq!(size_of::<Node>(), 32);
-        assert_eq!(align_of::<Node>(), 32);
     }
 }

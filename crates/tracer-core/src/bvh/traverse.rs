@@ -1,23 +1,27 @@
-//! Closest-hit and any-hit traversal: slab test with a precomputed reciprocal direction,
-//! nearer child first, an explicit stack, and early exit when a box starts beyond the best hit.
+//! Closest-hit and any-hit traversal of the wide tree: one ray against a node's boxes four at a
+//! time (slab test with a precomputed reciprocal direction, SSE lanes), the hit children visited nearest first from an
+//! explicit stack, and early exit when a box starts beyond the best hit.
 
-use glam::Vec3;
-
-use super::triangle::RayTriangles;
-use super::{Bvh, Hit, Node};
+use super::simd::F4;
+use super::triangle::{PACK, RayTriangles};
+use super::wide::{EMPTY, GROUPS, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
+use super::{Bvh, Hit};
 use crate::geometry::Ray;
 
-/// Stack size used when the tree is shallow enough (almost always); deeper trees use a `Vec`.
-const STACK_SIZE: usize = 64;
+/// Levels handled by the fixed-size stack (almost always enough); deeper trees use a `Vec`.
+const STACK_LEVELS: usize = 24;
+const STACK_SIZE: usize = STACK_LEVELS * (WIDTH - 1) + 1;
 
-/// Scales each slab's exit distance up by 2 gamma(3) so rounding never culls a box the ray
-/// touches (Ize, "Robust BVH Ray Traversal", 2013).
-const EXIT_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+/// Scales each slab's exit distance up so rounding never culls a box the ray touches: 2 gamma(4)
+/// covers the subtraction, the product and the rounded reciprocal and its scaling (Ize, "Robust
+/// BVH Ray Traversal", 2013).
+const EXIT_SCALE: f32 = 1.0 + 2.0 * (4.0 * f32::EPSILON * 0.5) / (1.0 - 4.0 * f32::EPSILON * 0.5);
 
 #[derive(Clone, Copy, Default)]
 struct StackEntry {
-    node: u32,
-    /// Where the ray enters the node's box.
+    /// A child reference (see `wide.rs`).
+    child: u32,
+    /// Where the ray enters the child's box.
     t_enter: f32,
 }
 
@@ -25,115 +29,167 @@ struct StackEntry {
 struct RayBoxes {
     origin: [f32; 3],
     inv_dir: [f32; 3],
-    /// Per axis: is the direction negative (then the near slab plane is `max`)?
+    /// `inv_dir` scaled by [`EXIT_SCALE`], for exit distances.
+    inv_dir_exit: [f32; 3],
+    /// Per axis: is the direction negative (then the near slab plane is the maximum)?
     negative: [bool; 3],
     t_min: f32,
 }
 
 impl RayBoxes {
     fn new(ray: &Ray) -> Self {
-        let inv = Vec3::ONE / ray.dir;
+        let inv = [1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z];
         Self {
             origin: ray.origin.to_array(),
-            inv_dir: inv.to_array(),
-            negative: [
-                inv.x.is_sign_negative(),
-                inv.y.is_sign_negative(),
-                inv.z.is_sign_negative(),
-            ],
+            inv_dir: inv,
+            inv_dir_exit: inv.map(|i| i * EXIT_SCALE),
+            negative: inv.map(f32::is_sign_negative),
             t_min: ray.t_min,
         }
     }
 
-    /// Where the ray enters `node`'s box within `[t_min, t_max]`, or `f32::INFINITY` if it
-    /// misses. `t_max` must be finite. A zero direction component gives `±inf` or NaN slab
-    /// distances; NaN (origin on the slab plane) is dropped by the comparisons, which keeps
-    /// boxes closed.
+    /// Which children's boxes the ray meets within `[t_min, t_max]` (bit per lane) and where
+    /// it enters each. `t_max` must be finite. A zero direction component gives `±inf` or NaN
+    /// slab distances; NaN (origin on the slab plane) is dropped by the min/max, which keeps
+    /// boxes closed. Empty lanes (`+inf` minima, `-inf` maxima) miss.
     #[inline(always)]
-    fn enter(&self, node: &Node, t_max: f32) -> f32 {
-        let mut near = self.t_min;
-        let mut far = t_max;
-        for axis in 0..3 {
-            let (n, f) = if self.negative[axis] {
-                (node.max[axis], node.min[axis])
-            } else {
-                (node.min[axis], node.max[axis])
-            };
-            let tn = (n - self.origin[axis]) * self.inv_dir[axis];
-            let tf = (f - self.origin[axis]) * self.inv_dir[axis] * EXIT_SCALE;
-            near = if tn > near { tn } else { near };
-            far = if tf < far { tf } else { far };
+    fn enter(&self, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]) {
+        let mut bits = 0;
+        let mut enter = [f32::INFINITY; WIDTH];
+        for group in 0..GROUPS {
+            // Lanes fill in order: a group starting with an unused lane is unused.
+            if group > 0 && node.children[LANES * group] == EMPTY {
+                break;
+            }
+            let mut near = F4::splat(self.t_min);
+            let mut far = F4::splat(t_max);
+            for axis in 0..3 {
+                let (lo, hi) = if self.negative[axis] {
+                    (&node.bounds[3 + axis][group], &node.bounds[axis][group])
+                } else {
+                    (&node.bounds[axis][group], &node.bounds[3 + axis][group])
+                };
+                let o = F4::splat(self.origin[axis]);
+                let tn = (F4::load(lo) - o) * F4::splat(self.inv_dir[axis]);
+                let tf = (F4::load(hi) - o) * F4::splat(self.inv_dir_exit[axis]);
+                near = tn.max_or(near);
+                far = tf.min_or(far);
+            }
+            bits |= near.le(far).bits() << (LANES * group);
+            enter[LANES * group..][..LANES].copy_from_slice(&near.to_array());
         }
-        if near <= far { near } else { f32::INFINITY }
+        (bits, enter)
     }
+}
+
+/// Pushes the children hit (`bits`, entry distances `enter`) of `node` farthest first and
+/// returns the nearest, which is visited next; `None` when no child is hit.
+#[inline(always)]
+fn visit_sorted(
+    node: &WideNode,
+    (mut bits, enter): (u32, [f32; WIDTH]),
+    stack: &mut [StackEntry],
+    sp: &mut usize,
+) -> Option<u32> {
+    let mut hits = [StackEntry::default(); WIDTH];
+    let mut n = 0;
+    while bits != 0 {
+        let lane = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        hits[n] = StackEntry {
+            child: node.children[lane],
+            t_enter: enter[lane],
+        };
+        n += 1;
+    }
+    if n <= 1 {
+        return (n == 1).then_some(hits[0].child);
+    }
+    // Farthest first, so the nearest is visited now and the next nearest pops next.
+    for i in 1..n {
+        let mut j = i;
+        while j > 0 && hits[j - 1].t_enter < hits[j].t_enter {
+            hits.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    stack[*sp..*sp + n - 1].copy_from_slice(&hits[..n - 1]);
+    *sp += n - 1;
+    Some(hits[n - 1].child)
+}
+
+/// Pushes all children hit but one, which it returns; `None` when no child is hit.
+#[inline(always)]
+fn visit_any(node: &WideNode, mut bits: u32, stack: &mut [u32], sp: &mut usize) -> Option<u32> {
+    if bits == 0 {
+        return None;
+    }
+    let next = node.children[bits.trailing_zeros() as usize];
+    bits &= bits - 1;
+    while bits != 0 {
+        stack[*sp] = node.children[bits.trailing_zeros() as usize];
+        *sp += 1;
+        bits &= bits - 1;
+    }
+    Some(next)
 }
 
 impl Bvh {
     /// The closest hit with `t` in `[ray.t_min, ray.t_max]`; both sides of a triangle count.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        if self.depth < STACK_SIZE {
-            self.closest(ray, &mut [StackEntry::default(); STACK_SIZE])
+        // Rays that miss everything (most primary rays of a small object) cost one node test:
+        // no stack, no triangle set-up.
+        let boxes = RayBoxes::new(ray);
+        let root = boxes.enter(self.nodes.first()?, ray.t_max.min(f32::MAX));
+        if root.0 == 0 {
+            return None;
+        }
+        if self.depth <= STACK_LEVELS {
+            self.closest(ray, &boxes, root, &mut [StackEntry::default(); STACK_SIZE])
         } else {
-            self.closest(ray, &mut vec![StackEntry::default(); self.depth + 1])
+            let size = self.depth * (WIDTH - 1) + 1;
+            self.closest(ray, &boxes, root, &mut vec![StackEntry::default(); size])
         }
     }
 
     /// Whether anything is hit with `t` in `[ray.t_min, ray.t_max]`; stops at the first hit.
     pub fn occluded(&self, ray: &Ray) -> bool {
-        if self.depth < STACK_SIZE {
-            self.any(ray, &mut [0; STACK_SIZE])
+        let boxes = RayBoxes::new(ray);
+        let Some(root) = self.nodes.first() else {
+            return false;
+        };
+        let root = boxes.enter(root, ray.t_max.min(f32::MAX)).0;
+        if root == 0 {
+            return false;
+        }
+        if self.depth <= STACK_LEVELS {
+            self.any(ray, &boxes, root, &mut [0; STACK_SIZE])
         } else {
-            self.any(ray, &mut vec![0; self.depth + 1])
+            self.any(
+                ray,
+                &boxes,
+                root,
+                &mut vec![0; self.depth * (WIDTH - 1) + 1],
+            )
         }
     }
 
-    fn closest(&self, ray: &Ray, stack: &mut [StackEntry]) -> Option<Hit> {
-        let root = self.nodes.first()?;
-        let boxes = RayBoxes::new(ray);
+    /// Closest hit; `root` is the root node's box test, already known to hit.
+    fn closest(
+        &self,
+        ray: &Ray,
+        boxes: &RayBoxes,
+        root: (u32, [f32; WIDTH]),
+        stack: &mut [StackEntry],
+    ) -> Option<Hit> {
         let tri_ray = RayTriangles::new(ray);
         let mut best_t = ray.t_max;
-        // Box tests need a finite limit; no hit lies at t = inf.
-        let limit = |t: f32| t.min(f32::MAX);
-        if boxes.enter(root, limit(best_t)) == f32::INFINITY {
-            return None;
-        }
         let mut best: Option<(usize, f32, f32)> = None;
         let mut sp = 0;
-        let mut current = 0;
+        let mut next = visit_sorted(&self.nodes[0], root, stack, &mut sp);
         loop {
-            let node = &self.nodes[current];
-            let mut next = None;
-            if node.is_leaf() {
-                let first = node.index as usize;
-                let end = first + node.count as usize;
-                for (i, tri) in self.triangles[first..end].iter().enumerate() {
-                    if let Some((t, u, v)) = tri.intersect(&tri_ray, best_t) {
-                        best_t = t;
-                        best = Some((first + i, u, v));
-                    }
-                }
-            } else {
-                let left = node.index as usize;
-                let t_left = boxes.enter(&self.nodes[left], limit(best_t));
-                let t_right = boxes.enter(&self.nodes[left + 1], limit(best_t));
-                let (near, t_near, far, t_far) = if t_left <= t_right {
-                    (left, t_left, left + 1, t_right)
-                } else {
-                    (left + 1, t_right, left, t_left)
-                };
-                if t_near != f32::INFINITY {
-                    next = Some(near);
-                    if t_far != f32::INFINITY {
-                        stack[sp] = StackEntry {
-                            node: far as u32,
-                            t_enter: t_far,
-                        };
-                        sp += 1;
-                    }
-                }
-            }
-            current = match next {
-                Some(n) => n,
+            let current = match next {
+                Some(c) => c,
                 None => loop {
                     if sp == 0 {
                         return best.map(|(i, u, v)| Hit {
@@ -146,61 +202,56 @@ impl Bvh {
                     sp -= 1;
                     let entry = stack[sp];
                     if entry.t_enter <= best_t {
-                        break entry.node as usize;
+                        break entry.child;
                     }
                 },
             };
+            if current & LEAF_BIT == 0 {
+                let node = &self.nodes[current as usize];
+                // Box tests need a finite limit; no hit lies at t = inf.
+                let hits = boxes.enter(node, best_t.min(f32::MAX));
+                next = visit_sorted(node, hits, stack, &mut sp);
+            } else {
+                let (first, count) = leaf_range(current);
+                for (i, pack) in self.triangles[first..first + count].iter().enumerate() {
+                    if let Some((lane, t, u, v)) = pack.intersect(&tri_ray, best_t) {
+                        best_t = t;
+                        best = Some(((first + i) * PACK + lane, u, v));
+                    }
+                }
+                next = None;
+            }
         }
     }
 
-    fn any(&self, ray: &Ray, stack: &mut [u32]) -> bool {
-        let Some(root) = self.nodes.first() else {
-            return false;
-        };
-        let boxes = RayBoxes::new(ray);
+    /// Any hit; `root` is the root node's box test bits, already known to be non-zero.
+    fn any(&self, ray: &Ray, boxes: &RayBoxes, root: u32, stack: &mut [u32]) -> bool {
         let tri_ray = RayTriangles::new(ray);
         let limit = ray.t_max.min(f32::MAX);
-        if boxes.enter(root, limit) == f32::INFINITY {
-            return false;
-        }
         let mut sp = 0;
-        let mut current = 0;
+        let mut next = visit_any(&self.nodes[0], root, stack, &mut sp);
         loop {
-            let node = &self.nodes[current];
-            let mut next = None;
-            if node.is_leaf() {
-                let first = node.index as usize;
-                let end = first + node.count as usize;
-                let hit = self.triangles[first..end]
+            let current = match next {
+                Some(c) => c,
+                None if sp == 0 => return false,
+                None => {
+                    sp -= 1;
+                    stack[sp]
+                }
+            };
+            if current & LEAF_BIT == 0 {
+                let node = &self.nodes[current as usize];
+                next = visit_any(node, boxes.enter(node, limit).0, stack, &mut sp);
+            } else {
+                let (first, count) = leaf_range(current);
+                let hit = self.triangles[first..first + count]
                     .iter()
-                    .any(|tri| tri.intersect(&tri_ray, ray.t_max).is_some());
+                    .any(|pack| pack.occludes(&tri_ray, ray.t_max));
                 if hit {
                     return true;
                 }
-            } else {
-                let left = node.index as usize;
-                let hit_left = boxes.enter(&self.nodes[left], limit) != f32::INFINITY;
-                let hit_right = boxes.enter(&self.nodes[left + 1], limit) != f32::INFINITY;
-                if hit_left {
-                    next = Some(left);
-                    if hit_right {
-                        stack[sp] = left as u32 + 1;
-                        sp += 1;
-                    }
-                } else if hit_right {
-                    next = Some(left + 1);
-                }
+                next = None;
             }
-            current = match next {
-                Some(n) => n,
-                None => {
-                    if sp == 0 {
-                        return false;
-                    }
-                    sp -= 1;
-                    stack[sp] as usize
-                }
-            };
         }
     }
 }

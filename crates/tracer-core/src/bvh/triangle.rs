@@ -7,15 +7,135 @@
 //! sharing it, so a shared edge's edge function is exactly negated between the two triangles
 //! and zero counts as inside: a ray through an edge or vertex of a closed mesh always hits.
 
+// Lane loops index several parallel arrays by lane on purpose: that is the shape the compiler
+// turns into one vector instruction per step.
+#![allow(clippy::needless_range_loop)]
+
 use glam::Vec3;
 
 use super::Hit;
+use super::simd::F4;
 use crate::geometry::Ray;
 
 /// A triangle's three vertices, as given.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Triangle {
     pub v: [Vec3; 3],
+}
+
+/// Lanes of a [`Tri4`].
+pub(crate) const PACK: usize = 4;
+
+/// Up to four triangles side by side, `v[vertex][axis][lane]`, so one ray is tested against all
+/// four with the same instructions. Unused lanes repeat one vertex (a degenerate triangle,
+/// never hit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(16))]
+pub(crate) struct Tri4 {
+    pub v: [[[f32; PACK]; 3]; 3],
+}
+
+impl Tri4 {
+    /// Packs `tris` (1..=4 of them); unused lanes become the first triangle's `v0` thrice.
+    pub fn new(tris: &[[Vec3; 3]]) -> Self {
+        let pad = [tris[0][0]; 3];
+        let mut v = [[[0.0; PACK]; 3]; 3];
+        for lane in 0..PACK {
+            let t = tris.get(lane).unwrap_or(&pad);
+            for (vertex, p) in t.iter().enumerate() {
+                for axis in 0..3 {
+                    v[vertex][axis][lane] = p[axis];
+                }
+            }
+        }
+        Self { v }
+    }
+
+    pub fn vertex(&self, lane: usize, vertex: usize) -> Vec3 {
+        let p = &self.v[vertex];
+        Vec3::new(p[0][lane], p[1][lane], p[2][lane])
+    }
+
+    /// Whether `lane` holds the padding (all three vertices equal).
+    pub fn is_degenerate(&self, lane: usize) -> bool {
+        let a = self.vertex(lane, 0);
+        a == self.vertex(lane, 1) && a == self.vertex(lane, 2)
+    }
+
+    /// [`Triangle::intersect`] on all four lanes, the same operations in the same order per
+    /// lane (so results are bit for bit those of the scalar test). Returns the lanes hit at `t`
+    /// in `[t_min, t_max]` as bits, `t` and the unnormalised `v`, `w` and `1 / det`.
+    #[inline(always)]
+    fn lanes(&self, r: &RayTriangles, t_max: f32) -> (u32, [F4; 4]) {
+        let [kx, ky, kz] = r.k;
+        let (sx, sy, sz) = (
+            F4::splat(r.shear[0]),
+            F4::splat(r.shear[1]),
+            F4::splat(r.shear[2]),
+        );
+        let o = r.origin.to_array();
+        let (ox, oy, oz) = (F4::splat(o[kx]), F4::splat(o[ky]), F4::splat(o[kz]));
+        // Sheared vertex coordinates: x, y in the ray's frame and the unsheared z.
+        let frame = |p: &[[f32; PACK]; 3]| {
+            let z = F4::load(&p[kz]) - oz;
+            (
+                (F4::load(&p[kx]) - ox) - sx * z,
+                (F4::load(&p[ky]) - oy) - sy * z,
+                z,
+            )
+        };
+        let (ax, ay, az) = frame(&self.v[0]);
+        let (bx, by, bz) = frame(&self.v[1]);
+        let (cx, cy, cz) = frame(&self.v[2]);
+        let u = cx * by - cy * bx;
+        let v = ax * cy - ay * cx;
+        let w = bx * ay - by * ax;
+        let zero = F4::splat(0.0);
+        let negative = u.lt(zero).or(v.lt(zero)).or(w.lt(zero));
+        let positive = u.gt(zero).or(v.gt(zero)).or(w.gt(zero));
+        let det = u + v + w;
+        let t_scaled = sz * (u * az + v * bz + w * cz);
+        let inv_det = F4::splat(1.0) / det;
+        let t = t_scaled * inv_det;
+        let hit = det
+            .ne(zero)
+            .and(t.ge(F4::splat(r.t_min)))
+            .and(t.le(F4::splat(t_max)))
+            .and_not(negative.and(positive));
+        (hit.bits(), [t, v, w, inv_det])
+    }
+
+    /// The nearest hit lane with `t` in `[t_min, t_max]`: `(lane, t, u, v)`.
+    #[inline(always)]
+    pub fn intersect(&self, r: &RayTriangles, t_max: f32) -> Option<(usize, f32, f32, f32)> {
+        let (mut bits, [t, v, w, inv_det]) = self.lanes(r, t_max);
+        if bits == 0 {
+            return None;
+        }
+        let t = t.to_array();
+        let mut best = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        while bits != 0 {
+            let lane = bits.trailing_zeros() as usize;
+            if t[lane] < t[best] {
+                best = lane;
+            }
+            bits &= bits - 1;
+        }
+        let inv_det = inv_det.to_array()[best];
+        Some((
+            best,
+            t[best],
+            v.to_array()[best] * inv_det,
+            w.to_array()[best] * inv_det,
+        ))
+    }
+
+    /// Whether any lane is hit with `t` in `[t_min, t_max]`.
+    #[inline(always)]
+    pub fn occludes(&self, r: &RayTriangles, t_max: f32) -> bool {
+        self.lanes(r, t_max).0 != 0
+    }
 }
 
 /// A ray prepared for the watertight test: `kz` is the dominant direction axis, `kx`, `ky` the
@@ -119,6 +239,49 @@ pub fn occluded_brute_force(triangles: &[[Vec3; 3]], ray: &Ray) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn four_lanes_match_the_scalar_test_bit_for_bit() {
+        let tris = [
+            [Vec3::ZERO, Vec3::X, Vec3::Y],
+            [
+                Vec3::new(0.1, 0.3, -0.5),
+                Vec3::new(0.9, 0.2, -0.4),
+                Vec3::new(0.2, 0.8, -0.6),
+            ],
+            [
+                Vec3::new(-1.0, 0.0, 0.3),
+                Vec3::new(1.0, 1.0, 0.1),
+                Vec3::new(0.0, -1.0, 0.2),
+            ],
+        ];
+        let pack = Tri4::new(&tris);
+        assert!(pack.is_degenerate(3) && !pack.is_degenerate(2));
+        for (k, dir) in [
+            Vec3::NEG_Z,
+            Vec3::new(0.1, -0.2, -1.0),
+            Vec3::new(-0.7, 0.1, 0.2),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let origin = Vec3::new(0.25, 0.2, 1.0) - dir * (k as f32);
+            let r = RayTriangles::new(&Ray::new(origin, dir));
+            let (hit, [t, v, w, inv]) = pack.lanes(&r, f32::INFINITY);
+            let [t, v, w, inv] = [t, v, w, inv].map(F4::to_array);
+            for (lane, tri) in tris.iter().enumerate() {
+                let scalar = Triangle::new(tri).intersect(&r, f32::INFINITY);
+                let wide = (hit >> lane & 1 == 1).then_some((
+                    t[lane],
+                    v[lane] * inv[lane],
+                    w[lane] * inv[lane],
+                ));
+                assert_eq!(scalar.map(|h| h.0.to_bits()), wide.map(|h| h.0.to_bits()));
+                assert_eq!(scalar, wide, "lane {lane} dir {dir}");
+            }
+            assert_eq!(hit >> 3, 0);
+        }
+    }
 
     const TRI: [Vec3; 3] = [Vec3::ZERO, Vec3::X, Vec3::Y];
 

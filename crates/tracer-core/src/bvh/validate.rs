@@ -1,7 +1,9 @@
 //! `Bvh::validate`: the structural invariants traversal relies on.
 
-use super::build::{MAX_LEAF, tree_depth};
-use super::{Bvh, Node};
+use super::build::MAX_LEAF;
+use super::triangle::PACK;
+use super::wide::{Child, MAX_LEAF_START, WIDTH, decode, tree_depth};
+use super::{Bvh, PADDING};
 use crate::geometry::Aabb;
 
 /// Slack for box tightness (a few ulps of the box's largest coordinate).
@@ -19,16 +21,19 @@ fn tight(outer: &Aabb, inner: &Aabb, tol: f32) -> bool {
 }
 
 impl Bvh {
-    /// Checks that nodes form a tree rooted at 0 with adjacent children after their parent,
-    /// indices are in range, every triangle is in exactly one leaf of 1..=8 triangles, each
-    /// box contains and tightly fits its children or triangles, `prim_ids` is a permutation,
-    /// and the recorded depth is right.
+    /// Checks that nodes form a tree rooted at 0 with children after their parent, every node
+    /// has at least one child, unused lanes hold the empty box, indices are in range, every
+    /// triangle is in exactly one pack lane of one leaf (leaves of `MAX_LEAF / 4` packs at most,
+    /// unused lanes degenerate), each lane's box contains and tightly fits its child node's
+    /// boxes or its triangles, `prim_ids` is a permutation, and the recorded depth is right.
     pub fn validate(&self) -> Result<(), String> {
-        let (nodes, n_tris) = (&self.nodes, self.triangles.len());
-        if self.prim_ids.len() != n_tris {
+        let (nodes, n_tris) = (&self.nodes, self.triangle_count);
+        let slots = self.triangles.len() * PACK;
+        if self.prim_ids.len() != slots {
             return Err(format!(
-                "{} prim ids for {n_tris} triangles",
-                self.prim_ids.len()
+                "{} prim ids for {} packs",
+                self.prim_ids.len(),
+                self.triangles.len()
             ));
         }
         if nodes.is_empty() != (n_tris == 0) {
@@ -36,12 +41,21 @@ impl Bvh {
         }
         let mut seen_prim = vec![false; n_tris];
         for (i, &p) in self.prim_ids.iter().enumerate() {
+            if p == PADDING {
+                if !self.triangles[i / PACK].is_degenerate(i % PACK) {
+                    return Err(format!("padding lane {i} holds a triangle"));
+                }
+                continue;
+            }
             match seen_prim.get_mut(p as usize) {
                 Some(seen) if !*seen => *seen = true,
                 _ => return Err(format!("prim id {p} at {i} out of range or repeated")),
             }
         }
-        let mut tri_refs = vec![0u32; n_tris];
+        if let Some(p) = seen_prim.iter().position(|s| !s) {
+            return Err(format!("triangle {p} is in no pack"));
+        }
+        let mut slot_refs = vec![0u32; slots];
         let mut visited = vec![false; nodes.len()];
         let mut todo = if nodes.is_empty() { vec![] } else { vec![0] };
         while let Some(i) = todo.pop() {
@@ -49,32 +63,49 @@ impl Bvh {
                 return Err(format!("node {i} reached twice"));
             }
             let node = &nodes[i];
-            let b = node.bounds();
-            if b.is_empty() {
-                return Err(format!("node {i} has an empty box {b:?}"));
+            let mut used = 0;
+            for lane in 0..WIDTH {
+                let b = node.lane_bounds(lane);
+                let child = decode(node.children[lane]);
+                if child == Child::Empty {
+                    if b != Aabb::EMPTY {
+                        return Err(format!("node {i}: empty lane {lane} has box {b:?}"));
+                    }
+                    continue;
+                }
+                used += 1;
+                if b.is_empty() {
+                    return Err(format!("node {i} lane {lane}: empty box {b:?}"));
+                }
+                let tol = tolerance(&b);
+                match child {
+                    Child::Node(c) => {
+                        if c <= i || c >= nodes.len() {
+                            return Err(format!("node {i} lane {lane}: child {c} invalid"));
+                        }
+                        let fit = nodes[c].bounds();
+                        if !b.contains(&fit) || !tight(&b, &fit, tol) {
+                            return Err(format!(
+                                "node {i} lane {lane}: box {b:?} does not fit child {fit:?}"
+                            ));
+                        }
+                        todo.push(c);
+                    }
+                    Child::Leaf { first, count } => {
+                        self.validate_leaf(i, lane, (first, count), &b, &mut slot_refs, tol)?;
+                    }
+                    Child::Empty => {}
+                }
             }
-            let tol = tolerance(&b);
-            if node.is_leaf() {
-                self.validate_leaf(i, node, &mut tri_refs, tol)?;
-            } else {
-                let left = node.index as usize;
-                if left <= i || left + 1 >= nodes.len() {
-                    return Err(format!("node {i}: children {left}, {} invalid", left + 1));
-                }
-                let (l, r) = (nodes[left].bounds(), nodes[left + 1].bounds());
-                if !b.contains(&l) || !b.contains(&r) || !tight(&b, &l.union(r), tol) {
-                    return Err(format!(
-                        "node {i}: box {b:?} does not fit children {l:?} {r:?}"
-                    ));
-                }
-                todo.extend([left, left + 1]);
+            if used == 0 {
+                return Err(format!("node {i} has no children"));
             }
         }
         if let Some(i) = visited.iter().position(|v| !v) {
             return Err(format!("node {i} unreachable"));
         }
-        if let Some(i) = tri_refs.iter().position(|&c| c != 1) {
-            return Err(format!("triangle {i} referenced {} times", tri_refs[i]));
+        if let Some(i) = slot_refs.iter().position(|&c| c != 1) {
+            return Err(format!("pack lane {i} referenced {} times", slot_refs[i]));
         }
         let depth = tree_depth(nodes);
         if depth != self.depth {
@@ -86,26 +117,29 @@ impl Bvh {
     fn validate_leaf(
         &self,
         i: usize,
-        node: &Node,
+        lane: usize,
+        (first, count): (usize, usize),
+        b: &Aabb,
         refs: &mut [u32],
         tol: f32,
     ) -> Result<(), String> {
-        let (first, count) = (node.index as usize, node.count as usize);
-        if !(1..=MAX_LEAF).contains(&count) || first + count > self.triangles.len() {
-            return Err(format!("leaf {i}: triangles {first}..+{count} invalid"));
+        if !(1..=MAX_LEAF.div_ceil(PACK)).contains(&count)
+            || first >= MAX_LEAF_START
+            || first + count > self.triangles.len()
+        {
+            return Err(format!(
+                "node {i} lane {lane}: packs {first}..+{count} invalid"
+            ));
         }
         let mut fit = Aabb::EMPTY;
-        for (t, r) in self.triangles[first..first + count]
-            .iter()
-            .zip(&mut refs[first..])
-        {
+        for (pack, r) in (first * PACK..(first + count) * PACK).zip(&mut refs[first * PACK..]) {
             *r += 1;
-            fit = t.v.iter().fold(fit, |b, &p| b.grow(p));
+            let tri = &self.triangles[pack / PACK];
+            fit = (0..3).fold(fit, |b, v| b.grow(tri.vertex(pack % PACK, v)));
         }
-        if !tight(&node.bounds(), &fit, tol) {
+        if !b.contains(&fit) || !tight(b, &fit, tol) {
             return Err(format!(
-                "leaf {i}: box {:?} does not fit {fit:?}",
-                node.bounds()
+                "node {i} lane {lane}: box {b:?} does not fit {fit:?}"
             ));
         }
         Ok(())
@@ -116,6 +150,7 @@ impl Bvh {
 mod tests {
     use super::*;
     use crate::bvh::uv_sphere;
+    use crate::bvh::wide::leaf_ref;
 
     fn sphere_bvh() -> Bvh {
         let bvh = Bvh::build(&uv_sphere(24));
@@ -123,60 +158,70 @@ mod tests {
         bvh
     }
 
-    fn first_leaf(bvh: &Bvh) -> usize {
-        bvh.nodes.iter().position(Node::is_leaf).unwrap_or(0)
-    }
-
-    fn first_interior_below_root(bvh: &Bvh) -> usize {
-        bvh.nodes
-            .iter()
-            .skip(1)
-            .position(|n| !n.is_leaf())
-            .map_or(0, |i| i + 1)
+    /// (node, lane) of the first leaf reference and of the first interior reference below
+    /// the root.
+    fn lanes(bvh: &Bvh, leaf: bool) -> Vec<(usize, usize)> {
+        let mut out = vec![];
+        for (i, n) in bvh.nodes.iter().enumerate() {
+            for (lane, &r) in n.children.iter().enumerate() {
+                let is = match decode(r) {
+                    Child::Leaf { .. } => leaf,
+                    Child::Node(_) => !leaf && i > 0,
+                    Child::Empty => false,
+                };
+                if is {
+                    out.push((i, lane));
+                }
+            }
+        }
+        out
     }
 
     #[test]
     fn catches_shrunken_leaf_box() {
         let mut bvh = sphere_bvh();
-        let i = first_leaf(&bvh);
-        bvh.nodes[i].max[0] = bvh.nodes[i].min[0];
+        let (i, lane) = lanes(&bvh, true)[0];
+        *bvh.nodes[i].bound_mut(3, lane) = *bvh.nodes[i].bound_mut(0, lane);
         assert!(bvh.validate().is_err());
     }
 
     #[test]
     fn catches_loose_box() {
         let mut bvh = sphere_bvh();
-        let i = first_leaf(&bvh);
-        bvh.nodes[i].min[1] -= 0.5;
+        let (i, lane) = lanes(&bvh, true)[0];
+        *bvh.nodes[i].bound_mut(1, lane) -= 0.5;
         assert!(bvh.validate().is_err());
     }
 
     #[test]
     fn catches_triangle_referenced_twice() {
         let mut bvh = sphere_bvh();
-        let i = first_leaf(&bvh);
-        let j = bvh.nodes.iter().rposition(Node::is_leaf).unwrap_or(0);
-        bvh.nodes[j] = bvh.nodes[i];
+        let leaves = lanes(&bvh, true);
+        let ((i, a), (j, b)) = (leaves[0], leaves[leaves.len() - 1]);
+        bvh.nodes[j].children[b] = bvh.nodes[i].children[a];
         assert!(bvh.validate().is_err());
     }
 
     #[test]
     fn catches_bad_child_index_and_cycle() {
         let mut bvh = sphere_bvh();
-        let i = first_interior_below_root(&bvh);
-        bvh.nodes[i].index = bvh.nodes.len() as u32;
+        let (i, lane) = lanes(&bvh, false)[0];
+        bvh.nodes[i].children[lane] = bvh.nodes.len() as u32;
         assert!(bvh.validate().is_err());
         let mut bvh = sphere_bvh();
-        let i = first_interior_below_root(&bvh);
-        bvh.nodes[i].index = 0;
+        bvh.nodes[i].children[lane] = 0;
         assert!(bvh.validate().is_err());
     }
 
     #[test]
-    fn catches_oversized_leaf_and_bad_prim_ids() {
+    fn catches_oversized_leaf_filled_empty_lane_and_bad_prim_ids() {
         let mut bvh = sphere_bvh();
-        let i = first_leaf(&bvh);
-        bvh.nodes[i].count = MAX_LEAF as u32 + 1;
+        let (i, lane) = lanes(&bvh, true)[0];
+        bvh.nodes[i].children[lane] = leaf_ref(0, MAX_LEAF.div_ceil(PACK) + 1);
+        assert!(bvh.validate().is_err());
+        let mut bvh = sphere_bvh();
+        *bvh.nodes[0].bound_mut(0, 0) = f32::INFINITY;
+        *bvh.nodes[0].bound_mut(3, 0) = f32::NEG_INFINITY;
         assert!(bvh.validate().is_err());
         let mut bvh = sphere_bvh();
         bvh.prim_ids[0] = bvh.prim_ids[1];
