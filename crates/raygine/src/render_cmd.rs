@@ -6,7 +6,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tracer_core::display::DisplaySettings;
+use tracer_core::display::{ChannelLut, DisplaySettings};
 use tracer_core::render::{Film, RenderSettings, render};
 use tracer_core::scene::{self, LoadOptions, LoadedScene, PointLight, luminance};
 
@@ -246,112 +246,5 @@ pub fn map_film_rgb(film: &Film, display: &DisplaySettings, exposure_stops: f32)
         rgb,
         luminance_sum,
         luminance_max,
-    }
-}
-
-/// What [`DisplaySettings::map_pixel`] gives one channel, without its three `powf` calls per
-/// pixel (they cost more than tracing the Cornell box at 1 spp).
-///
-/// The tone curves and the sRGB encoding act on each channel alone and rise with the value, so a
-/// channel's 8-bit code is the number of codes `k` whose threshold `t_k` (the smallest value that
-/// maps to `k` or more) it reaches. Thresholds are found by bisection on the bit patterns of
-/// non-negative floats (ordered like the values), calling `map_pixel` itself, so the table
-/// follows the display code wherever it changes. Bucketing by the top 16 bits of the float makes
-/// most lookups one load. Where f32 rounding makes the curve itself wobble across a code boundary
-/// (a few ulps wide), the table gives the neighbouring code: at most 1 apart, and rare (tested).
-/// [`ChannelLut::new`] checks the per-channel assumption and gives `None` (use `map_pixel`) for
-/// false colour or any curve where it does not hold; values at or above the limit, where the
-/// filmic curve overflows, go to `map_pixel` one by one.
-struct ChannelLut<'a> {
-    display: &'a DisplaySettings,
-    scale: f32,
-    /// Bits of the first value the table does not cover.
-    limit_bits: u32,
-    /// `thresholds[k - 1]`: bits of the smallest value whose code is `k` or more (`u32::MAX`: none
-    /// below the limit).
-    thresholds: [u32; 255],
-    /// Per bucket of 2^16 bit patterns below the limit: the code at its first value and at its last.
-    buckets: Vec<[u8; 2]>,
-}
-
-const BUCKET_SHIFT: u32 = 16;
-
-/// Display values (cd/m² times the exposure scale) up to this are mapped through the table.
-const LUT_MAX_DISPLAY_VALUE: f32 = 1e15;
-
-impl<'a> ChannelLut<'a> {
-    fn new(display: &'a DisplaySettings, scale: f32) -> Option<ChannelLut<'a>> {
-        let limit = LUT_MAX_DISPLAY_VALUE / scale;
-        if display.false_colour.is_some() || !(limit.is_finite() && limit > 0.0) {
-            return None;
-        }
-        let limit_bits = limit.to_bits();
-        let f =
-            |bits: u32| display.map_pixel(Vec3::new(f32::from_bits(bits), 0.0, 0.0), 0.0, scale)[0];
-        let mut thresholds = [u32::MAX; 255];
-        for (i, t) in thresholds.iter_mut().enumerate() {
-            let k = i as u8 + 1;
-            // The smallest bits in [0, limit_bits) with f(bits) >= k, if any.
-            let (mut lo, mut hi) = (0u32, limit_bits);
-            while lo < hi {
-                let mid = lo + (hi - lo) / 2;
-                if f(mid) >= k {
-                    hi = mid;
-                } else {
-                    lo = mid + 1;
-                }
-            }
-            if lo < limit_bits {
-                *t = lo;
-            }
-        }
-        let count = |bits: u32| thresholds.partition_point(|&t| t <= bits) as u8;
-        let buckets = (0..=(limit_bits - 1) >> BUCKET_SHIFT)
-            .map(|b| {
-                let first = b << BUCKET_SHIFT;
-                let last = (first | ((1 << BUCKET_SHIFT) - 1)).min(limit_bits - 1);
-                [count(first), count(last)]
-            })
-            .collect();
-        let lut = ChannelLut {
-            display,
-            scale,
-            limit_bits,
-            thresholds,
-            buckets,
-        };
-        // The per-channel, non-decreasing assumption, checked on sample colours.
-        let probes = [
-            0.0f32, 1e-4, 0.003, 0.02, 0.18, 0.5, 0.9, 1.0, 3.0, 40.0, 1e4, 1e20,
-        ];
-        for &r in &probes {
-            for &g in &probes {
-                for &b in &probes {
-                    let v = Vec3::new(r, g, b) / scale;
-                    let [pr, pg, pb, _] = display.map_pixel(v, 0.0, scale);
-                    if [pr, pg, pb] != [lut.code(v.x), lut.code(v.y), lut.code(v.z)] {
-                        return None;
-                    }
-                }
-            }
-        }
-        Some(lut)
-    }
-
-    /// The 8-bit code of one linear channel value (cd/m²); NaN and negatives map like 0.
-    #[inline]
-    fn code(&self, value: f32) -> u8 {
-        let bits = if value > 0.0 { value.to_bits() } else { 0 };
-        if bits >= self.limit_bits {
-            let v = Vec3::new(value, 0.0, 0.0);
-            return self.display.map_pixel(v, 0.0, self.scale)[0];
-        }
-        let [first, last] = self.buckets[(bits >> BUCKET_SHIFT) as usize];
-        if first == last {
-            first
-        } else {
-            let between = &self.thresholds[first as usize..last as usize];
-            first + between.partition_point(|&t| t <= bits) as u8
-        }
     }
 }

@@ -6,7 +6,7 @@
 use egui::{ColorImage, TextureHandle, TextureOptions};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use tracer_core::display::DisplaySettings;
+use tracer_core::display::{ChannelLut, DisplaySettings};
 use tracer_core::render::{
     ProgressiveFilm, RenderSession, RenderSettings, SessionStats, Snapshot, Tile,
 };
@@ -39,6 +39,8 @@ pub struct RenderWorker {
     shown_display: Option<DisplaySettings>,
     shown_exposure: f32,
     shown_passes: u32,
+    /// The lookup table of the display mapping in force (settings and exposure it was made for).
+    lut: Option<(DisplaySettings, f32, Option<ChannelLut>)>,
     /// When the current generation was started (for change-to-pixels latency).
     started_at: Option<Instant>,
     /// Seconds from the last restart to the first texture upload of the new generation.
@@ -70,6 +72,7 @@ impl RenderWorker {
             shown_display: None,
             shown_exposure: 0.0,
             shown_passes: 0,
+            lut: None,
             started_at: None,
             last_change_to_pixels: None,
         })
@@ -158,6 +161,15 @@ impl RenderWorker {
             || (exposure - self.shown_exposure).abs() > 0.02
             || self.texture.is_none();
         self.shown_passes = stats.passes_done;
+        let lut_stale = self
+            .lut
+            .as_ref()
+            .is_none_or(|(d, e, _)| d != display || *e != exposure);
+        if lut_stale {
+            let lut = ChannelLut::new(display, DisplaySettings::scale_for(exposure));
+            self.lut = Some((*display, exposure, lut));
+        }
+        let lut = self.lut.as_ref().and_then(|(_, _, l)| l.as_ref());
         if full {
             let image = self
                 .session
@@ -183,7 +195,7 @@ impl RenderWorker {
             for rect in merge_rows(dirty) {
                 let image = self
                     .session
-                    .with_film(|f| f.map(|f| map_rect(f, display, exposure, Some(rect))));
+                    .with_film(|f| f.map(|f| map_rect_with(f, display, exposure, Some(rect), lut)));
                 if let Some(image) = image {
                     texture.set_partial(
                         [rect.x0 as usize, rect.y0 as usize],
@@ -218,6 +230,18 @@ pub fn map_rect(
     exposure: f32,
     rect: Option<Tile>,
 ) -> ColorImage {
+    let lut = ChannelLut::new(display, DisplaySettings::scale_for(exposure));
+    map_rect_with(film, display, exposure, rect, lut.as_ref())
+}
+
+/// [`map_rect`] with a lookup table made for the same display settings and exposure.
+pub fn map_rect_with(
+    film: &ProgressiveFilm,
+    display: &DisplaySettings,
+    exposure: f32,
+    rect: Option<Tile>,
+    lut: Option<&ChannelLut>,
+) -> ColorImage {
     let rect = rect.unwrap_or(Tile {
         x0: 0,
         y0: 0,
@@ -228,8 +252,15 @@ pub fn map_rect(
     let mut pixels = Vec::with_capacity(rect.pixel_count());
     for (x, y) in rect.pixels() {
         let i = film.accum.index(x, y);
-        let [r, g, b, a] = display.map_pixel(film.shown_rgb(i), film.shown_illuminance(i), scale);
-        pixels.push(egui::Color32::from_rgba_unmultiplied(r, g, b, a));
+        let rgb = film.shown_rgb(i);
+        let [r, g, b] = match lut {
+            Some(lut) => [lut.code(rgb.x), lut.code(rgb.y), lut.code(rgb.z)],
+            None => {
+                let [r, g, b, _] = display.map_pixel(rgb, film.shown_illuminance(i), scale);
+                [r, g, b]
+            }
+        };
+        pixels.push(egui::Color32::from_rgb(r, g, b));
     }
     ColorImage::new([rect.width() as usize, rect.height() as usize], pixels)
 }

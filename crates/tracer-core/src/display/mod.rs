@@ -5,9 +5,11 @@
 //! white of a typical display) maps to 1.0 before the tone curve.
 
 mod false_colour;
+mod lut;
 mod tonemap;
 
 pub use false_colour::{FalseColour, FalseColourQuantity, FalseColourScale, Legend, LegendEntry};
+pub use lut::ChannelLut;
 pub use tonemap::{ToneMap, linear_to_srgb, srgb_to_linear};
 
 use crate::render::Film;
