@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use super::description::BrepDef;
 use super::error::ShpError;
 use super::lexer::{Lexer, Line, parse_u32};
+use super::memory::{BYTES_PER_TRIANGLE, BYTES_PER_VERTEX};
 
 /// Shortest possible item line, `0 0 0` and its line break: bounds counts by the bytes left.
 const MIN_ITEM_LINE_BYTES: usize = 6;
@@ -129,6 +130,9 @@ impl BrepReader {
         header: Line<'_>,
         count: u32,
     ) -> Result<(), ShpError> {
+        // Memory first: a big real file passes the room check, and a small file announcing
+        // billions of items is as well described by either message.
+        lex.declare_memory(&header, count, BYTES_PER_VERTEX)?;
         lex.check_room(&header, count, "vertices", MIN_ITEM_LINE_BYTES)?;
         if self.def.line == 0 {
             self.def.line = header.no;
@@ -152,6 +156,7 @@ impl BrepReader {
         header: Line<'_>,
         count: u32,
     ) -> Result<(), ShpError> {
+        lex.declare_memory(&header, count, BYTES_PER_TRIANGLE)?;
         lex.check_room(&header, count, "triangles", MIN_ITEM_LINE_BYTES)?;
         let name = &self.def.name;
         let vertex_count = self.def.vertices.len();

@@ -6,6 +6,7 @@ use std::path::Path;
 use std::str::SplitAsciiWhitespace;
 
 use super::error::ShpError;
+use super::memory::MemoryBudget;
 
 /// How much of the file start is inspected to tell text from binary.
 const SNIFF_BYTES: usize = 1024;
@@ -58,6 +59,8 @@ pub(crate) struct Lexer<'a> {
     pos: usize,
     /// Number of the last line read (blank ones included).
     line_no: usize,
+    /// What the counts declared so far need in memory, against what the machine has.
+    memory: MemoryBudget,
 }
 
 impl<'a> Lexer<'a> {
@@ -85,6 +88,7 @@ impl<'a> Lexer<'a> {
             path,
             pos,
             line_no: 0,
+            memory: MemoryBudget::from_system(),
         })
     }
 
@@ -128,6 +132,22 @@ impl<'a> Lexer<'a> {
                 what: what(),
             }),
         }
+    }
+
+    /// Adds `count` items of about `bytes_each` bytes (in the built scene) to the file's memory
+    /// estimate; an error when the scene would not fit in the memory available.
+    pub fn declare_memory(
+        &mut self,
+        line: &Line<'_>,
+        count: u32,
+        bytes_each: u64,
+    ) -> Result<(), ShpError> {
+        self.memory.declare(self.path, line, count, bytes_each)
+    }
+
+    #[cfg(test)]
+    pub fn set_memory_budget(&mut self, memory: MemoryBudget) {
+        self.memory = memory;
     }
 
     /// Rejects `count` items that the rest of the file cannot hold, before anything is allocated
