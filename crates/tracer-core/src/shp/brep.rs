@@ -130,10 +130,10 @@ impl BrepReader {
         header: Line<'_>,
         count: u32,
     ) -> Result<(), ShpError> {
-        // Memory first: a big real file passes the room check, and a small file announcing
-        // billions of items is as well described by either message.
-        lex.declare_memory(&header, count, BYTES_PER_VERTEX)?;
+        // The room first: a small file announcing billions is cut short or corrupt, and says
+        // so more precisely; a big real file passes it and meets the memory check.
         lex.check_room(&header, count, "vertices", MIN_ITEM_LINE_BYTES)?;
+        lex.declare_memory(&header, count, BYTES_PER_VERTEX)?;
         if self.def.line == 0 {
             self.def.line = header.no;
         }
@@ -156,8 +156,8 @@ impl BrepReader {
         header: Line<'_>,
         count: u32,
     ) -> Result<(), ShpError> {
-        lex.declare_memory(&header, count, BYTES_PER_TRIANGLE)?;
         lex.check_room(&header, count, "triangles", MIN_ITEM_LINE_BYTES)?;
+        lex.declare_memory(&header, count, BYTES_PER_TRIANGLE)?;
         let name = &self.def.name;
         let vertex_count = self.def.vertices.len();
         let triangles = &mut self.def.triangles;

@@ -229,7 +229,10 @@ impl<'a> Lexer<'a> {
             };
             *slot = match parse(token) {
                 Ok(value) => value,
-                Err(_) if i == 0 && token.starts_with(|c: char| c.is_ascii_alphabetic()) => {
+                // A word that is not a number at all; `nan` and `inf` are numbers, and say so.
+                Err(ShpError::MalformedNumber { .. })
+                    if i == 0 && token.starts_with(|c: char| c.is_ascii_alphabetic()) =>
+                {
                     return Err(self.unexpected(line, token, what(), "3 numbers".into()));
                 }
                 Err(e) => return Err(e),
@@ -452,6 +455,41 @@ mod tests {
         ] {
             assert_eq!(parse_u32(bad), None, "{bad}");
         }
+    }
+
+    /// Regression (found while tabulating bad inputs): `nan 0 0` was reported as an unexpected
+    /// keyword `nan` instead of as a number that is not finite, unlike `0 nan 0`.
+    #[test]
+    fn nan_and_inf_first_are_non_finite_numbers_not_keywords() {
+        let path = Path::new("t.shp");
+        let lexer = Lexer::new(b"", path).unwrap();
+        for text in [
+            "nan 0 0",
+            "0 nan 0",
+            "inf 0 0",
+            "-inf 1 2",
+            "NaN 0 0",
+            "infinity 0 0",
+        ] {
+            let line = Line { no: 4, text };
+            let what = || "vertex 1".to_string();
+            let err = lexer
+                .three(&line, &what, |t| lexer.float(t, 4, what))
+                .unwrap_err();
+            assert!(
+                matches!(err, ShpError::NonFinite { line: 4, .. }),
+                "{text}: {err}"
+            );
+        }
+        let line = Line {
+            no: 4,
+            text: "triangles 3",
+        };
+        let what = || "vertex 1".to_string();
+        let err = lexer
+            .three(&line, &what, |t| lexer.float(t, 4, what))
+            .unwrap_err();
+        assert!(matches!(err, ShpError::UnexpectedKeyword { .. }), "{err}");
     }
 
     #[test]

@@ -141,24 +141,31 @@ mod tests {
     fn the_reader_refuses_a_count_past_the_budget_at_its_line() {
         use super::super::brep::BrepReader;
         use super::super::lexer::Lexer;
+        // 1.4 million triangles (280 MB estimated) that the file really holds, against 200 MB.
+        let count = 1_400_000;
+        let mut text = String::from("vertices 3\n0 0 0\n1 0 0\n0 1 0\n;; many\n");
+        text.push_str(&format!("triangles {count}\n"));
+        text.push_str(&"0 1 2\n".repeat(count));
         let path = Path::new("big.brs");
-        let bytes = b"vertices 3\n0 0 0\n1 0 0\n0 1 0\n;; many\ntriangles 2000000\n0 1 2\n";
-        let mut lex = Lexer::new(bytes, path).unwrap();
-        lex.set_memory_budget(MemoryBudget::with_available(300 << 20));
-        let mut reader = BrepReader::new("big".into(), path.to_path_buf(), 0);
-        let err = loop {
-            let line = lex.next_line().unwrap().unwrap();
-            if let Err(e) = reader.section(&mut lex, line) {
-                break e;
+        let read = |available: u64| {
+            let mut lex = Lexer::new(text.as_bytes(), path).unwrap();
+            lex.set_memory_budget(MemoryBudget::with_available(available));
+            let mut reader = BrepReader::new("big".into(), path.to_path_buf(), 0);
+            while let Some(line) = lex.next_line()? {
+                reader.section(&mut lex, line)?;
             }
+            Ok::<_, ShpError>(reader.finish())
         };
+        let err = read(200_000_000).unwrap_err();
         assert!(
             matches!(err, ShpError::TooLargeForMemory { line: 6, .. }),
             "{err}"
         );
-        assert!(
-            err.to_string()
-                .starts_with("big.brs: line 6: `triangles 2000000` makes")
+        assert_eq!(
+            err.to_string(),
+            "big.brs: line 6: `triangles 1400000` makes the scene need about 0.3 GB of memory, \
+             more than the 0.2 GB available"
         );
+        assert_eq!(read(1_000_000_000).unwrap().triangles.len(), count);
     }
 }
