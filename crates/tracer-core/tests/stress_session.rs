@@ -133,7 +133,16 @@ fn restart_storm_ends_in_the_exact_picture_with_flat_memory() {
     println!("{report}");
 }
 
+/// What one storm round measured.
+struct Round {
+    secs: f64,
+    reads: u64,
+    progressed: usize,
+    last_generation: u64,
+}
+
 fn storm() -> String {
+    let rss_start = rss_kb();
     let loaded = builtin_cornell_box(None).unwrap();
     let scene = Arc::new(builtin_cornell_box(None).unwrap().scene);
     let base = base_snapshot(&loaded, &scene);
@@ -146,14 +155,48 @@ fn storm() -> String {
         let g = session.start(snap);
         assert!(session.wait_for(Duration::from_secs(30), |s| s.generation == g && s.finished));
     }
-    let rss_before = rss_kb();
+    let rss_warm = rss_kb();
+    // Two rounds: growth over the first shows what the storm costs at all, growth over the
+    // second what it leaks (nothing, if memory is flat).
+    let first = round(&session, &base, 1);
+    let rss_first = rss_kb();
+    let second = round(&session, &base, 2);
+    let rss_second = rss_kb();
 
-    // The storm. Each start is recorded with its generation; the highest one is the final state.
+    let stop_started = Instant::now();
+    let session = Arc::try_unwrap(session).expect("no other owner of the session");
+    drop(session);
+    let stop_secs = stop_started.elapsed().as_secs_f64();
+
+    let growth = rss_second.saturating_sub(rss_warm);
+    let report = format!(
+        "restart storm: 2 rounds of {CHANGES} starts from 2 threads in {:.2} s and {:.2} s \
+         ({:.0} starts/s), {} film reads, {} generations seen with finished passes, final \
+         generations {} and {} bit-identical to one-shot renders; VmRSS {rss_start} kB at the \
+         start, {rss_warm} kB after warm-up, {rss_first} kB after round 1, {rss_second} kB after \
+         round 2 (+{growth} kB); shutdown {stop_secs:.3} s",
+        first.secs,
+        second.secs,
+        CHANGES as f64 / first.secs,
+        first.reads + second.reads,
+        first.progressed + second.progressed,
+        first.last_generation,
+        second.last_generation,
+    );
+    assert!(
+        rss_warm == 0 || growth < RSS_GROWTH_LIMIT_KB,
+        "memory grew: {report}"
+    );
+    report
+}
+
+/// One storm of `CHANGES` starts, then a check of the final film against a one-shot render.
+fn round(session: &Arc<RenderSession>, base: &Snapshot, seed: u64) -> Round {
     let started = Instant::now();
     let log: Arc<Mutex<Vec<(u64, Snapshot)>>> = Arc::new(Mutex::new(Vec::new()));
     let stop_reader = Arc::new(AtomicBool::new(false));
     let reader = {
-        let session = Arc::clone(&session);
+        let session = Arc::clone(session);
         let stop = Arc::clone(&stop_reader);
         thread::spawn(move || {
             let mut reads = 0u64;
@@ -177,11 +220,11 @@ fn storm() -> String {
     };
     let starters: Vec<_> = (0..2u64)
         .map(|t| {
-            let session = Arc::clone(&session);
+            let session = Arc::clone(session);
             let log = Arc::clone(&log);
             let mut snap = base.clone();
             thread::spawn(move || {
-                let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ (t + 1));
+                let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ (seed << 8 | (t + 1)));
                 for i in 0..CHANGES / 2 {
                     change(&mut rng, &mut snap);
                     // Record under the lock so the log order matches the generation order.
@@ -205,7 +248,7 @@ fn storm() -> String {
     for s in starters {
         s.join().expect("a starting thread panicked");
     }
-    let storm_secs = started.elapsed().as_secs_f64();
+    let secs = started.elapsed().as_secs_f64();
     session.set_paused(false);
     stop_reader.store(true, Ordering::Relaxed);
     let (reads, progressed) = reader.join().expect("the reading thread panicked");
@@ -228,25 +271,10 @@ fn storm() -> String {
     let (expected, _) = render(&last.scene, &last.setup, &last.settings);
     assert_eq!(film.width, last.settings.width);
     assert_eq!(film, expected, "the final film differs from a fresh render");
-    let rss_after = rss_kb();
-
-    let stop_started = Instant::now();
-    drop(log);
-    let session = Arc::try_unwrap(session).expect("no other owner of the session");
-    drop(session);
-    let stop_secs = stop_started.elapsed().as_secs_f64();
-
-    let growth = rss_after.saturating_sub(rss_before);
-    let report = format!(
-        "restart storm: {CHANGES} starts from 2 threads in {storm_secs:.2} s ({:.0}/s), \
-         {reads} film reads, {progressed} generations seen with finished passes, final generation {last_generation} bit-identical to one-shot; \
-         VmRSS {rss_before} kB after warm-up, {rss_after} kB after the storm (+{growth} kB); \
-         shutdown {stop_secs:.3} s",
-        CHANGES as f64 / storm_secs
-    );
-    assert!(
-        rss_before == 0 || growth < RSS_GROWTH_LIMIT_KB,
-        "memory grew: {report}"
-    );
-    report
+    Round {
+        secs,
+        reads,
+        progressed,
+        last_generation,
+    }
 }
