@@ -75,6 +75,14 @@ fn set_material(
     }
 }
 
+fn camera_is_finite(c: &Camera) -> bool {
+    [c.position, c.look_at, c.up]
+        .iter()
+        .flatten()
+        .all(|x| x.is_finite())
+        && c.fov_deg.is_finite()
+}
+
 /// The sidecar path for a scene file: `room.shp` -> `room.raygine.toml`.
 pub fn sidecar_path(scene_path: &Path) -> PathBuf {
     scene_path.with_extension("raygine.toml")
@@ -116,7 +124,16 @@ impl Sidecar {
             setup.handedness = h;
         }
         if let Some(c) = self.camera {
-            setup.camera = c;
+            if camera_is_finite(&c) {
+                setup.camera = c;
+            } else {
+                // A NaN or infinite camera renders nothing at all: keep the framing camera.
+                warnings.push(
+                    "camera: position, look_at, up and fov_deg must be finite numbers; \
+                     using the default camera"
+                        .to_string(),
+                );
+            }
         }
         if let Some(lights) = &self.lights {
             setup.lights.clone_from(lights);
@@ -193,5 +210,48 @@ impl Sidecar {
 
     pub fn to_toml(&self) -> String {
         toml::to_string_pretty(self).unwrap_or_else(|e| format!("# cannot write sidecar: {e}\n"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    use super::*;
+    use crate::shp::parse_shp;
+
+    fn scene() -> Scene {
+        let text = "define breps a\nvertices 3\n0 0 0\n1 0 0\n0 1 0\ntriangles 1\n0 1 2\nenddef\n";
+        let desc = parse_shp(text.as_bytes(), Path::new("s.shp")).unwrap();
+        Scene::build(&desc, "s").unwrap()
+    }
+
+    /// Regression (found while tabulating bad inputs): a sidecar camera with NaN or infinite
+    /// numbers was taken silently and rendered an all-black picture.
+    #[test]
+    fn non_finite_camera_falls_back_to_the_default_with_a_warning() {
+        let scene = scene();
+        let defaults = Setup::defaults(&scene, LengthUnit::Mm);
+        for camera in [
+            "position = [nan, 0.0, 1.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_deg = 40.0",
+            "position = [0.0, 0.0, 1.0]\nlook_at = [0.0, inf, 0.0]\nfov_deg = 40.0",
+            "position = [0.0, 0.0, 1.0]\nlook_at = [0.0, 0.0, 0.0]\nup = [0.0, -inf, 0.0]\nfov_deg = 40.0",
+            "position = [0.0, 0.0, 1.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_deg = nan",
+        ] {
+            let text = format!("[camera]\n{camera}\n");
+            let sidecar = Sidecar::parse(&text, Path::new("s.raygine.toml")).unwrap();
+            let mut warnings = Vec::new();
+            let setup = sidecar.apply(&scene, None, &mut warnings);
+            assert_eq!(setup.camera, defaults.camera, "{camera}");
+            assert_eq!(warnings.len(), 1, "{camera}: {warnings:?}");
+            assert!(warnings[0].starts_with("camera: "), "{warnings:?}");
+        }
+        let good =
+            "[camera]\nposition = [0.0, 0.0, 9.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_deg = 30.0\n";
+        let mut warnings = Vec::new();
+        let setup = Sidecar::parse(good, Path::new("s.raygine.toml"))
+            .unwrap()
+            .apply(&scene, None, &mut warnings);
+        assert_eq!(setup.camera.position, [0.0, 0.0, 9.0]);
+        assert!(warnings.is_empty(), "{warnings:?}");
     }
 }

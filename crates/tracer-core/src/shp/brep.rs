@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use super::description::BrepDef;
 use super::error::ShpError;
 use super::lexer::{Lexer, Line, parse_u32};
+use super::memory::{BYTES_PER_TRIANGLE, BYTES_PER_VERTEX};
 
 /// Shortest possible item line, `0 0 0` and its line break: bounds counts by the bytes left.
 const MIN_ITEM_LINE_BYTES: usize = 6;
@@ -129,7 +130,10 @@ impl BrepReader {
         header: Line<'_>,
         count: u32,
     ) -> Result<(), ShpError> {
+        // The room first: a small file announcing billions is cut short or corrupt, and says
+        // so more precisely; a big real file passes it and meets the memory check.
         lex.check_room(&header, count, "vertices", MIN_ITEM_LINE_BYTES)?;
+        lex.declare_memory(&header, count, BYTES_PER_VERTEX)?;
         if self.def.line == 0 {
             self.def.line = header.no;
         }
@@ -153,6 +157,7 @@ impl BrepReader {
         count: u32,
     ) -> Result<(), ShpError> {
         lex.check_room(&header, count, "triangles", MIN_ITEM_LINE_BYTES)?;
+        lex.declare_memory(&header, count, BYTES_PER_TRIANGLE)?;
         let name = &self.def.name;
         let vertex_count = self.def.vertices.len();
         let triangles = &mut self.def.triangles;

@@ -82,6 +82,21 @@ pub enum ShpError {
         room: String,
     },
 
+    /// Declared counts whose scene would not fit in the memory available; refused up front.
+    #[error(
+        "{}: line {line}: `{keyword} {count}` makes the scene need about {needed} of memory, more than the {available} available",
+        path.display()
+    )]
+    TooLargeForMemory {
+        path: PathBuf,
+        line: usize,
+        keyword: String,
+        count: u32,
+        /// The estimate for everything declared up to this line, e.g. `400.0 GB`.
+        needed: String,
+        available: String,
+    },
+
     /// More values on a line than its item takes.
     #[error("{}: line {line}: {what}: unexpected `{token}` after the {expected} expected values", path.display())]
     ExtraValue {
@@ -203,6 +218,7 @@ impl ShpError {
             | Self::UnexpectedEnd { path, .. }
             | Self::MalformedNumber { path, .. }
             | Self::CountTooLarge { path, .. }
+            | Self::TooLargeForMemory { path, .. }
             | Self::ExtraValue { path, .. }
             | Self::VertexOutOfRange { path, .. }
             | Self::PartOutOfRange { path, .. }
@@ -226,6 +242,7 @@ impl ShpError {
             | Self::UnexpectedEnd { line, .. }
             | Self::MalformedNumber { line, .. }
             | Self::CountTooLarge { line, .. }
+            | Self::TooLargeForMemory { line, .. }
             | Self::ExtraValue { line, .. }
             | Self::VertexOutOfRange { line, .. }
             | Self::PartOutOfRange { line, .. }

@@ -6,6 +6,7 @@ use std::path::Path;
 use std::str::SplitAsciiWhitespace;
 
 use super::error::ShpError;
+use super::memory::MemoryBudget;
 
 /// How much of the file start is inspected to tell text from binary.
 const SNIFF_BYTES: usize = 1024;
@@ -58,6 +59,8 @@ pub(crate) struct Lexer<'a> {
     pos: usize,
     /// Number of the last line read (blank ones included).
     line_no: usize,
+    /// What the counts declared so far need in memory, against what the machine has.
+    memory: MemoryBudget,
 }
 
 impl<'a> Lexer<'a> {
@@ -85,6 +88,7 @@ impl<'a> Lexer<'a> {
             path,
             pos,
             line_no: 0,
+            memory: MemoryBudget::from_system(),
         })
     }
 
@@ -128,6 +132,22 @@ impl<'a> Lexer<'a> {
                 what: what(),
             }),
         }
+    }
+
+    /// Adds `count` items of about `bytes_each` bytes (in the built scene) to the file's memory
+    /// estimate; an error when the scene would not fit in the memory available.
+    pub fn declare_memory(
+        &mut self,
+        line: &Line<'_>,
+        count: u32,
+        bytes_each: u64,
+    ) -> Result<(), ShpError> {
+        self.memory.declare(self.path, line, count, bytes_each)
+    }
+
+    #[cfg(test)]
+    pub fn set_memory_budget(&mut self, memory: MemoryBudget) {
+        self.memory = memory;
     }
 
     /// Rejects `count` items that the rest of the file cannot hold, before anything is allocated
@@ -209,7 +229,10 @@ impl<'a> Lexer<'a> {
             };
             *slot = match parse(token) {
                 Ok(value) => value,
-                Err(_) if i == 0 && token.starts_with(|c: char| c.is_ascii_alphabetic()) => {
+                // A word that is not a number at all; `nan` and `inf` are numbers, and say so.
+                Err(ShpError::MalformedNumber { .. })
+                    if i == 0 && token.starts_with(|c: char| c.is_ascii_alphabetic()) =>
+                {
                     return Err(self.unexpected(line, token, what(), "3 numbers".into()));
                 }
                 Err(e) => return Err(e),
@@ -432,6 +455,41 @@ mod tests {
         ] {
             assert_eq!(parse_u32(bad), None, "{bad}");
         }
+    }
+
+    /// Regression (found while tabulating bad inputs): `nan 0 0` was reported as an unexpected
+    /// keyword `nan` instead of as a number that is not finite, unlike `0 nan 0`.
+    #[test]
+    fn nan_and_inf_first_are_non_finite_numbers_not_keywords() {
+        let path = Path::new("t.shp");
+        let lexer = Lexer::new(b"", path).unwrap();
+        for text in [
+            "nan 0 0",
+            "0 nan 0",
+            "inf 0 0",
+            "-inf 1 2",
+            "NaN 0 0",
+            "infinity 0 0",
+        ] {
+            let line = Line { no: 4, text };
+            let what = || "vertex 1".to_string();
+            let err = lexer
+                .three(&line, &what, |t| lexer.float(t, 4, what))
+                .unwrap_err();
+            assert!(
+                matches!(err, ShpError::NonFinite { line: 4, .. }),
+                "{text}: {err}"
+            );
+        }
+        let line = Line {
+            no: 4,
+            text: "triangles 3",
+        };
+        let what = || "vertex 1".to_string();
+        let err = lexer
+            .three(&line, &what, |t| lexer.float(t, 4, what))
+            .unwrap_err();
+        assert!(matches!(err, ShpError::UnexpectedKeyword { .. }), "{err}");
     }
 
     #[test]

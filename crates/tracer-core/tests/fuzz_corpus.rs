@@ -1,0 +1,136 @@
+//! Replays the saved fuzz inputs (`fuzz/corpus/<target>/*` and `fuzz/regressions/<target>/*`)
+//! through every reader, deterministically: each file must give `Ok` or `Err`, never a panic,
+//! and quickly. This is what CI runs instead of fuzzing anew (fuzz/README.md).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::fs;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use tracer_core::render::{RenderSettings, render};
+use tracer_core::scene::{Scene, Sidecar};
+use tracer_core::shp::{parse_brs, parse_shp};
+
+/// Far above what any saved input takes (milliseconds), far below a hang.
+const PER_FILE: Duration = Duration::from_secs(10);
+
+/// The scene the `sidecar` fuzz target applies sidecars to (keep the two alike).
+const SIDECAR_SCENE: &str = "\
+define breps a
+vertices 4
+0 0 0
+10 0 0
+10 10 0
+0 10 0
+triangles 2
+0 1 2
+0 2 3
+parts 3
+0 2
+enddef
+define breps b
+vertices 3
+0 0 -5
+10 0 -5
+0 10 -5
+triangles 1
+0 1 2
+enddef
+set breps b
+rotation 0 0 45
+translation 1 2 3
+scale 1 1 1
+enddef
+";
+
+fn fuzz_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz")
+}
+
+/// Every file under `fuzz/{corpus,regressions}/*/`, sorted.
+fn saved_inputs() -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for kind in ["corpus", "regressions"] {
+        let Ok(targets) = fs::read_dir(fuzz_dir().join(kind)) else {
+            continue;
+        };
+        for target in targets.flatten() {
+            for entry in fs::read_dir(target.path()).into_iter().flatten().flatten() {
+                if entry.path().is_file() {
+                    files.push(entry.path());
+                }
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+fn sidecar_scene() -> Scene {
+    let desc = parse_shp(SIDECAR_SCENE.as_bytes(), Path::new("fuzz.shp")).unwrap();
+    Scene::build(&desc, "fuzz").unwrap()
+}
+
+/// What every fuzz target does with `data`, all three in turn.
+fn replay(data: &[u8], scene: &Scene) {
+    if let Ok(desc) = parse_shp(data, Path::new("fuzz.shp")) {
+        let _ = Scene::build(&desc, "fuzz");
+    }
+    let _ = parse_brs(data, Path::new("fuzz.brs"), "fuzz");
+    if let Ok(text) = std::str::from_utf8(data)
+        && let Ok(sidecar) = Sidecar::parse(text, Path::new("fuzz.raygine.toml"))
+    {
+        let mut warnings = Vec::new();
+        let setup = sidecar.apply(scene, None, &mut warnings);
+        let settings = RenderSettings {
+            width: 4,
+            height: 3,
+            samples_per_pixel: 1,
+            max_depth: 3,
+        };
+        let _ = render(scene, &setup, &settings);
+        let _ = Sidecar::from_setup(scene, &setup).to_toml();
+    }
+}
+
+#[test]
+fn saved_fuzz_inputs_never_panic_or_hang() {
+    let files = saved_inputs();
+    assert!(
+        files.len() >= 10,
+        "expected the committed corpus under {}, found {} files",
+        fuzz_dir().display(),
+        files.len()
+    );
+    let scene = sidecar_scene();
+    let mut failures = Vec::new();
+    let started = Instant::now();
+    for file in &files {
+        // A running fuzzer replaces corpus files as it reduces them: skip one that went away.
+        let Ok(data) = fs::read(file) else { continue };
+        let t0 = Instant::now();
+        if catch_unwind(AssertUnwindSafe(|| replay(&data, &scene))).is_err() {
+            failures.push(format!("{}: panicked", file.display()));
+        }
+        let took = t0.elapsed();
+        if took > PER_FILE {
+            failures.push(format!("{}: took {took:?}", file.display()));
+        }
+    }
+    println!(
+        "replayed {} saved inputs in {:.2} s",
+        files.len(),
+        started.elapsed().as_secs_f64()
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn every_target_has_a_corpus() {
+    for target in ["shp", "brs", "sidecar"] {
+        let dir = fuzz_dir().join("corpus").join(target);
+        let count = fs::read_dir(&dir).map(|d| d.count()).unwrap_or(0);
+        assert!(count > 0, "{} is empty or missing", dir.display());
+    }
+}
