@@ -37,6 +37,7 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             ui.add(
                 egui::Slider::new(&mut light.intensity_cd, 0.01..=1.0e6)
                     .logarithmic(true)
+                    .clamping(egui::SliderClamping::Never)
                     .text("intensity (cd)"),
             )
             .on_hover_text("Luminous intensity in candela, the same in every direction");
