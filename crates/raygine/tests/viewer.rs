@@ -618,3 +618,58 @@ fn smoke_script_layout_holds() {
         "viewport moved: {view:?}"
     );
 }
+
+/// File > Render image…: a chosen size and sample count rendered in the background, then saved
+/// through the display mapping; the file has the chosen size and matches a one-shot render.
+#[test]
+fn render_image_job_writes_the_chosen_size() {
+    let (mut h, _mirror) = viewer();
+    settle(&mut h);
+    let path = scratch_dir("render-image").join("big.png");
+    h.state_mut().render_image_form = Some(raygine::app::RenderImageForm {
+        width: 200,
+        height: 120,
+        samples: 3,
+        path: path.display().to_string(),
+    });
+    // The form and the help window draw (every glyph in them must exist in the fonts).
+    h.state_mut().show_help = true;
+    h.step();
+    h.state_mut().start_render_image(path.clone());
+    assert!(
+        h.state().render_image_job.is_some(),
+        "the job runs in the background"
+    );
+    step_until(&mut h, "the render-image job and its write", |app| {
+        app.render_image_job.is_none() && app.writes.is_empty()
+    });
+    let app = h.state();
+    assert!(app.error.is_none(), "{:?}", app.error);
+    assert!(
+        app.notice
+            .as_deref()
+            .unwrap_or_default()
+            .contains("big.png")
+    );
+    let png = image::open(&path).unwrap().to_rgba8();
+    assert_eq!([png.width(), png.height()], [200, 120]);
+    let settings = tracer_core::render::RenderSettings {
+        width: 200,
+        height: 120,
+        samples_per_pixel: 3,
+        max_depth: app.render.max_depth,
+    };
+    let (film, _) = tracer_core::render::render(&app.doc.scene, &app.doc.setup, &settings);
+    let expected = app.effective_display().map_film(&film);
+    let worst = png
+        .as_raw()
+        .iter()
+        .zip(&expected)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap();
+    assert_eq!(
+        worst, 0,
+        "the saved image is the render through the display mapping"
+    );
+}

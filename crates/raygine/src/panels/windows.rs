@@ -84,7 +84,7 @@ fn render_image_ui(ctx: &egui::Context, app: &mut RaygineApp) {
             .collapsible(false)
             .show(ctx, |ui| {
                 let done = stats.samples_per_pixel as f32 / stats.target_spp.max(1) as f32;
-                ui.label(format!("{} → {}", stats.pass, job.path.display()));
+                ui.label(format!("{}, writing {}", stats.pass, job.path.display()));
                 ui.add(egui::ProgressBar::new(done).show_percentage());
                 ui.label(format!(
                     "{:.1} s, {:.1} Mrays/s",
