@@ -7,7 +7,7 @@ mod bvh_support;
 use bvh_support::{Rng, bounds_of, shared_meshes};
 use glam::Vec3;
 use rayon::prelude::*;
-use tracer_core::bvh::{Bvh, Hit, intersect_brute_force, occluded_brute_force, uv_sphere};
+use tracer_core::bvh::{Bvh, Hit, Kernel, intersect_brute_force, occluded_brute_force, uv_sphere};
 use tracer_core::{Aabb, Ray};
 
 /// Random rays for `triangles`: from inside an enlarged box and from far outside towards points
@@ -78,6 +78,12 @@ fn same_hit(a: Option<Hit>, b: Option<Hit>) -> bool {
     }
 }
 
+fn with_kernel(bvh: &Bvh, kernel: Kernel) -> Bvh {
+    let mut bvh = bvh.clone();
+    bvh.set_kernel(kernel);
+    bvh
+}
+
 /// Builds, validates and compares `intersect` and `occluded` with brute force on `n` rays.
 /// Returns how many rays hit.
 fn check(name: &str, triangles: &[[Vec3; 3]], n: usize) -> usize {
@@ -93,6 +99,7 @@ fn check(name: &str, triangles: &[[Vec3; 3]], n: usize) -> usize {
             (intersect_brute_force(triangles, ray), any)
         })
         .collect();
+    let portable = with_kernel(&bvh, Kernel::Portable);
     let mut hits = 0;
     for (ray, (expected, any)) in rays.iter().zip(results) {
         let got = bvh.intersect(ray);
@@ -105,6 +112,9 @@ fn check(name: &str, triangles: &[[Vec3; 3]], n: usize) -> usize {
             expected.is_some(),
             "{name}: occluded {ray:?}"
         );
+        // Every node test gives the same answers bit for bit.
+        assert_eq!(portable.intersect(ray), got, "{name}: portable {ray:?}");
+        assert_eq!(portable.occluded(ray), got.is_some(), "{name}: {ray:?}");
         if let Some(any) = any {
             assert_eq!(
                 any,
@@ -231,7 +241,7 @@ fn shared_meshes_match_brute_force() {
 #[test]
 fn closed_sphere_does_not_leak() {
     let sphere = uv_sphere(64);
-    let bvh = Bvh::build(&sphere);
+    let built = Bvh::build(&sphere);
     let mut rng = Rng::new(11);
     let mut targets: Vec<Vec3> = sphere
         .iter()
@@ -245,13 +255,16 @@ fn closed_sphere_does_not_leak() {
         })
         .collect();
     targets.extend((0..20_000).map(|_| rng.unit_vector()));
-    for origin in [Vec3::ZERO, Vec3::new(0.1, -0.2, 0.3)] {
-        for &target in &targets {
-            let ray = Ray::new(origin, target - origin);
-            let hit = bvh.intersect(&ray);
-            assert!(hit.is_some() && bvh.occluded(&ray), "leak: {ray:?}");
-            let p = ray.at(hit.unwrap().t);
-            assert!((p.length() - 1.0).abs() < 5e-3, "hit off the sphere at {p}");
+    for kernel in [Kernel::Auto, Kernel::Portable] {
+        let bvh = with_kernel(&built, kernel);
+        for origin in [Vec3::ZERO, Vec3::new(0.1, -0.2, 0.3)] {
+            for &target in &targets {
+                let ray = Ray::new(origin, target - origin);
+                let hit = bvh.intersect(&ray);
+                assert!(hit.is_some() && bvh.occluded(&ray), "leak: {ray:?}");
+                let p = ray.at(hit.unwrap().t);
+                assert!((p.length() - 1.0).abs() < 5e-3, "hit off the sphere at {p}");
+            }
         }
     }
 }

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use super::triangle::{PACK, Tri4};
 use super::wide;
-use super::{Bvh, PADDING};
+use super::{Bvh, Kernel, PADDING};
 use crate::geometry::Aabb;
 
 const BINS: usize = 16;
@@ -447,6 +447,7 @@ impl Bvh {
             prim_ids,
             triangle_count: triangles.len(),
             depth,
+            kernel: Kernel::Auto,
         }
     }
 }

@@ -30,6 +30,7 @@ mod wide;
 use crate::geometry::Aabb;
 
 pub use sphere::uv_sphere;
+pub use traverse::Kernel;
 pub use triangle::{intersect_brute_force, occluded_brute_force};
 
 use triangle::Tri4;
@@ -63,6 +64,8 @@ pub struct Bvh {
     /// Edges on the longest path from the root to a leaf reference (bounds the traversal
     /// stack: at most `WIDTH - 1` entries per level).
     depth: usize,
+    /// The node test traversal uses.
+    kernel: Kernel,
 }
 
 impl std::fmt::Debug for Bvh {

@@ -230,3 +230,90 @@ mod imp {
 }
 
 pub(crate) use imp::F4;
+
+#[cfg(target_arch = "x86_64")]
+pub(crate) use avx2::{Avx2, Slabs8};
+
+/// The eight-box slab test in one AVX register per plane, for CPUs that have AVX2 (checked at
+/// run time).
+///
+/// Soundness: [`Avx2`] can only be made by [`Avx2::detect`], which checks that the CPU has
+/// AVX2, so its methods may use AVX instructions. They are `#[inline(always)]` and only called
+/// from traversal functions compiled with `#[target_feature(enable = "avx2")]`, where the
+/// intrinsics inline.
+#[cfg(target_arch = "x86_64")]
+mod avx2 {
+    use std::arch::x86_64::*;
+
+    /// Proof that this CPU has AVX2.
+    #[derive(Clone, Copy, Debug)]
+    pub(crate) struct Avx2(());
+
+    /// A ray's slab planes for [`Avx2::enter`]: per axis the origin and the reciprocal
+    /// direction, and the reciprocal scaled for exit distances.
+    #[derive(Clone, Copy)]
+    pub(crate) struct Slabs8 {
+        origin: [__m256; 3],
+        inv_dir: [__m256; 3],
+        inv_dir_exit: [__m256; 3],
+        t_min: __m256,
+    }
+
+    impl Avx2 {
+        /// `Some` when the CPU has AVX2 (the check is cached by the standard library).
+        #[inline(always)]
+        pub fn detect() -> Option<Self> {
+            is_x86_feature_detected!("avx2").then_some(Self(()))
+        }
+
+        #[inline(always)]
+        pub fn slabs(
+            self,
+            origin: [f32; 3],
+            inv_dir: [f32; 3],
+            inv_dir_exit: [f32; 3],
+            t_min: f32,
+        ) -> Slabs8 {
+            // SAFETY: AVX is present (`self` exists); set1 has no memory operands.
+            let splat = |x: f32| unsafe { _mm256_set1_ps(x) };
+            Slabs8 {
+                origin: origin.map(splat),
+                inv_dir: inv_dir.map(splat),
+                inv_dir_exit: inv_dir_exit.map(splat),
+                t_min: splat(t_min),
+            }
+        }
+
+        /// For eight boxes (`near[axis]` / `far[axis]`: the planes the ray enters and leaves
+        /// through, per lane): the lanes the ray meets within `[t_min, t_max]` as bits, and
+        /// where it enters each. The same operations per lane as the four-lane test.
+        #[inline(always)]
+        pub fn enter(
+            self,
+            s: &Slabs8,
+            near: [&[[f32; 4]; 2]; 3],
+            far: [&[[f32; 4]; 2]; 3],
+            t_max: f32,
+        ) -> (u32, [f32; 8]) {
+            // SAFETY: AVX/AVX2 are present (`self` exists). Each load reads exactly the 32
+            // contiguous bytes of a `[[f32; 4]; 2]` reference (unaligned form); the store
+            // writes the 32 bytes of `out`.
+            unsafe {
+                let mut t_near = s.t_min;
+                let mut t_far = _mm256_set1_ps(t_max);
+                for axis in 0..3 {
+                    let n = _mm256_loadu_ps(near[axis].as_ptr().cast::<f32>());
+                    let f = _mm256_loadu_ps(far[axis].as_ptr().cast::<f32>());
+                    let tn = _mm256_mul_ps(_mm256_sub_ps(n, s.origin[axis]), s.inv_dir[axis]);
+                    let tf = _mm256_mul_ps(_mm256_sub_ps(f, s.origin[axis]), s.inv_dir_exit[axis]);
+                    t_near = _mm256_max_ps(tn, t_near);
+                    t_far = _mm256_min_ps(tf, t_far);
+                }
+                let bits = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(t_near, t_far)) as u32;
+                let mut out = [0.0f32; 8];
+                _mm256_storeu_ps(out.as_mut_ptr(), t_near);
+                (bits, out)
+            }
+        }
+    }
+}

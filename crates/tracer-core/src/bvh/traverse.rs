@@ -1,8 +1,12 @@
-//! Closest-hit and any-hit traversal of the wide tree: one ray against a node's boxes four at a
-//! time (slab test with a precomputed reciprocal direction, SSE lanes), the hit children visited nearest first from an
-//! explicit stack, and early exit when a box starts beyond the best hit.
+//! Closest-hit and any-hit traversal of the wide tree: one ray against all of a node's boxes
+//! (a slab test with a precomputed reciprocal direction; eight lanes in one AVX register when
+//! the CPU has AVX2, else two groups of four), the children hit visited nearest first from an
+//! explicit stack, and early exit when a box starts beyond the best hit. The traversal is
+//! written once, generic over the node test, and compiled twice.
 
 use super::simd::F4;
+#[cfg(target_arch = "x86_64")]
+use super::simd::{Avx2, Slabs8};
 use super::triangle::{PACK, RayTriangles};
 use super::wide::{EMPTY, GROUPS, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit};
@@ -26,34 +30,60 @@ struct StackEntry {
 }
 
 /// A ray prepared for box tests.
+#[derive(Clone, Copy)]
 struct RayBoxes {
     origin: [f32; 3],
     inv_dir: [f32; 3],
     /// `inv_dir` scaled by [`EXIT_SCALE`], for exit distances.
     inv_dir_exit: [f32; 3],
-    /// Per axis: is the direction negative (then the near slab plane is the maximum)?
-    negative: [bool; 3],
+    /// Per axis, the `WideNode::bounds` row the ray enters through (the maximum when the
+    /// direction is negative) and the row it leaves through.
+    near_row: [usize; 3],
+    far_row: [usize; 3],
     t_min: f32,
 }
 
 impl RayBoxes {
     fn new(ray: &Ray) -> Self {
         let inv = [1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z];
+        let negative = inv.map(f32::is_sign_negative);
         Self {
             origin: ray.origin.to_array(),
             inv_dir: inv,
             inv_dir_exit: inv.map(|i| i * EXIT_SCALE),
-            negative: inv.map(f32::is_sign_negative),
+            near_row: std::array::from_fn(|a| if negative[a] { 3 + a } else { a }),
+            far_row: std::array::from_fn(|a| if negative[a] { a } else { 3 + a }),
             t_min: ray.t_min,
         }
     }
+}
 
-    /// Which children's boxes the ray meets within `[t_min, t_max]` (bit per lane) and where
-    /// it enters each. `t_max` must be finite. A zero direction component gives `±inf` or NaN
-    /// slab distances; NaN (origin on the slab plane) is dropped by the min/max, which keeps
-    /// boxes closed. Empty lanes (`+inf` minima, `-inf` maxima) miss.
+/// A way to test one ray against a node's eight boxes: which children's boxes the ray meets
+/// within `[t_min, t_max]` (bit per lane) and where it enters each. `t_max` must be finite. A
+/// zero direction component gives `±inf` or NaN slab distances; NaN (origin on the slab
+/// plane) is dropped by the min/max, which keeps boxes closed. Empty lanes (`+inf` minima,
+/// `-inf` maxima) miss.
+trait NodeTest: Copy {
+    /// The ray in the form this test wants.
+    type Prepared: Copy;
+    fn prepare(self, boxes: &RayBoxes) -> Self::Prepared;
+    fn enter(self, ray: &Self::Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]);
+}
+
+/// Four lanes at a time ([`F4`]: SSE on x86_64, plain arrays elsewhere).
+#[derive(Clone, Copy)]
+struct Portable;
+
+impl NodeTest for Portable {
+    type Prepared = RayBoxes;
+
     #[inline(always)]
-    fn enter(&self, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]) {
+    fn prepare(self, boxes: &RayBoxes) -> RayBoxes {
+        *boxes
+    }
+
+    #[inline(always)]
+    fn enter(self, r: &RayBoxes, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]) {
         let mut bits = 0;
         let mut enter = [f32::INFINITY; WIDTH];
         for group in 0..GROUPS {
@@ -61,17 +91,14 @@ impl RayBoxes {
             if group > 0 && node.children[LANES * group] == EMPTY {
                 break;
             }
-            let mut near = F4::splat(self.t_min);
+            let mut near = F4::splat(r.t_min);
             let mut far = F4::splat(t_max);
             for axis in 0..3 {
-                let (lo, hi) = if self.negative[axis] {
-                    (&node.bounds[3 + axis][group], &node.bounds[axis][group])
-                } else {
-                    (&node.bounds[axis][group], &node.bounds[3 + axis][group])
-                };
-                let o = F4::splat(self.origin[axis]);
-                let tn = (F4::load(lo) - o) * F4::splat(self.inv_dir[axis]);
-                let tf = (F4::load(hi) - o) * F4::splat(self.inv_dir_exit[axis]);
+                let lo = &node.bounds[r.near_row[axis]][group];
+                let hi = &node.bounds[r.far_row[axis]][group];
+                let o = F4::splat(r.origin[axis]);
+                let tn = (F4::load(lo) - o) * F4::splat(r.inv_dir[axis]);
+                let tf = (F4::load(hi) - o) * F4::splat(r.inv_dir_exit[axis]);
                 near = tn.max_or(near);
                 far = tf.min_or(far);
             }
@@ -79,6 +106,36 @@ impl RayBoxes {
             enter[LANES * group..][..LANES].copy_from_slice(&near.to_array());
         }
         (bits, enter)
+    }
+}
+
+/// The ray for [`Avx2`]: its slab planes in AVX registers and the rows to test.
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy)]
+struct Avx2Ray {
+    slabs: Slabs8,
+    near_row: [usize; 3],
+    far_row: [usize; 3],
+}
+
+/// All eight lanes at once (x86_64 with AVX2, detected at run time).
+#[cfg(target_arch = "x86_64")]
+impl NodeTest for Avx2 {
+    type Prepared = Avx2Ray;
+
+    #[inline(always)]
+    fn prepare(self, b: &RayBoxes) -> Avx2Ray {
+        Avx2Ray {
+            slabs: self.slabs(b.origin, b.inv_dir, b.inv_dir_exit, b.t_min),
+            near_row: b.near_row,
+            far_row: b.far_row,
+        }
+    }
+
+    #[inline(always)]
+    fn enter(self, r: &Avx2Ray, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]) {
+        let rows = |row: [usize; 3]| row.map(|i| &node.bounds[i]);
+        self.enter(&r.slabs, rows(r.near_row), rows(r.far_row), t_max)
     }
 }
 
@@ -134,51 +191,102 @@ fn visit_any(node: &WideNode, mut bits: u32, stack: &mut [u32], sp: &mut usize) 
     Some(next)
 }
 
+/// Which node test the traversal uses: AVX2 where the CPU has it, else [`Portable`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Kernel {
+    /// The best this CPU supports (checked once per process).
+    #[default]
+    Auto,
+    /// Four lanes at a time (SSE2 on x86_64), on every CPU; for tests and comparisons.
+    Portable,
+}
+
 impl Bvh {
+    /// Selects the node test (default [`Kernel::Auto`]); results are the same either way.
+    pub fn set_kernel(&mut self, kernel: Kernel) {
+        self.kernel = kernel;
+    }
+
     /// The closest hit with `t` in `[ray.t_min, ray.t_max]`; both sides of a triangle count.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        // Rays that miss everything (most primary rays of a small object) cost one node test:
-        // no stack, no triangle set-up.
-        let boxes = RayBoxes::new(ray);
-        let root = boxes.enter(self.nodes.first()?, ray.t_max.min(f32::MAX));
-        if root.0 == 0 {
-            return None;
+        #[cfg(target_arch = "x86_64")]
+        if self.kernel == Kernel::Auto
+            && let Some(avx2) = Avx2::detect()
+        {
+            // SAFETY: `avx2` proves the CPU has AVX2, the feature `intersect_avx2` is
+            // compiled for.
+            return unsafe { self.intersect_avx2(avx2, ray) };
         }
-        if self.depth <= STACK_LEVELS {
-            self.closest(ray, &boxes, root, &mut [StackEntry::default(); STACK_SIZE])
-        } else {
-            let size = self.depth * (WIDTH - 1) + 1;
-            self.closest(ray, &boxes, root, &mut vec![StackEntry::default(); size])
-        }
+        self.intersect_with(Portable, ray)
     }
 
     /// Whether anything is hit with `t` in `[ray.t_min, ray.t_max]`; stops at the first hit.
     pub fn occluded(&self, ray: &Ray) -> bool {
-        let boxes = RayBoxes::new(ray);
+        #[cfg(target_arch = "x86_64")]
+        if self.kernel == Kernel::Auto
+            && let Some(avx2) = Avx2::detect()
+        {
+            // SAFETY: as in `intersect`.
+            return unsafe { self.occluded_avx2(avx2, ray) };
+        }
+        self.occluded_with(Portable, ray)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn intersect_avx2(&self, avx2: Avx2, ray: &Ray) -> Option<Hit> {
+        self.intersect_with(avx2, ray)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn occluded_avx2(&self, avx2: Avx2, ray: &Ray) -> bool {
+        self.occluded_with(avx2, ray)
+    }
+
+    #[inline(always)]
+    fn intersect_with<T: NodeTest>(&self, test: T, ray: &Ray) -> Option<Hit> {
+        // Rays that miss everything (most primary rays of a small object) cost one node test:
+        // no stack, no triangle set-up.
+        let boxes = test.prepare(&RayBoxes::new(ray));
+        let root = test.enter(&boxes, self.nodes.first()?, ray.t_max.min(f32::MAX));
+        if root.0 == 0 {
+            return None;
+        }
+        if self.depth <= STACK_LEVELS {
+            let stack = &mut [StackEntry::default(); STACK_SIZE];
+            self.closest(test, ray, &boxes, root, stack)
+        } else {
+            let stack = &mut vec![StackEntry::default(); self.depth * (WIDTH - 1) + 1];
+            self.closest(test, ray, &boxes, root, stack)
+        }
+    }
+
+    #[inline(always)]
+    fn occluded_with<T: NodeTest>(&self, test: T, ray: &Ray) -> bool {
+        let boxes = test.prepare(&RayBoxes::new(ray));
         let Some(root) = self.nodes.first() else {
             return false;
         };
-        let root = boxes.enter(root, ray.t_max.min(f32::MAX)).0;
+        let root = test.enter(&boxes, root, ray.t_max.min(f32::MAX)).0;
         if root == 0 {
             return false;
         }
         if self.depth <= STACK_LEVELS {
-            self.any(ray, &boxes, root, &mut [0; STACK_SIZE])
+            self.any(test, ray, &boxes, root, &mut [0; STACK_SIZE])
         } else {
-            self.any(
-                ray,
-                &boxes,
-                root,
-                &mut vec![0; self.depth * (WIDTH - 1) + 1],
-            )
+            let stack = &mut vec![0; self.depth * (WIDTH - 1) + 1];
+            self.any(test, ray, &boxes, root, stack)
         }
     }
 
     /// Closest hit; `root` is the root node's box test, already known to hit.
-    fn closest(
+    #[inline(always)]
+    fn closest<T: NodeTest>(
         &self,
+        test: T,
         ray: &Ray,
-        boxes: &RayBoxes,
+        boxes: &T::Prepared,
         root: (u32, [f32; WIDTH]),
         stack: &mut [StackEntry],
     ) -> Option<Hit> {
@@ -209,7 +317,7 @@ impl Bvh {
             if current & LEAF_BIT == 0 {
                 let node = &self.nodes[current as usize];
                 // Box tests need a finite limit; no hit lies at t = inf.
-                let hits = boxes.enter(node, best_t.min(f32::MAX));
+                let hits = test.enter(boxes, node, best_t.min(f32::MAX));
                 next = visit_sorted(node, hits, stack, &mut sp);
             } else {
                 let (first, count) = leaf_range(current);
@@ -225,7 +333,15 @@ impl Bvh {
     }
 
     /// Any hit; `root` is the root node's box test bits, already known to be non-zero.
-    fn any(&self, ray: &Ray, boxes: &RayBoxes, root: u32, stack: &mut [u32]) -> bool {
+    #[inline(always)]
+    fn any<T: NodeTest>(
+        &self,
+        test: T,
+        ray: &Ray,
+        boxes: &T::Prepared,
+        root: u32,
+        stack: &mut [u32],
+    ) -> bool {
         let tri_ray = RayTriangles::new(ray);
         let limit = ray.t_max.min(f32::MAX);
         let mut sp = 0;
@@ -241,7 +357,7 @@ impl Bvh {
             };
             if current & LEAF_BIT == 0 {
                 let node = &self.nodes[current as usize];
-                next = visit_any(node, boxes.enter(node, limit).0, stack, &mut sp);
+                next = visit_any(node, test.enter(boxes, node, limit).0, stack, &mut sp);
             } else {
                 let (first, count) = leaf_range(current);
                 let hit = self.triangles[first..first + count]
