@@ -393,7 +393,7 @@ fn pack_leaves(
     prims: &[PrimRef],
     triangles: &[[Vec3; 3]],
 ) -> (Vec<Tri4>, Vec<u32>) {
-    let mut packs = Vec::with_capacity(prims.len() / 2 + 1);
+    let mut packs = super::pages::vec_on_huge_pages(prims.len() / 2 + 1);
     let mut ids = Vec::with_capacity(prims.len() * 2 + PACK);
     let mut scratch = Vec::with_capacity(PACK);
     for node in nodes {

@@ -20,8 +20,10 @@
 //! why not Möller–Trumbore). Box tests are conservative (slab exit scaled up by a few ulps).
 
 mod build;
+mod pages;
 mod simd;
 mod sphere;
+mod stack;
 mod traverse;
 mod triangle;
 mod validate;

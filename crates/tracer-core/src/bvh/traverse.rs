@@ -7,6 +7,9 @@
 use super::simd::F4;
 #[cfg(target_arch = "x86_64")]
 use super::simd::{Avx2, Slabs8};
+use std::mem::MaybeUninit;
+
+use super::stack::Stack;
 use super::triangle::{PACK, RayTriangles};
 use super::wide::{EMPTY, GROUPS, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit};
@@ -145,47 +148,65 @@ impl NodeTest for Avx2 {
 fn visit_sorted(
     node: &WideNode,
     (mut bits, enter): (u32, [f32; WIDTH]),
-    stack: &mut [StackEntry],
-    sp: &mut usize,
+    stack: &mut Stack<StackEntry>,
 ) -> Option<u32> {
-    let mut hits = [StackEntry::default(); WIDTH];
-    let mut n = 0;
-    while bits != 0 {
-        let lane = bits.trailing_zeros() as usize;
-        bits &= bits - 1;
-        hits[n] = StackEntry {
-            child: node.children[lane],
-            t_enter: enter[lane],
+    if bits == 0 {
+        return None;
+    }
+    let entry = |lane: u32| StackEntry {
+        child: node.children[lane as usize],
+        t_enter: enter[lane as usize],
+    };
+    let first = bits.trailing_zeros();
+    bits &= bits - 1;
+    if bits == 0 {
+        // One child hit, the common case.
+        return Some(node.children[first as usize]);
+    }
+    let second = bits.trailing_zeros();
+    bits &= bits - 1;
+    if bits == 0 {
+        let (a, b) = (entry(first), entry(second));
+        let (near, far) = if b.t_enter <= a.t_enter {
+            (b, a)
+        } else {
+            (a, b)
         };
+        stack.push(far);
+        return Some(near.child);
+    }
+    // Three or more: push them all, sort the pushed run farthest first, pop the nearest.
+    stack.push(entry(first));
+    stack.push(entry(second));
+    let mut n = 2;
+    while bits != 0 {
+        stack.push(entry(bits.trailing_zeros()));
+        bits &= bits - 1;
         n += 1;
     }
-    if n <= 1 {
-        return (n == 1).then_some(hits[0].child);
-    }
-    // Farthest first, so the nearest is visited now and the next nearest pops next.
+    let run = stack.top_mut(n);
     for i in 1..n {
         let mut j = i;
-        while j > 0 && hits[j - 1].t_enter < hits[j].t_enter {
-            hits.swap(j - 1, j);
+        while j > 0 && run[j - 1].t_enter < run[j].t_enter {
+            run.swap(j - 1, j);
             j -= 1;
         }
     }
-    stack[*sp..*sp + n - 1].copy_from_slice(&hits[..n - 1]);
-    *sp += n - 1;
-    Some(hits[n - 1].child)
+    let nearest = run[n - 1].child;
+    stack.pop();
+    Some(nearest)
 }
 
 /// Pushes all children hit but one, which it returns; `None` when no child is hit.
 #[inline(always)]
-fn visit_any(node: &WideNode, mut bits: u32, stack: &mut [u32], sp: &mut usize) -> Option<u32> {
+fn visit_any(node: &WideNode, mut bits: u32, stack: &mut Stack<u32>) -> Option<u32> {
     if bits == 0 {
         return None;
     }
     let next = node.children[bits.trailing_zeros() as usize];
     bits &= bits - 1;
     while bits != 0 {
-        stack[*sp] = node.children[bits.trailing_zeros() as usize];
-        *sp += 1;
+        stack.push(node.children[bits.trailing_zeros() as usize]);
         bits &= bits - 1;
     }
     Some(next)
@@ -254,11 +275,11 @@ impl Bvh {
             return None;
         }
         if self.depth <= STACK_LEVELS {
-            let stack = &mut [StackEntry::default(); STACK_SIZE];
-            self.closest(test, ray, &boxes, root, stack)
+            let buf = &mut [MaybeUninit::uninit(); STACK_SIZE];
+            self.closest(test, ray, &boxes, root, Stack::new(buf))
         } else {
-            let stack = &mut vec![StackEntry::default(); self.depth * (WIDTH - 1) + 1];
-            self.closest(test, ray, &boxes, root, stack)
+            let buf = &mut vec![MaybeUninit::uninit(); self.depth * (WIDTH - 1) + 1];
+            self.closest(test, ray, &boxes, root, Stack::new(buf))
         }
     }
 
@@ -273,10 +294,11 @@ impl Bvh {
             return false;
         }
         if self.depth <= STACK_LEVELS {
-            self.any(test, ray, &boxes, root, &mut [0; STACK_SIZE])
+            let buf = &mut [MaybeUninit::uninit(); STACK_SIZE];
+            self.any(test, ray, &boxes, root, Stack::new(buf))
         } else {
-            let stack = &mut vec![0; self.depth * (WIDTH - 1) + 1];
-            self.any(test, ray, &boxes, root, stack)
+            let buf = &mut vec![MaybeUninit::uninit(); self.depth * (WIDTH - 1) + 1];
+            self.any(test, ray, &boxes, root, Stack::new(buf))
         }
     }
 
@@ -288,27 +310,24 @@ impl Bvh {
         ray: &Ray,
         boxes: &T::Prepared,
         root: (u32, [f32; WIDTH]),
-        stack: &mut [StackEntry],
+        mut stack: Stack<StackEntry>,
     ) -> Option<Hit> {
         let tri_ray = RayTriangles::new(ray);
         let mut best_t = ray.t_max;
         let mut best: Option<(usize, f32, f32)> = None;
-        let mut sp = 0;
-        let mut next = visit_sorted(&self.nodes[0], root, stack, &mut sp);
+        let mut next = visit_sorted(&self.nodes[0], root, &mut stack);
         loop {
             let current = match next {
                 Some(c) => c,
                 None => loop {
-                    if sp == 0 {
+                    let Some(entry) = stack.pop() else {
                         return best.map(|(i, u, v)| Hit {
                             t: best_t,
                             u,
                             v,
                             prim: self.prim_ids[i],
                         });
-                    }
-                    sp -= 1;
-                    let entry = stack[sp];
+                    };
                     if entry.t_enter <= best_t {
                         break entry.child;
                     }
@@ -318,7 +337,7 @@ impl Bvh {
                 let node = &self.nodes[current as usize];
                 // Box tests need a finite limit; no hit lies at t = inf.
                 let hits = test.enter(boxes, node, best_t.min(f32::MAX));
-                next = visit_sorted(node, hits, stack, &mut sp);
+                next = visit_sorted(node, hits, &mut stack);
             } else {
                 let (first, count) = leaf_range(current);
                 for (i, pack) in self.triangles[first..first + count].iter().enumerate() {
@@ -340,24 +359,18 @@ impl Bvh {
         ray: &Ray,
         boxes: &T::Prepared,
         root: u32,
-        stack: &mut [u32],
+        mut stack: Stack<u32>,
     ) -> bool {
         let tri_ray = RayTriangles::new(ray);
         let limit = ray.t_max.min(f32::MAX);
-        let mut sp = 0;
-        let mut next = visit_any(&self.nodes[0], root, stack, &mut sp);
+        let mut next = visit_any(&self.nodes[0], root, &mut stack);
         loop {
-            let current = match next {
-                Some(c) => c,
-                None if sp == 0 => return false,
-                None => {
-                    sp -= 1;
-                    stack[sp]
-                }
+            let Some(current) = next.or_else(|| stack.pop()) else {
+                return false;
             };
             if current & LEAF_BIT == 0 {
                 let node = &self.nodes[current as usize];
-                next = visit_any(node, test.enter(boxes, node, limit).0, stack, &mut sp);
+                next = visit_any(node, test.enter(boxes, node, limit).0, &mut stack);
             } else {
                 let (first, count) = leaf_range(current);
                 let hit = self.triangles[first..first + count]
