@@ -234,59 +234,93 @@ pub(crate) use imp::F4;
 #[cfg(target_arch = "x86_64")]
 pub(crate) use avx2::{Avx2, Slabs8};
 
-/// The eight-box slab test in one AVX register per plane, for CPUs that have AVX2 (checked at
-/// run time).
+/// The eight-box slab test in one AVX register per plane, for CPUs that have AVX2 and FMA
+/// (checked at run time). Each slab distance is one fused multiply-subtract,
+/// `t = plane * (1/d) - origin * (1/d)`, with `origin * (1/d)` computed once per ray.
+///
+/// Why that stays conservative: rounding `origin * (1/d)` (and the origin itself) moves the
+/// origin the test effectively uses by at most about `2 |o| ulp`, so [`Avx2::slabs`] moves it
+/// on purpose by `4 |o| ulp` (plus a tiny floor) backwards for entry distances and forwards for
+/// exit distances: every box is tested as if a little larger. The remaining relative errors
+/// (the rounded reciprocal and the fused operation's one rounding) are covered by the exit
+/// distance scale, as in the four-lane test. A zero direction component gets a huge finite
+/// reciprocal (`1e18` with its sign) instead of infinity, so no `inf - inf` can appear.
 ///
 /// Soundness: [`Avx2`] can only be made by [`Avx2::detect`], which checks that the CPU has
-/// AVX2, so its methods may use AVX instructions. They are `#[inline(always)]` and only called
-/// from traversal functions compiled with `#[target_feature(enable = "avx2")]`, where the
-/// intrinsics inline.
+/// AVX2 and FMA, so its methods may use those instructions. They are `#[inline(always)]` and
+/// only called from traversal functions compiled with `#[target_feature(enable =
+/// "avx2,fma")]`, where the intrinsics inline.
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
     use std::arch::x86_64::*;
 
-    /// Proof that this CPU has AVX2.
+    /// Proof that this CPU has AVX2 and FMA.
     #[derive(Clone, Copy, Debug)]
     pub(crate) struct Avx2(());
 
-    /// A ray's slab planes for [`Avx2::enter`]: per axis the origin and the reciprocal
-    /// direction, and the reciprocal scaled for exit distances.
+    /// A ray's slab planes for [`Avx2::enter`], per axis: the reciprocal direction for entry
+    /// distances and its scaled copy for exit distances, each with the matching (moved)
+    /// origin times it.
     #[derive(Clone, Copy)]
     pub(crate) struct Slabs8 {
-        origin: [__m256; 3],
         inv_dir: [__m256; 3],
+        origin_near: [__m256; 3],
         inv_dir_exit: [__m256; 3],
+        origin_far: [__m256; 3],
         t_min: __m256,
     }
 
+    /// The reciprocal used for a zero direction component.
+    const HUGE_RECIPROCAL: f32 = 1e18;
+    /// How far the origin is moved, relative to its coordinate.
+    const ORIGIN_SLACK: f32 = 4.0 * f32::EPSILON;
+    /// The smallest move (for coordinates at or near zero).
+    const ORIGIN_SLACK_FLOOR: f32 = 1e-30;
+
     impl Avx2 {
-        /// `Some` when the CPU has AVX2 (the check is cached by the standard library).
+        /// `Some` when the CPU has AVX2 and FMA (the check is cached by the standard library).
         #[inline(always)]
         pub fn detect() -> Option<Self> {
-            is_x86_feature_detected!("avx2").then_some(Self(()))
+            (is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma"))
+                .then_some(Self(()))
         }
 
+        /// `inv_dir` and `exit_scale` as in the four-lane test (`inv_dir` may hold infinities).
         #[inline(always)]
         pub fn slabs(
             self,
             origin: [f32; 3],
             inv_dir: [f32; 3],
-            inv_dir_exit: [f32; 3],
+            exit_scale: f32,
             t_min: f32,
         ) -> Slabs8 {
             // SAFETY: AVX is present (`self` exists); set1 has no memory operands.
             let splat = |x: f32| unsafe { _mm256_set1_ps(x) };
+            let inv = inv_dir.map(|r| {
+                if r.is_finite() {
+                    r
+                } else {
+                    HUGE_RECIPROCAL.copysign(r)
+                }
+            });
+            let slack = origin.map(|o| o.abs() * ORIGIN_SLACK + ORIGIN_SLACK_FLOOR);
+            let near: [f32; 3] =
+                std::array::from_fn(|a| (origin[a] + slack[a].copysign(inv[a])) * inv[a]);
+            let far: [f32; 3] = std::array::from_fn(|a| {
+                (origin[a] - slack[a].copysign(inv[a])) * (inv[a] * exit_scale)
+            });
             Slabs8 {
-                origin: origin.map(splat),
-                inv_dir: inv_dir.map(splat),
-                inv_dir_exit: inv_dir_exit.map(splat),
+                inv_dir: inv.map(splat),
+                origin_near: near.map(splat),
+                inv_dir_exit: inv.map(|r| splat(r * exit_scale)),
+                origin_far: far.map(splat),
                 t_min: splat(t_min),
             }
         }
 
         /// For eight boxes (`near[axis]` / `far[axis]`: the planes the ray enters and leaves
         /// through, per lane): the lanes the ray meets within `[t_min, t_max]` as bits, and
-        /// where it enters each. The same operations per lane as the four-lane test.
+        /// where it enters each (never later than it does).
         #[inline(always)]
         pub fn enter(
             self,
@@ -295,7 +329,7 @@ mod avx2 {
             far: [&[[f32; 4]; 2]; 3],
             t_max: f32,
         ) -> (u32, [f32; 8]) {
-            // SAFETY: AVX/AVX2 are present (`self` exists). Each load reads exactly the 32
+            // SAFETY: AVX2/FMA are present (`self` exists). Each load reads exactly the 32
             // contiguous bytes of a `[[f32; 4]; 2]` reference (unaligned form); the store
             // writes the 32 bytes of `out`.
             unsafe {
@@ -304,8 +338,8 @@ mod avx2 {
                 for axis in 0..3 {
                     let n = _mm256_loadu_ps(near[axis].as_ptr().cast::<f32>());
                     let f = _mm256_loadu_ps(far[axis].as_ptr().cast::<f32>());
-                    let tn = _mm256_mul_ps(_mm256_sub_ps(n, s.origin[axis]), s.inv_dir[axis]);
-                    let tf = _mm256_mul_ps(_mm256_sub_ps(f, s.origin[axis]), s.inv_dir_exit[axis]);
+                    let tn = _mm256_fmsub_ps(n, s.inv_dir[axis], s.origin_near[axis]);
+                    let tf = _mm256_fmsub_ps(f, s.inv_dir_exit[axis], s.origin_far[axis]);
                     t_near = _mm256_max_ps(tn, t_near);
                     t_far = _mm256_min_ps(tf, t_far);
                 }

@@ -121,7 +121,7 @@ struct Avx2Ray {
     far_row: [usize; 3],
 }
 
-/// All eight lanes at once (x86_64 with AVX2, detected at run time).
+/// All eight lanes at once (x86_64 with AVX2 and FMA, detected at run time).
 #[cfg(target_arch = "x86_64")]
 impl NodeTest for Avx2 {
     type Prepared = Avx2Ray;
@@ -129,7 +129,7 @@ impl NodeTest for Avx2 {
     #[inline(always)]
     fn prepare(self, b: &RayBoxes) -> Avx2Ray {
         Avx2Ray {
-            slabs: self.slabs(b.origin, b.inv_dir, b.inv_dir_exit, b.t_min),
+            slabs: self.slabs(b.origin, b.inv_dir, EXIT_SCALE, b.t_min),
             near_row: b.near_row,
             far_row: b.far_row,
         }
@@ -254,13 +254,13 @@ impl Bvh {
     }
 
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     fn intersect_avx2(&self, avx2: Avx2, ray: &Ray) -> Option<Hit> {
         self.intersect_with(avx2, ray)
     }
 
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     fn occluded_avx2(&self, avx2: Avx2, ray: &Ray) -> bool {
         self.occluded_with(avx2, ray)
     }
