@@ -1,8 +1,12 @@
 //! Intel Embree 3 (the system's libembree3): one triangle geometry, build quality high, single-ray
 //! `rtcIntersect1` / `rtcOccluded1`. The device gets `threads=N` so the build uses the same number
 //! of threads as the others; tracing runs on the benchmark's rayon pool like every library.
-//! Devices are made once per thread count and kept (starting Embree's task system is not part of
-//! a BVH build); the timed build is buffers + `rtcCommitScene`.
+//! A device is made once per thread count and kept while that count is measured (starting
+//! Embree's task system is not part of a BVH build); the timed build is buffers +
+//! `rtcCommitScene`. Only one device lives at a time: Embree sizes its task system for the
+//! largest `threads=` of all live devices, so a 2-thread device left alive made "1-thread"
+//! builds use 2 threads (seen: ogre 118 ms at both counts, 214 ms with the 1-thread device
+//! alone).
 
 use std::ffi::CString;
 use std::sync::{Arc, Mutex};
@@ -30,7 +34,7 @@ impl Drop for Device {
     }
 }
 
-/// Devices made so far, by thread count (kept for the life of the process).
+/// The live device and its thread count (at most one; see the module docs).
 static DEVICES: Mutex<Vec<(usize, Arc<Device>)>> = Mutex::new(Vec::new());
 
 fn device(threads: usize) -> anyhow::Result<Arc<Device>> {
@@ -38,6 +42,9 @@ fn device(threads: usize) -> anyhow::Result<Arc<Device>> {
     if let Some((_, d)) = devices.iter().find(|(n, _)| *n == threads) {
         return Ok(Arc::clone(d));
     }
+    // Release the device of another count first (scenes are cleared between counts, so this
+    // was the last reference).
+    devices.clear();
     let config = CString::new(format!("threads={threads}"))?;
     // SAFETY: a valid NUL-terminated configuration string.
     let handle = unsafe { ffi::rtcNewDevice(config.as_ptr()) };
