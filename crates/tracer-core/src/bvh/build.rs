@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use super::triangle::{PACK, Tri4};
 use super::wide;
-use super::{Bvh, Kernel, PADDING};
+use super::{Bvh, Kernel};
 use crate::geometry::Aabb;
 
 const BINS: usize = 16;
@@ -392,10 +392,10 @@ fn pack_leaves(
     nodes: &mut [wide::WideNode],
     prims: &[PrimRef],
     triangles: &[[Vec3; 3]],
-) -> (Vec<Tri4>, Vec<u32>) {
+) -> Vec<Tri4> {
     let mut packs = super::pages::vec_on_huge_pages(prims.len() / 2 + 1);
-    let mut ids = Vec::with_capacity(prims.len() * 2 + PACK);
     let mut scratch = Vec::with_capacity(PACK);
+    let mut ids = Vec::with_capacity(PACK);
     for node in nodes {
         for r in &mut node.children {
             let wide::Child::Leaf { first, count } = wide::decode(*r) else {
@@ -405,14 +405,14 @@ fn pack_leaves(
             for chunk in prims[first..first + count].chunks(PACK) {
                 scratch.clear();
                 scratch.extend(chunk.iter().map(|p| triangles[p.index as usize]));
-                packs.push(Tri4::new(&scratch));
+                ids.clear();
                 ids.extend(chunk.iter().map(|p| p.index));
-                ids.extend(std::iter::repeat_n(PADDING, PACK - chunk.len()));
+                packs.push(Tri4::new(&scratch, &ids));
             }
             *r = wide::leaf_ref(start, packs.len() - start);
         }
     }
-    (packs, ids)
+    packs
 }
 
 impl Bvh {
@@ -439,12 +439,11 @@ impl Bvh {
         nodes.push(Node::new(range.bounds, 0, 0));
         flatten(tree, 0, &mut nodes);
         let mut nodes = wide::collapse(&nodes);
-        let (tris, prim_ids) = pack_leaves(&mut nodes, &prims, triangles);
+        let tris = pack_leaves(&mut nodes, &prims, triangles);
         let depth = wide::tree_depth(&nodes);
         Bvh {
             nodes,
             triangles: tris,
-            prim_ids,
             triangle_count: triangles.len(),
             depth,
             kernel: Kernel::Auto,

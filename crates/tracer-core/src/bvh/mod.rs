@@ -12,8 +12,8 @@
 //! their parent; each node holds its eight children's boxes side by side and one reference per
 //! child (node index, leaf triangle range, or empty). The build makes a binary SAH tree and
 //! collapses it. Leaves hold a range of packs of four triangles (`Tri4`, vertices
-//! structure-of-arrays, unused lanes degenerate) tested together; `prim_ids` maps each lane back
-//! to the caller's slice.
+//! structure-of-arrays, unused lanes degenerate) tested together, each lane with its index in
+//! the caller's slice.
 //!
 //! Triangle test: watertight (Woop, Benthin, Wald 2013), two-sided, edges and vertices
 //! inclusive, so rays through shared edges of closed meshes never leak (see `triangle.rs` for
@@ -48,7 +48,7 @@ pub struct Hit {
     pub prim: u32,
 }
 
-/// `prim_ids` entry of an unused lane in a triangle pack.
+/// Id of an unused lane in a triangle pack.
 const PADDING: u32 = u32::MAX;
 
 /// A BVH that owns a copy of its triangles in BVH order.
@@ -56,11 +56,9 @@ const PADDING: u32 = u32::MAX;
 pub struct Bvh {
     /// 8-wide nodes, root first, children after their parent. Empty iff there are no triangles.
     nodes: Vec<WideNode>,
-    /// Triangles in BVH order, four to a pack (leaves reference a range of packs).
+    /// Triangles in BVH order, four to a pack with their indices in the caller's slice
+    /// (leaves reference a range of packs).
     triangles: Vec<Tri4>,
-    /// `prim_ids[PACK * pack + lane]`: index in the caller's slice of that triangle, or
-    /// [`PADDING`] for an unused lane.
-    prim_ids: Vec<u32>,
     /// Triangles given to the build.
     triangle_count: usize,
     /// Edges on the longest path from the root to a leaf reference (bounds the traversal
@@ -105,6 +103,5 @@ impl Bvh {
     pub fn memory_bytes(&self) -> usize {
         self.nodes.len() * size_of::<WideNode>()
             + self.triangles.len() * size_of::<Tri4>()
-            + self.prim_ids.len() * size_of::<u32>()
     }
 }

@@ -10,7 +10,7 @@ use super::simd::{Avx2, Slabs8};
 use std::mem::MaybeUninit;
 
 use super::stack::Stack;
-use super::triangle::{PACK, RayTriangles};
+use super::triangle::RayTriangles;
 use super::wide::{EMPTY, GROUPS, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit};
 use crate::geometry::Ray;
@@ -314,18 +314,18 @@ impl Bvh {
     ) -> Option<Hit> {
         let tri_ray = RayTriangles::new(ray);
         let mut best_t = ray.t_max;
-        let mut best: Option<(usize, f32, f32)> = None;
+        let mut best: Option<(u32, f32, f32)> = None;
         let mut next = visit_sorted(&self.nodes[0], root, &mut stack);
         loop {
             let current = match next {
                 Some(c) => c,
                 None => loop {
                     let Some(entry) = stack.pop() else {
-                        return best.map(|(i, u, v)| Hit {
+                        return best.map(|(prim, u, v)| Hit {
                             t: best_t,
                             u,
                             v,
-                            prim: self.prim_ids[i],
+                            prim,
                         });
                     };
                     if entry.t_enter <= best_t {
@@ -340,10 +340,10 @@ impl Bvh {
                 next = visit_sorted(node, hits, &mut stack);
             } else {
                 let (first, count) = leaf_range(current);
-                for (i, pack) in self.triangles[first..first + count].iter().enumerate() {
+                for pack in &self.triangles[first..first + count] {
                     if let Some((lane, t, u, v)) = pack.intersect(&tri_ray, best_t) {
                         best_t = t;
-                        best = Some(((first + i) * PACK + lane, u, v));
+                        best = Some((pack.ids[lane], u, v));
                     }
                 }
                 next = None;

@@ -13,7 +13,7 @@
 
 use glam::Vec3;
 
-use super::Hit;
+use super::{Hit, PADDING};
 use super::simd::F4;
 use crate::geometry::Ray;
 
@@ -27,17 +27,21 @@ pub(crate) struct Triangle {
 pub(crate) const PACK: usize = 4;
 
 /// Up to four triangles side by side, `v[vertex][axis][lane]`, so one ray is tested against all
-/// four with the same instructions. Unused lanes repeat one vertex (a degenerate triangle,
-/// never hit).
+/// four with the same instructions, and each lane's index in the caller's slice (kept here, in
+/// the cache lines the test has just read, rather than in an array of its own: on large meshes
+/// that lookup was one more cache miss per hit). Unused lanes repeat one vertex (a degenerate
+/// triangle, never hit) and have the id [`PADDING`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(16))]
 pub(crate) struct Tri4 {
     pub v: [[[f32; PACK]; 3]; 3],
+    pub ids: [u32; PACK],
 }
 
 impl Tri4 {
-    /// Packs `tris` (1..=4 of them); unused lanes become the first triangle's `v0` thrice.
-    pub fn new(tris: &[[Vec3; 3]]) -> Self {
+    /// Packs `tris` (1..=4 of them) with their `ids`; unused lanes become the first triangle's
+    /// `v0` thrice, with the id [`PADDING`].
+    pub fn new(tris: &[[Vec3; 3]], ids: &[u32]) -> Self {
         let pad = [tris[0][0]; 3];
         let mut v = [[[0.0; PACK]; 3]; 3];
         for lane in 0..PACK {
@@ -48,7 +52,10 @@ impl Tri4 {
                 }
             }
         }
-        Self { v }
+        Self {
+            v,
+            ids: std::array::from_fn(|lane| ids.get(lane).copied().unwrap_or(PADDING)),
+        }
     }
 
     pub fn vertex(&self, lane: usize, vertex: usize) -> Vec3 {
@@ -255,7 +262,7 @@ mod tests {
                 Vec3::new(0.0, -1.0, 0.2),
             ],
         ];
-        let pack = Tri4::new(&tris);
+        let pack = Tri4::new(&tris, &[0, 1, 2]);
         assert!(pack.is_degenerate(3) && !pack.is_degenerate(2));
         for (k, dir) in [
             Vec3::NEG_Z,

@@ -25,22 +25,16 @@ impl Bvh {
     /// has at least one child, unused lanes hold the empty box, indices are in range, every
     /// triangle is in exactly one pack lane of one leaf (leaves of `MAX_LEAF / 4` packs at most,
     /// unused lanes degenerate), each lane's box contains and tightly fits its child node's
-    /// boxes or its triangles, `prim_ids` is a permutation, and the recorded depth is right.
+    /// boxes or its triangles, the packs' ids are a permutation, and the recorded depth is right.
     pub fn validate(&self) -> Result<(), String> {
         let (nodes, n_tris) = (&self.nodes, self.triangle_count);
         let slots = self.triangles.len() * PACK;
-        if self.prim_ids.len() != slots {
-            return Err(format!(
-                "{} prim ids for {} packs",
-                self.prim_ids.len(),
-                self.triangles.len()
-            ));
-        }
         if nodes.is_empty() != (n_tris == 0) {
             return Err(format!("{} nodes for {n_tris} triangles", nodes.len()));
         }
         let mut seen_prim = vec![false; n_tris];
-        for (i, &p) in self.prim_ids.iter().enumerate() {
+        let ids = self.triangles.iter().flat_map(|pack| pack.ids);
+        for (i, p) in ids.enumerate() {
             if p == PADDING {
                 if !self.triangles[i / PACK].is_degenerate(i % PACK) {
                     return Err(format!("padding lane {i} holds a triangle"));
@@ -224,7 +218,7 @@ mod tests {
         *bvh.nodes[0].bound_mut(3, 0) = f32::NEG_INFINITY;
         assert!(bvh.validate().is_err());
         let mut bvh = sphere_bvh();
-        bvh.prim_ids[0] = bvh.prim_ids[1];
+        bvh.triangles[0].ids[0] = bvh.triangles[0].ids[1];
         assert!(bvh.validate().is_err());
     }
 
