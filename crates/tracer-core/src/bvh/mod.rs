@@ -101,7 +101,6 @@ impl Bvh {
 
     /// Bytes held: nodes, triangle data and the index array.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * size_of::<WideNode>()
-            + self.triangles.len() * size_of::<Tri4>()
+        self.nodes.len() * size_of::<WideNode>() + self.triangles.len() * size_of::<Tri4>()
     }
 }
