@@ -231,8 +231,93 @@ mod imp {
 
 pub(crate) use imp::F4;
 
+/// Per-lane `f32` vectors the triangle test is written over ([`F4`] everywhere; eight lanes
+/// with AVX). Every lane rounds exactly as the scalar operation does, so all widths give the
+/// same results per lane.
+pub(crate) trait Lanes:
+    Copy
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+    + std::ops::Div<Output = Self>
+{
+    type Mask: LaneMask;
+    type Array: Copy + std::ops::Index<usize, Output = f32>;
+    /// `x` in every lane (a method, so only code that already holds a vector of this kind,
+    /// and so the CPU support it proves, can make one).
+    fn splat_like(self, x: f32) -> Self;
+    fn to_lanes(self) -> Self::Array;
+    fn lt(self, o: Self) -> Self::Mask;
+    fn gt(self, o: Self) -> Self::Mask;
+    fn le(self, o: Self) -> Self::Mask;
+    fn ge(self, o: Self) -> Self::Mask;
+    fn ne(self, o: Self) -> Self::Mask;
+}
+
+/// Per-lane comparison results of a [`Lanes`] vector.
+pub(crate) trait LaneMask: Copy {
+    /// Bit `i` set when lane `i` is true.
+    fn bits(self) -> u32;
+    fn and(self, o: Self) -> Self;
+    fn or(self, o: Self) -> Self;
+    /// `self && !o` per lane.
+    fn and_not(self, o: Self) -> Self;
+}
+
+impl Lanes for F4 {
+    type Mask = imp::M4;
+    type Array = [f32; 4];
+    #[inline(always)]
+    fn splat_like(self, x: f32) -> Self {
+        F4::splat(x)
+    }
+    #[inline(always)]
+    fn to_lanes(self) -> [f32; 4] {
+        self.to_array()
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> imp::M4 {
+        F4::lt(self, o)
+    }
+    #[inline(always)]
+    fn gt(self, o: Self) -> imp::M4 {
+        F4::gt(self, o)
+    }
+    #[inline(always)]
+    fn le(self, o: Self) -> imp::M4 {
+        F4::le(self, o)
+    }
+    #[inline(always)]
+    fn ge(self, o: Self) -> imp::M4 {
+        F4::ge(self, o)
+    }
+    #[inline(always)]
+    fn ne(self, o: Self) -> imp::M4 {
+        F4::ne(self, o)
+    }
+}
+
+impl LaneMask for imp::M4 {
+    #[inline(always)]
+    fn bits(self) -> u32 {
+        imp::M4::bits(self)
+    }
+    #[inline(always)]
+    fn and(self, o: Self) -> Self {
+        imp::M4::and(self, o)
+    }
+    #[inline(always)]
+    fn or(self, o: Self) -> Self {
+        imp::M4::or(self, o)
+    }
+    #[inline(always)]
+    fn and_not(self, o: Self) -> Self {
+        imp::M4::and_not(self, o)
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
-pub(crate) use avx2::{Avx2, Slabs8};
+pub(crate) use avx2::{Avx2, F8, Slabs8};
 
 /// The eight-box slab test in one AVX register per plane, for CPUs that have AVX2 and FMA
 /// (checked at run time). Each slab distance is one fused multiply-subtract,
@@ -277,6 +362,21 @@ mod avx2 {
     /// The smallest move (for coordinates at or near zero).
     const ORIGIN_SLACK_FLOOR: f32 = 1e-30;
 
+    /// Each of three values in all lanes. (A function, not a closure: closures do not inherit
+    /// the caller's AVX target feature, and the intrinsic would become a call.) Only called
+    /// through [`Avx2`] methods.
+    #[inline(always)]
+    fn splat3(x: [f32; 3]) -> [__m256; 3] {
+        // SAFETY: reached only from `Avx2::slabs`, so AVX is present; no memory operands.
+        unsafe {
+            [
+                _mm256_set1_ps(x[0]),
+                _mm256_set1_ps(x[1]),
+                _mm256_set1_ps(x[2]),
+            ]
+        }
+    }
+
     impl Avx2 {
         /// `Some` when the CPU has AVX2 and FMA (the check is cached by the standard library).
         #[inline(always)]
@@ -294,8 +394,6 @@ mod avx2 {
             exit_scale: f32,
             t_min: f32,
         ) -> Slabs8 {
-            // SAFETY: AVX is present (`self` exists); set1 has no memory operands.
-            let splat = |x: f32| unsafe { _mm256_set1_ps(x) };
             let inv = inv_dir.map(|r| {
                 if r.is_finite() {
                     r
@@ -309,12 +407,14 @@ mod avx2 {
             let far: [f32; 3] = std::array::from_fn(|a| {
                 (origin[a] - slack[a].copysign(inv[a])) * (inv[a] * exit_scale)
             });
+            let exit = inv.map(|r| r * exit_scale);
             Slabs8 {
-                inv_dir: inv.map(splat),
-                origin_near: near.map(splat),
-                inv_dir_exit: inv.map(|r| splat(r * exit_scale)),
-                origin_far: far.map(splat),
-                t_min: splat(t_min),
+                inv_dir: splat3(inv),
+                origin_near: splat3(near),
+                inv_dir_exit: splat3(exit),
+                origin_far: splat3(far),
+                // SAFETY: AVX is present (`self` exists); set1 has no memory operands.
+                t_min: unsafe { _mm256_set1_ps(t_min) },
             }
         }
 
@@ -350,4 +450,102 @@ mod avx2 {
             }
         }
     }
+
+    /// Eight lanes of `f32` in one AVX register; only made through [`Avx2::load2`], so holding
+    /// one proves the CPU has AVX.
+    #[derive(Clone, Copy, Debug)]
+    pub(crate) struct F8(__m256);
+
+    /// Per-lane comparison results of [`F8`].
+    #[derive(Clone, Copy, Debug)]
+    pub(crate) struct M8(__m256);
+
+    macro_rules! avx {
+        ($e:expr) => {
+            // SAFETY: an `F8`/`M8` exists only after `Avx2::detect` succeeded.
+            unsafe { $e }
+        };
+    }
+
+    impl Avx2 {
+        /// Lanes 0..4 from `lo`, 4..8 from `hi`.
+        #[inline(always)]
+        pub fn load2(self, lo: &[f32; 4], hi: &[f32; 4]) -> F8 {
+            // SAFETY: AVX is present (`self` exists); each pointer reads exactly its 16-byte
+            // array (unaligned forms).
+            F8(unsafe { _mm256_loadu2_m128(hi.as_ptr(), lo.as_ptr()) })
+        }
+    }
+
+    impl super::Lanes for F8 {
+        type Mask = M8;
+        type Array = [f32; 8];
+        #[inline(always)]
+        fn splat_like(self, x: f32) -> Self {
+            F8(avx!(_mm256_set1_ps(x)))
+        }
+        #[inline(always)]
+        fn to_lanes(self) -> [f32; 8] {
+            let mut out = [0.0; 8];
+            // SAFETY: AVX is present (`self` exists); the store writes the 32 bytes of `out`.
+            unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
+            out
+        }
+        #[inline(always)]
+        fn lt(self, o: Self) -> M8 {
+            M8(avx!(_mm256_cmp_ps::<_CMP_LT_OQ>(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn gt(self, o: Self) -> M8 {
+            M8(avx!(_mm256_cmp_ps::<_CMP_GT_OQ>(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn le(self, o: Self) -> M8 {
+            M8(avx!(_mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn ge(self, o: Self) -> M8 {
+            M8(avx!(_mm256_cmp_ps::<_CMP_GE_OQ>(self.0, o.0)))
+        }
+        /// True when either is NaN, as for `f32`.
+        #[inline(always)]
+        fn ne(self, o: Self) -> M8 {
+            M8(avx!(_mm256_cmp_ps::<_CMP_NEQ_UQ>(self.0, o.0)))
+        }
+    }
+
+    impl super::LaneMask for M8 {
+        #[inline(always)]
+        fn bits(self) -> u32 {
+            avx!(_mm256_movemask_ps(self.0)) as u32
+        }
+        #[inline(always)]
+        fn and(self, o: Self) -> Self {
+            M8(avx!(_mm256_and_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn or(self, o: Self) -> Self {
+            M8(avx!(_mm256_or_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn and_not(self, o: Self) -> Self {
+            M8(avx!(_mm256_andnot_ps(o.0, self.0)))
+        }
+    }
+
+    macro_rules! binop8 {
+        ($tr:ident, $f:ident, $intr:ident) => {
+            impl std::ops::$tr for F8 {
+                type Output = F8;
+                #[inline(always)]
+                fn $f(self, o: F8) -> F8 {
+                    F8(avx!($intr(self.0, o.0)))
+                }
+            }
+        };
+    }
+    binop8!(Add, add, _mm256_add_ps);
+    binop8!(Sub, sub, _mm256_sub_ps);
+    binop8!(Mul, mul, _mm256_mul_ps);
+    binop8!(Div, div, _mm256_div_ps);
 }
