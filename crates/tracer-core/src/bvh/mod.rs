@@ -11,14 +11,13 @@
 //! Layout: one `Vec` of 256-byte 8-wide nodes (`wide.rs`), root at index 0, children always after
 //! their parent; each node holds its eight children's boxes side by side and one reference per
 //! child (node index, leaf triangle range, or empty). The build makes a binary SAH tree and
-//! collapses it. Leaves hold one or two packs of four triangles (`Tri4`, vertices
-//! structure-of-arrays, unused lanes degenerate), each lane with its index in the caller's
-//! slice.
+//! collapses it. Leaves hold a range of packs of four triangles (`Tri4`, vertices
+//! structure-of-arrays, unused lanes degenerate) tested together, each lane with its index in
+//! the caller's slice.
 //!
 //! Kernels (`traverse.rs`): on x86_64 CPUs with AVX2 and FMA (detected at run time) a node's
-//! eight boxes are tested in one AVX register per plane and a two-pack leaf in one eight-lane
-//! triangle test; elsewhere, four lanes at a time (SSE2 or plain arrays). Both find the same
-//! hits; the differential tests run both.
+//! eight boxes are tested in one AVX register per plane; elsewhere four lanes at a time (SSE2
+//! or plain arrays). Both find the same hits; the differential tests run both.
 //!
 //! Triangle test: watertight (Woop, Benthin, Wald 2013), two-sided, edges and vertices
 //! inclusive, so rays through shared edges of closed meshes never leak (see `triangle.rs` for

@@ -10,9 +10,7 @@ use super::simd::{Avx2, Slabs8};
 use std::mem::MaybeUninit;
 
 use super::stack::Stack;
-#[cfg(target_arch = "x86_64")]
-use super::triangle::{PACK, intersect_pair, occludes_pair};
-use super::triangle::{RayTriangles, Tri4};
+use super::triangle::RayTriangles;
 use super::wide::{EMPTY, GROUPS, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit};
 use crate::geometry::Ray;
@@ -73,30 +71,7 @@ trait NodeTest: Copy {
     type Prepared: Copy;
     fn prepare(self, boxes: &RayBoxes) -> Self::Prepared;
     fn enter(self, ray: &Self::Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]);
-
-    /// The nearest hit in a leaf's packs with `t <= t_max`: `(triangle id, t, u, v)`.
-    #[inline(always)]
-    fn leaf_closest(self, packs: &[Tri4], r: &RayTriangles, t_max: f32) -> Option<LeafHit> {
-        let mut best = None;
-        let mut t_max = t_max;
-        for pack in packs {
-            if let Some((lane, t, u, v)) = pack.intersect(r, t_max) {
-                t_max = t;
-                best = Some((pack.ids[lane], t, u, v));
-            }
-        }
-        best
-    }
-
-    /// Whether anything in a leaf's packs is hit with `t <= t_max`.
-    #[inline(always)]
-    fn leaf_any(self, packs: &[Tri4], r: &RayTriangles, t_max: f32) -> bool {
-        packs.iter().any(|pack| pack.occludes(r, t_max))
-    }
 }
-
-/// A hit in a leaf: triangle id, `t`, `u`, `v`.
-type LeafHit = (u32, f32, f32, f32);
 
 /// Four lanes at a time ([`F4`]: SSE on x86_64, plain arrays elsewhere).
 #[derive(Clone, Copy)]
@@ -164,24 +139,6 @@ impl NodeTest for Avx2 {
     fn enter(self, r: &Avx2Ray, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]) {
         let rows = |row: [usize; 3]| row.map(|i| &node.bounds[i]);
         self.enter(&r.slabs, rows(r.near_row), rows(r.far_row), t_max)
-    }
-
-    /// Two-pack leaves in one eight-lane test.
-    #[inline(always)]
-    fn leaf_closest(self, packs: &[Tri4], r: &RayTriangles, t_max: f32) -> Option<LeafHit> {
-        if let Ok(pair) = <&[Tri4; 2]>::try_from(packs) {
-            let (lane, t, u, v) = intersect_pair(self, pair, r, t_max)?;
-            return Some((pair[lane / PACK].ids[lane % PACK], t, u, v));
-        }
-        Portable.leaf_closest(packs, r, t_max)
-    }
-
-    #[inline(always)]
-    fn leaf_any(self, packs: &[Tri4], r: &RayTriangles, t_max: f32) -> bool {
-        if let Ok(pair) = <&[Tri4; 2]>::try_from(packs) {
-            return occludes_pair(self, pair, r, t_max);
-        }
-        Portable.leaf_any(packs, r, t_max)
     }
 }
 
@@ -383,10 +340,11 @@ impl Bvh {
                 next = visit_sorted(node, hits, &mut stack);
             } else {
                 let (first, count) = leaf_range(current);
-                let packs = &self.triangles[first..first + count];
-                if let Some((id, t, u, v)) = test.leaf_closest(packs, &tri_ray, best_t) {
-                    best_t = t;
-                    best = Some((id, u, v));
+                for pack in &self.triangles[first..first + count] {
+                    if let Some((lane, t, u, v)) = pack.intersect(&tri_ray, best_t) {
+                        best_t = t;
+                        best = Some((pack.ids[lane], u, v));
+                    }
                 }
                 next = None;
             }
@@ -415,7 +373,9 @@ impl Bvh {
                 next = visit_any(node, test.enter(boxes, node, limit).0, &mut stack);
             } else {
                 let (first, count) = leaf_range(current);
-                let hit = test.leaf_any(&self.triangles[first..first + count], &tri_ray, ray.t_max);
+                let hit = self.triangles[first..first + count]
+                    .iter()
+                    .any(|pack| pack.occludes(&tri_ray, ray.t_max));
                 if hit {
                     return true;
                 }

@@ -13,9 +13,7 @@
 
 use glam::Vec3;
 
-#[cfg(target_arch = "x86_64")]
-use super::simd::{Avx2, F8};
-use super::simd::{F4, LaneMask, Lanes};
+use super::simd::F4;
 use super::{Hit, PADDING};
 use crate::geometry::Ray;
 
@@ -71,147 +69,80 @@ impl Tri4 {
         a == self.vertex(lane, 1) && a == self.vertex(lane, 2)
     }
 
+    /// [`Triangle::intersect`] on all four lanes, the same operations in the same order per
+    /// lane (so results are bit for bit those of the scalar test). Returns the lanes hit at `t`
+    /// in `[t_min, t_max]` as bits, `t` and the unnormalised `v`, `w` and `1 / det`.
+    #[inline(always)]
+    fn lanes(&self, r: &RayTriangles, t_max: f32) -> (u32, [F4; 4]) {
+        let [kx, ky, kz] = r.k;
+        let (sx, sy, sz) = (
+            F4::splat(r.shear[0]),
+            F4::splat(r.shear[1]),
+            F4::splat(r.shear[2]),
+        );
+        let o = r.origin.to_array();
+        let (ox, oy, oz) = (F4::splat(o[kx]), F4::splat(o[ky]), F4::splat(o[kz]));
+        // Sheared vertex coordinates: x, y in the ray's frame and the unsheared z.
+        let frame = |p: &[[f32; PACK]; 3]| {
+            let z = F4::load(&p[kz]) - oz;
+            (
+                (F4::load(&p[kx]) - ox) - sx * z,
+                (F4::load(&p[ky]) - oy) - sy * z,
+                z,
+            )
+        };
+        let (ax, ay, az) = frame(&self.v[0]);
+        let (bx, by, bz) = frame(&self.v[1]);
+        let (cx, cy, cz) = frame(&self.v[2]);
+        let u = cx * by - cy * bx;
+        let v = ax * cy - ay * cx;
+        let w = bx * ay - by * ax;
+        let zero = F4::splat(0.0);
+        let negative = u.lt(zero).or(v.lt(zero)).or(w.lt(zero));
+        let positive = u.gt(zero).or(v.gt(zero)).or(w.gt(zero));
+        let det = u + v + w;
+        let t_scaled = sz * (u * az + v * bz + w * cz);
+        let inv_det = F4::splat(1.0) / det;
+        let t = t_scaled * inv_det;
+        let hit = det
+            .ne(zero)
+            .and(t.ge(F4::splat(r.t_min)))
+            .and(t.le(F4::splat(t_max)))
+            .and_not(negative.and(positive));
+        (hit.bits(), [t, v, w, inv_det])
+    }
+
     /// The nearest hit lane with `t` in `[t_min, t_max]`: `(lane, t, u, v)`.
     #[inline(always)]
     pub fn intersect(&self, r: &RayTriangles, t_max: f32) -> Option<(usize, f32, f32, f32)> {
-        nearest(test_lanes(self.lanes(), r, t_max))
+        let (mut bits, [t, v, w, inv_det]) = self.lanes(r, t_max);
+        if bits == 0 {
+            return None;
+        }
+        let t = t.to_array();
+        let mut best = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        while bits != 0 {
+            let lane = bits.trailing_zeros() as usize;
+            if t[lane] < t[best] {
+                best = lane;
+            }
+            bits &= bits - 1;
+        }
+        let inv_det = inv_det.to_array()[best];
+        Some((
+            best,
+            t[best],
+            v.to_array()[best] * inv_det,
+            w.to_array()[best] * inv_det,
+        ))
     }
 
     /// Whether any lane is hit with `t` in `[t_min, t_max]`.
     #[inline(always)]
     pub fn occludes(&self, r: &RayTriangles, t_max: f32) -> bool {
-        test_lanes(self.lanes(), r, t_max).0 != 0
+        self.lanes(r, t_max).0 != 0
     }
-
-    /// The vertex coordinates as vectors, `[vertex][axis]`.
-    #[inline(always)]
-    fn lanes(&self) -> [[F4; 3]; 3] {
-        let row = |p: &[[f32; PACK]; 3]| [F4::load(&p[0]), F4::load(&p[1]), F4::load(&p[2])];
-        [row(&self.v[0]), row(&self.v[1]), row(&self.v[2])]
-    }
-}
-
-/// Two packs tested as one, eight lanes in AVX registers (lane `4 * pack + lane`).
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-pub(crate) fn intersect_pair(
-    avx2: Avx2,
-    [a, b]: &[Tri4; 2],
-    r: &RayTriangles,
-    t_max: f32,
-) -> Option<(usize, f32, f32, f32)> {
-    nearest(test_lanes(pair_lanes(avx2, a, b), r, t_max))
-}
-
-/// The vertex coordinates of two packs as eight-lane vectors, `[vertex][axis]`. (Written out:
-/// a closure would not inherit the caller's AVX target feature, and its loads would become
-/// calls.)
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn pair_lanes(avx2: Avx2, a: &Tri4, b: &Tri4) -> [[F8; 3]; 3] {
-    [
-        pair_row(avx2, &a.v[0], &b.v[0]),
-        pair_row(avx2, &a.v[1], &b.v[1]),
-        pair_row(avx2, &a.v[2], &b.v[2]),
-    ]
-}
-
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn pair_row(avx2: Avx2, a: &[[f32; PACK]; 3], b: &[[f32; PACK]; 3]) -> [F8; 3] {
-    [
-        avx2.load2(&a[0], &b[0]),
-        avx2.load2(&a[1], &b[1]),
-        avx2.load2(&a[2], &b[2]),
-    ]
-}
-
-/// [`intersect_pair`] for any hit.
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-pub(crate) fn occludes_pair(avx2: Avx2, [a, b]: &[Tri4; 2], r: &RayTriangles, t_max: f32) -> bool {
-    test_lanes(pair_lanes(avx2, a, b), r, t_max).0 != 0
-}
-
-/// [`Triangle::intersect`] on every lane of `p` (`p[vertex][axis]`: that coordinate of each
-/// lane's triangle), the same operations in the same order per lane, so results are bit for
-/// bit those of the scalar test. Returns the lanes hit at `t` in `[t_min, t_max]` as bits, and
-/// `t`, the unnormalised `v`, `w` and `1 / det`.
-#[inline(always)]
-fn test_lanes<V: Lanes>(p: [[V; 3]; 3], r: &RayTriangles, t_max: f32) -> (u32, [V; 4]) {
-    let [kx, ky, kz] = r.k;
-    let o = r.origin.to_array();
-    let any = p[0][0];
-    let (sx, sy, sz) = (
-        any.splat_like(r.shear[0]),
-        any.splat_like(r.shear[1]),
-        any.splat_like(r.shear[2]),
-    );
-    let (ox, oy, oz) = (
-        any.splat_like(o[kx]),
-        any.splat_like(o[ky]),
-        any.splat_like(o[kz]),
-    );
-    // Sheared vertex coordinates: x, y in the ray's frame and the unsheared z.
-    let (ax, ay, az) = frame(&p[0], r.k, [ox, oy, oz], [sx, sy]);
-    let (bx, by, bz) = frame(&p[1], r.k, [ox, oy, oz], [sx, sy]);
-    let (cx, cy, cz) = frame(&p[2], r.k, [ox, oy, oz], [sx, sy]);
-    let u = cx * by - cy * bx;
-    let v = ax * cy - ay * cx;
-    let w = bx * ay - by * ax;
-    let zero = any.splat_like(0.0);
-    let negative = u.lt(zero).or(v.lt(zero)).or(w.lt(zero));
-    let positive = u.gt(zero).or(v.gt(zero)).or(w.gt(zero));
-    let det = u + v + w;
-    let t_scaled = sz * (u * az + v * bz + w * cz);
-    let inv_det = any.splat_like(1.0) / det;
-    let t = t_scaled * inv_det;
-    let hit = det
-        .ne(zero)
-        .and(t.ge(any.splat_like(r.t_min)))
-        .and(t.le(any.splat_like(t_max)))
-        .and_not(negative.and(positive));
-    (hit.bits(), [t, v, w, inv_det])
-}
-
-/// One vertex in the ray's sheared frame: `(x, y, z)` from the vertex `p[axis]`, the ray's axes
-/// `k`, its origin `o` (in `k` order) and shear `s`.
-#[inline(always)]
-fn frame<V: Lanes>(
-    p: &[V; 3],
-    [kx, ky, kz]: [usize; 3],
-    [ox, oy, oz]: [V; 3],
-    [sx, sy]: [V; 2],
-) -> (V, V, V) {
-    let z = p[kz] - oz;
-    ((p[kx] - ox) - sx * z, (p[ky] - oy) - sy * z, z)
-}
-
-/// The nearest lane hit in a [`test_lanes`] result: `(lane, t, u, v)`; the lowest lane on ties.
-#[inline(always)]
-fn nearest<V: Lanes>(
-    (mut bits, [t, v, w, inv_det]): (u32, [V; 4]),
-) -> Option<(usize, f32, f32, f32)> {
-    if bits == 0 {
-        return None;
-    }
-    let t = t.to_lanes();
-    let mut best = bits.trailing_zeros() as usize;
-    bits &= bits - 1;
-    while bits != 0 {
-        let lane = bits.trailing_zeros() as usize;
-        if t[lane] < t[best] {
-            best = lane;
-        }
-        bits &= bits - 1;
-    }
-    let inv_det = inv_det.to_lanes()[best];
-    Some((
-        best,
-        t[best],
-        v.to_lanes()[best] * inv_det,
-        w.to_lanes()[best] * inv_det,
-    ))
 }
 
 /// A ray prepared for the watertight test: `kz` is the dominant direction axis, `kx`, `ky` the
@@ -346,7 +277,7 @@ mod tests {
         {
             let origin = Vec3::new(0.25, 0.2, 1.0) - dir * (k as f32);
             let r = RayTriangles::new(&Ray::new(origin, dir));
-            let (hit, [t, v, w, inv]) = test_lanes(pack.lanes(), &r, f32::INFINITY);
+            let (hit, [t, v, w, inv]) = pack.lanes(&r, f32::INFINITY);
             let [t, v, w, inv] = [t, v, w, inv].map(F4::to_array);
             for (lane, tri) in tris.iter().enumerate() {
                 let scalar = Triangle::new(tri).intersect(&r, f32::INFINITY);
@@ -359,31 +290,6 @@ mod tests {
                 assert_eq!(scalar, wide, "lane {lane} dir {dir}");
             }
             assert_eq!(hit >> 3, 0);
-            // Eight lanes (two packs, the second reversed) give the same, lane for lane.
-            #[cfg(target_arch = "x86_64")]
-            if let Some(avx2) = Avx2::detect() {
-                let reversed: Vec<[Vec3; 3]> = tris.iter().rev().copied().collect();
-                let pair = [pack, Tri4::new(&reversed, &[2, 1, 0])];
-                let eight = test_lanes(pair_lanes(avx2, &pair[0], &pair[1]), &r, f32::INFINITY);
-                let [t8, v8, w8, inv8] = eight.1.map(|x| x.to_lanes());
-                for lane in 0..8 {
-                    let tri = if lane < 4 {
-                        tris.get(lane)
-                    } else {
-                        reversed.get(lane - 4)
-                    };
-                    let scalar = tri.and_then(|t| Triangle::new(t).intersect(&r, f32::INFINITY));
-                    let wide = (eight.0 >> lane & 1 == 1).then_some((
-                        t8[lane],
-                        v8[lane] * inv8[lane],
-                        w8[lane] * inv8[lane],
-                    ));
-                    assert_eq!(scalar, wide, "eight lanes: lane {lane} dir {dir}");
-                }
-                let nearest4 = pack.intersect(&r, f32::INFINITY);
-                let nearest8 = intersect_pair(avx2, &pair, &r, f32::INFINITY);
-                assert_eq!(nearest8.map(|h| h.1), nearest4.map(|h| h.1));
-            }
         }
     }
 
