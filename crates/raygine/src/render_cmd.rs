@@ -48,9 +48,11 @@ pub fn apply_overrides(loaded: &mut LoadedScene, args: &RenderArgs) -> Result<()
     }
     if !p.is_empty() || args.intensity.is_some() {
         if setup.lights.is_empty() {
-            setup
-                .lights
-                .push(scene::default_light(&loaded.scene, setup.unit));
+            setup.lights.push(scene::default_light(
+                &loaded.scene,
+                setup.unit,
+                setup.camera.position,
+            ));
         }
         let light: &mut PointLight = &mut setup.lights[0];
         for (i, v) in p.iter().take(3).enumerate() {

@@ -4,6 +4,9 @@
 use tracer_core::scene::{LengthUnit, Scene, builtin_cornell_box, default_light};
 use tracer_core::shp::{BrepDef, ShpDescription};
 
+/// A camera in front of and above the test scenes (metres).
+const EYE: [f32; 3] = [0.5, 2.0, 6.0];
+
 /// A lid: a slab 5 cm thick whose top is the top of a 1 m tall scene (a floor at y = 0).
 fn lid_over_floor() -> Scene {
     let v = |x: f64, y: f64, z: f64| [x, y, z];
@@ -51,27 +54,109 @@ fn lid_over_floor() -> Scene {
 }
 
 #[test]
-fn light_of_a_solid_object_goes_above_it() {
-    let light = default_light(&lid_over_floor(), LengthUnit::M);
+fn light_of_a_solid_object_is_a_key_light_above_it() {
+    let light = default_light(&lid_over_floor(), LengthUnit::M, EYE);
     assert!(
         light.position[1] > 1.0,
         "{:?} is inside the lid",
         light.position
     );
-    assert_eq!(
-        light.intensity_cd, 450.0,
-        "100 π h² / 0.7 for h = 1 m, two digits"
-    );
+    // The key light: halfway from the middle (0.5, 0.5, 0.5) to the eye, 0.5 m up.
+    assert_eq!(light.position, [0.5, 1.75, 3.25]);
+    // Towards the middle (0, -1.25, -2.75) it passes under the lid and meets the floor at
+    // 1.4 times that: d = 4.23 m; 100 π d² / 0.7 = 8026 -> 8000.
+    assert_eq!(light.intensity_cd, 8000.0);
+}
+
+/// A scene of axis-aligned boxes (`(min, max)` corners), each as six quads.
+fn boxes(list: &[([f64; 3], [f64; 3])]) -> Scene {
+    let mut vertices = Vec::new();
+    let mut triangles = Vec::new();
+    for (lo, hi) in list {
+        let base = vertices.len() as u32;
+        for i in 0..8 {
+            let pick = |axis: usize| {
+                if i >> axis & 1 == 0 {
+                    lo[axis]
+                } else {
+                    hi[axis]
+                }
+            };
+            vertices.push([pick(0), pick(1), pick(2)]);
+        }
+        // Corner i has x from bit 0, y from bit 1, z from bit 2.
+        for [a, b, c, d] in [
+            [0, 1, 3, 2],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 3, 7, 5],
+        ] {
+            triangles.push([base + a, base + b, base + c]);
+            triangles.push([base + a, base + c, base + d]);
+        }
+    }
+    let brep = BrepDef {
+        name: "boxes".into(),
+        vertices,
+        parts: vec![0; triangles.len()],
+        triangles,
+        part_count: 1,
+        ..BrepDef::default()
+    };
+    let desc = ShpDescription {
+        breps: vec![brep],
+        ..ShpDescription::default()
+    };
+    Scene::build(&desc, "boxes").unwrap()
+}
+
+/// Open above the top centre (the scene's height comes from a post in a corner): a key light
+/// between the middle and the eye, its intensity set by the distance to the first surface
+/// towards the middle (0, 0.495, 0).
+#[test]
+fn light_over_an_open_scene_is_a_key_light_scaled_to_the_surface_it_faces() {
+    let floor = ([-2.0, -0.01, -2.0], [2.0, 0.0, 2.0]);
+    let post = ([1.8, 0.0, 1.8], [1.9, 1.0, 1.9]);
+    let block = ([-0.5, 0.0, -0.5], [0.5, 0.5, 0.5]);
+    let over_block = default_light(&boxes(&[floor, post, block]), LengthUnit::M, EYE);
+    // Halfway to EYE = (0.5, 2, 6), plus h / 2 = 0.505 up.
+    let expected = [0.25, 1.7525, 3.0];
+    for (got, want) in over_block.position.iter().zip(expected) {
+        assert!((got - want).abs() < 1e-4, "{over_block:?}");
+    }
+    // Towards the middle, direction (-0.25, -1.2575, -3), the block's top (y = 0.5) is met at
+    // 0.996 of it: d = 3.249 m; 100 π d² / 0.7 = 4738 -> 4700.
+    assert_eq!(over_block.intensity_cd, 4700.0);
+    // Without the block the floor is met at 1.394 of it: d = 4.547 m; 9278 -> 9300.
+    let over_floor = default_light(&boxes(&[floor, post]), LengthUnit::M, EYE);
+    assert_eq!(over_floor.intensity_cd, 9300.0);
 }
 
 #[test]
 fn light_of_a_room_stays_under_the_ceiling() {
     let loaded = builtin_cornell_box(None).unwrap();
-    let light = default_light(&loaded.scene, LengthUnit::Mm);
+    let eye = loaded.setup.camera.position;
+    let light = default_light(&loaded.scene, LengthUnit::Mm, eye);
     let top = loaded.scene.bounds.max.y;
     assert!(
         light.position[1] < top && light.position[1] > 0.95 * top,
         "{:?}",
         light.position
     );
+}
+
+/// A closed mesh looks like a room from inside (a surface just above, the floor far below), but
+/// a light inside it lights nothing the camera outside can see (nefertiti and ogre rendered
+/// black): it becomes a key light between the mesh and the camera instead.
+#[test]
+fn light_inside_a_closed_mesh_seen_from_outside_becomes_a_key_light() {
+    let cube = boxes(&[([0.0, 0.0, 0.0], [1.0, 1.0, 1.0])]);
+    let light = default_light(&cube, LengthUnit::M, EYE);
+    assert_eq!(light.position, [0.5, 1.75, 3.25]);
+    assert!(light.intensity_cd > 0.0);
+    // Seen from inside (a camera in the box, as in a room), the light stays under the top.
+    let inside = default_light(&cube, LengthUnit::M, [0.5, 0.5, 0.9]);
+    assert!(inside.position[1] < 1.0, "{inside:?}");
 }

@@ -55,10 +55,14 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     }
     if ui
         .button("Add light")
-        .on_hover_text("A new point light below the top centre of the scene")
+        .on_hover_text("A new point light where a scene without a sidecar gets its light")
         .clicked()
     {
-        let light: PointLight = default_light(&app.doc.scene, app.doc.setup.unit);
+        let light: PointLight = default_light(
+            &app.doc.scene,
+            app.doc.setup.unit,
+            app.doc.setup.camera.position,
+        );
         app.doc.setup.lights.push(light);
     }
 }
