@@ -1,4 +1,4 @@
-//! Point lights: position (slider over the scene bounds, or typed), intensity (logarithmic, cd),
+//! Point lights: position (slider over the scene bounds and out to the camera, or typed), intensity (logarithmic, cd),
 //! colour; add and remove.
 
 use crate::app::RaygineApp;
@@ -7,7 +7,10 @@ use tracer_core::scene::{PointLight, default_light};
 pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let b = app.doc.scene.bounds;
     let margin = b.extent() * 0.5;
-    let (lo, hi) = (b.min - margin, b.max + margin);
+    // Over the bounds with a margin, and out to the camera: the default light of an object
+    // sits between it and the camera.
+    let eye = glam::Vec3::from_array(app.doc.setup.camera.position);
+    let (lo, hi) = ((b.min - margin).min(eye), (b.max + margin).max(eye));
     let unit = app.doc.setup.unit.symbol();
     let mut remove = None;
     let count = app.doc.setup.lights.len();
