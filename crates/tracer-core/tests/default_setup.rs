@@ -38,9 +38,14 @@ fn lid_over_floor() -> Scene {
         triangles.push([f[0], f[1], f[2]]);
         triangles.push([f[0], f[2], f[3]]);
     }
+    mesh("lid", corners.to_vec(), triangles)
+}
+
+/// A one-brep scene of these vertices and triangles.
+fn mesh(name: &str, vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Scene {
     let brep = BrepDef {
-        name: "lid".into(),
-        vertices: corners.to_vec(),
+        name: name.into(),
+        vertices,
         parts: vec![0; triangles.len()],
         triangles,
         part_count: 1,
@@ -50,7 +55,7 @@ fn lid_over_floor() -> Scene {
         breps: vec![brep],
         ..ShpDescription::default()
     };
-    Scene::build(&desc, "lid").unwrap()
+    Scene::build(&desc, name).unwrap()
 }
 
 #[test]
@@ -97,19 +102,7 @@ fn boxes(list: &[([f64; 3], [f64; 3])]) -> Scene {
             triangles.push([base + a, base + c, base + d]);
         }
     }
-    let brep = BrepDef {
-        name: "boxes".into(),
-        vertices,
-        parts: vec![0; triangles.len()],
-        triangles,
-        part_count: 1,
-        ..BrepDef::default()
-    };
-    let desc = ShpDescription {
-        breps: vec![brep],
-        ..ShpDescription::default()
-    };
-    Scene::build(&desc, "boxes").unwrap()
+    mesh("boxes", vertices, triangles)
 }
 
 /// Open above the top centre (the scene's height comes from a post in a corner): a key light
