@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail, ensure};
 use glam::Vec3;
+use tracer_core::integrator::IntegratorKind;
 use tracer_core::render::{RenderSession, RenderSettings, Snapshot, render};
 use tracer_core::scene::{self, LoadOptions, Scene, Setup, builtin_cornell_box};
 
@@ -25,14 +26,17 @@ pub struct Options {
     pub runs: usize,
     pub threads: Vec<usize>,
     pub storm_changes: usize,
+    pub integrator: IntegratorKind,
 }
 
-fn settings() -> RenderSettings {
+fn settings(integrator: IntegratorKind) -> RenderSettings {
     RenderSettings {
         width: 1280,
         height: 720,
         samples_per_pixel: TARGET_SPP,
         max_depth: 5,
+        integrator,
+        max_bounces: None,
     }
 }
 
@@ -48,6 +52,7 @@ fn with_light(setup: &Setup, position: Vec3) -> anyhow::Result<Setup> {
 
 /// Starts `setup` and waits until it is finished; returns its generation.
 fn start_and_finish(
+    kind: IntegratorKind,
     session: &RenderSession,
     scene: &Arc<Scene>,
     setup: Setup,
@@ -55,7 +60,7 @@ fn start_and_finish(
     let generation = session.start(Snapshot {
         scene: Arc::clone(scene),
         setup,
-        settings: settings(),
+        settings: settings(kind),
         time_limit: None,
     });
     ensure!(
@@ -79,27 +84,27 @@ fn load_scene(name: &str) -> anyhow::Result<(Arc<Scene>, Setup)> {
 }
 
 /// L1 and L2 of one scene with `threads` workers.
-fn latency(name: &str, threads: usize, runs: usize) -> anyhow::Result<()> {
+fn latency(kind: IntegratorKind, name: &str, threads: usize, runs: usize) -> anyhow::Result<()> {
     let (scene, setup) = load_scene(name)?;
     let base = Vec3::from_array(setup.lights.first().context("no light")?.position);
     let step = scene.bounds.extent() * 0.05;
     let session = RenderSession::new(threads, Arc::new(|| {}))?;
-    start_and_finish(&session, &scene, setup.clone())?;
+    start_and_finish(kind, &session, &scene, setup.clone())?;
     let (mut previews, mut fulls) = (Vec::new(), Vec::new());
     for run in 0..runs {
         let sign = if run % 2 == 0 { 1.0 } else { -1.0 };
         let moved = with_light(&setup, base + step * sign)?;
-        start_and_finish(&session, &scene, moved)?;
+        start_and_finish(kind, &session, &scene, moved)?;
         let stats = session.stats();
         previews.push(stats.first_preview_secs.context("no preview time")? * 1e3);
         fulls.push(stats.first_full_secs.context("no full-sample time")? * 1e3);
     }
     emit(&format!(
-        "L1 scene={name} threads={threads} first_preview_ms={:.1}",
+        "L1 scene={name} integrator={kind} threads={threads} first_preview_ms={:.1}",
         median(&previews)
     ));
     emit(&format!(
-        "L2 scene={name} threads={threads} first_full_ms={:.1}",
+        "L2 scene={name} integrator={kind} threads={threads} first_full_ms={:.1}",
         median(&fulls)
     ));
     Ok(())
@@ -124,12 +129,12 @@ fn rss_mb() -> anyhow::Result<(f64, f64)> {
 }
 
 /// The restart storm on the built-in Cornell box.
-fn storm(threads: usize, changes: usize) -> anyhow::Result<()> {
+fn storm(kind: IntegratorKind, threads: usize, changes: usize) -> anyhow::Result<()> {
     let (scene, setup) = load_scene("cornell")?;
     let base = Vec3::from_array(setup.lights.first().context("no light")?.position);
     let extent = scene.bounds.extent();
     let session = RenderSession::new(threads, Arc::new(|| {}))?;
-    start_and_finish(&session, &scene, setup.clone())?;
+    start_and_finish(kind, &session, &scene, setup.clone())?;
     let (rss_before, hwm_before) = rss_mb()?;
     let mut rng = SplitMix64::new(0x5702_4D00);
     let mut last = setup.clone();
@@ -142,7 +147,7 @@ fn storm(threads: usize, changes: usize) -> anyhow::Result<()> {
         session.start(Snapshot {
             scene: Arc::clone(&scene),
             setup: last.clone(),
-            settings: settings(),
+            settings: settings(kind),
             time_limit: None,
         });
         start_ms.push(call.elapsed().as_secs_f64() * 1e3);
@@ -157,13 +162,13 @@ fn storm(threads: usize, changes: usize) -> anyhow::Result<()> {
     let shown = session
         .with_film(|f| f.map(|f| (f.generation, f.accum.clone())))
         .context("no film after the storm")?;
-    let (reference, _) = render(&scene, &last, &settings());
-    let bits = |f: &tracer_core::render::Film| -> Vec<[u32; 5]> {
+    let (reference, _) = render(&scene, &last, &settings(kind));
+    let bits = |f: &tracer_core::render::Film| -> Vec<[i128; 5]> {
         f.pixels
             .iter()
             .map(|p| {
-                let [r, g, b] = p.rgb.to_array().map(f32::to_bits);
-                [r, g, b, p.illuminance_lx.to_bits(), p.count]
+                let [r, g, b] = p.rgb;
+                [r, g, b, p.illuminance, i128::from(p.count)]
             })
             .collect()
     };
@@ -181,13 +186,13 @@ fn storm(threads: usize, changes: usize) -> anyhow::Result<()> {
 
 pub fn run(opts: &Options) -> anyhow::Result<()> {
     for &threads in &opts.threads {
-        latency("cornell", threads, opts.runs)?;
+        latency(opts.integrator, "cornell", threads, opts.runs)?;
         if crate::shared::shared_dir().is_some() {
-            latency("stanford-bunny", threads, opts.runs)?;
+            latency(opts.integrator, "stanford-bunny", threads, opts.runs)?;
         } else {
             emit("# bunny skipped: the shared folder was not found");
         }
     }
     let threads = opts.threads.iter().copied().max().unwrap_or(2);
-    storm(threads, opts.storm_changes)
+    storm(opts.integrator, threads, opts.storm_changes)
 }

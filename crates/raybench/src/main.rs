@@ -77,6 +77,9 @@ enum Command {
         /// Snapshots in the restart storm.
         #[arg(long, default_value_t = 1000)]
         changes: usize,
+        /// Light transport: direct or path.
+        #[arg(long, default_value = "direct", value_parser = parse_integrator)]
+        integrator: tracer_core::integrator::IntegratorKind,
     },
 }
 
@@ -88,6 +91,11 @@ fn mesh_options(args: MeshArgs) -> core::Options {
     }
 }
 
+fn parse_integrator(s: &str) -> Result<tracer_core::integrator::IntegratorKind, String> {
+    tracer_core::integrator::IntegratorKind::from_name(s)
+        .ok_or_else(|| format!("unknown integrator `{s}` (direct, path)"))
+}
+
 fn main() -> anyhow::Result<()> {
     match Cli::parse().command {
         Command::Core(args) => core::run(&mesh_options(args)),
@@ -97,10 +105,15 @@ fn main() -> anyhow::Result<()> {
             threads: common.threads,
             raygine,
         }),
-        Command::Interactive { common, changes } => interactive::run(&interactive::Options {
+        Command::Interactive {
+            common,
+            changes,
+            integrator,
+        } => interactive::run(&interactive::Options {
             runs: common.runs as usize,
             threads: common.threads,
             storm_changes: changes,
+            integrator,
         }),
     }
 }

@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 use tracer_core::display::{
     DisplaySettings, FalseColour, FalseColourQuantity, FalseColourScale, ToneMap,
 };
+use tracer_core::integrator::IntegratorKind;
 use tracer_core::render::RenderSettings;
 use tracer_core::scene::{Setup, Sidecar, framing_camera, sidecar_path};
 
@@ -38,6 +39,8 @@ pub struct AppOptions {
 /// Render preferences that restart the render when changed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderPrefs {
+    /// Light transport: global illumination by default in the viewer.
+    pub integrator: IntegratorKind,
     pub max_depth: u32,
     pub target_spp: u32,
     /// Film pixels per screen pixel (0.25 ..= 1).
@@ -148,6 +151,8 @@ impl RaygineApp {
             history: History::new(&doc.setup),
             doc,
             render: RenderPrefs {
+                integrator: IntegratorKind::from_name(&prefs.integrator)
+                    .unwrap_or_else(Self::default_integrator),
                 max_depth: prefs.max_depth.min(64),
                 target_spp: prefs.target_spp.clamp(1, 65_536),
                 resolution_scale: prefs.resolution_scale.clamp(0.25, 1.0),
@@ -203,6 +208,11 @@ impl RaygineApp {
         Ok(app)
     }
 
+    /// The light transport a new user starts with: global illumination.
+    pub fn default_integrator() -> IntegratorKind {
+        IntegratorKind::Path
+    }
+
     /// Starts loading a scene in the background; the current scene stays until it succeeds.
     pub fn open_path(&mut self, path: &Path) {
         self.loading = Some(PendingLoad::start(path, &self.ctx));
@@ -224,6 +234,8 @@ impl RaygineApp {
             height: self.viewport_px[1].max(1),
             samples_per_pixel: self.render.target_spp,
             max_depth: self.render.max_depth,
+            integrator: self.render.integrator,
+            max_bounces: None,
         }
     }
 
@@ -460,6 +472,8 @@ impl RaygineApp {
                 height: form.height.clamp(1, 16_384),
                 samples_per_pixel: form.samples.clamp(1, 65_536),
                 max_depth: self.render.max_depth,
+                integrator: self.render.integrator,
+                max_bounces: None,
             },
             time_limit: None,
         });
@@ -648,6 +662,7 @@ impl eframe::App for RaygineApp {
         self.prefs.tone_map = self.display.tone_map.name().to_owned();
         self.prefs.max_depth = self.render.max_depth;
         self.prefs.target_spp = self.render.target_spp;
+        self.prefs.integrator = self.render.integrator.name().to_owned();
         self.prefs.resolution_scale = self.render.resolution_scale;
         eframe::set_value(storage, PREFS_KEY, &self.prefs);
     }

@@ -4,6 +4,7 @@
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 use tracer_core::display::ToneMap;
+use tracer_core::integrator::IntegratorKind;
 use tracer_core::scene::LengthUnit;
 
 #[derive(Debug, Parser)]
@@ -29,11 +30,16 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene to a PNG (and optionally an EXR) without a window.
     Render(RenderArgs),
+    /// Measure the illuminance on the sidecar's [[grids]] and write it as CSV.
+    Measure(MeasureArgs),
 }
 
+/// Samples per pixel (or per sensor point) in path mode when `--samples` is not given.
+pub const PATH_DEFAULT_SAMPLES: u32 = 64;
+
+/// The scene and sampling options every command shares.
 #[derive(Debug, Args)]
-#[command(allow_negative_numbers = true)]
-pub struct RenderArgs {
+pub struct SceneArgs {
     /// Scene file (Lumicept .shp). Without it, the built-in Cornell box.
     #[arg(
         short = 'S',
@@ -42,6 +48,47 @@ pub struct RenderArgs {
         value_name = "PATH"
     )]
     pub scene_path: Option<PathBuf>,
+    /// Sidecar with materials, lights, camera and grids (default: NAME.raygine.toml beside the
+    /// scene).
+    #[arg(long, value_name = "PATH")]
+    pub sidecar: Option<PathBuf>,
+    /// Scene length unit: mm, cm or m (default: the sidecar's, else mm).
+    #[arg(long, value_name = "UNIT")]
+    pub units: Option<LengthUnit>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub threads: Option<u32>,
+    /// Light transport: direct (the coursework's model: direct light and mirrors) or path
+    /// (global illumination). Also spelled --gi.
+    #[arg(long, visible_alias = "gi", value_name = "direct|path", default_value = "direct", value_parser = parse_integrator)]
+    pub integrator: IntegratorKind,
+    /// Path mode: at most N diffuse or glossy bounces (1: direct light only; mirrors do not
+    /// count). Default: no limit.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100000))]
+    pub max_bounces: Option<u32>,
+    /// Samples per pixel or per sensor point (default: 1, 16 with -A; 64 in path mode). A cap
+    /// when --time-limit is given.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1048576))]
+    pub samples: Option<u32>,
+    /// Stop after this many seconds (between passes), with --samples as a cap.
+    #[arg(long, value_name = "SECS", value_parser = parse_seconds)]
+    pub time_limit: Option<f64>,
+}
+
+#[derive(Debug, Args)]
+pub struct MeasureArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Write every grid point's illuminance here (CSV).
+    #[arg(long, value_name = "PATH")]
+    pub csv: PathBuf,
+}
+
+#[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// Image width in pixels.
     #[arg(short = 'W', long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384))]
     pub width: u32,
@@ -62,10 +109,7 @@ pub struct RenderArgs {
         value_name = "PATH"
     )]
     pub render_path: Option<PathBuf>,
-    /// Samples per pixel (overrides -A).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
-    pub samples: Option<u32>,
-    /// Maximum mirror reflection depth.
+    /// Maximum mirror reflection depth (direct mode).
     #[arg(long, default_value_t = tracer_core::render::DEFAULT_MAX_DEPTH, value_parser = clap::value_parser!(u32).range(0..=64))]
     pub depth: u32,
     /// Exposure in stops (0: 100 cd/m² is display white). Default 0.
@@ -86,22 +130,34 @@ pub struct RenderArgs {
     /// the positional arguments).
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub look_at: Option<[f32; 3]>,
-    /// Scene length unit: mm, cm or m (default: the sidecar's, else mm).
-    #[arg(long, value_name = "UNIT")]
-    pub units: Option<LengthUnit>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
-    pub threads: Option<u32>,
     /// Also write the linear image (cd/m² per channel) as OpenEXR.
     #[arg(long, value_name = "PATH")]
     pub exr: Option<PathBuf>,
-    /// Sidecar with materials, lights and camera (default: NAME.raygine.toml beside the scene).
-    #[arg(long, value_name = "PATH")]
-    pub sidecar: Option<PathBuf>,
     /// Light position, camera position and vertical field of view (degrees):
     /// `lx ly lz cx cy cz cf`, or any prefix of them.
     #[arg(value_name = "LX LY LZ CX CY CZ CF", num_args = 0..=7)]
     pub positional: Vec<f32>,
+}
+
+fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
+    IntegratorKind::from_name(s).ok_or_else(|| format!("unknown integrator `{s}` (direct, path)"))
+}
+
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    s.parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .ok_or_else(|| format!("`{s}` is not a positive number of seconds"))
+}
+
+impl SceneArgs {
+    /// Samples per pixel or point: --samples, else `fallback` in direct mode, 64 in path mode.
+    pub fn samples_or(&self, fallback: u32) -> u32 {
+        self.samples.unwrap_or(match self.integrator {
+            IntegratorKind::Direct => fallback,
+            IntegratorKind::Path => PATH_DEFAULT_SAMPLES,
+        })
+    }
 }
 
 fn parse_tone_map(s: &str) -> Result<ToneMap, String> {

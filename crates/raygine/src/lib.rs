@@ -7,6 +7,7 @@ pub mod cli;
 pub mod document;
 pub mod file_ops;
 pub mod history;
+pub mod measure_cmd;
 pub mod panels;
 pub mod prefs;
 pub mod render_cmd;
@@ -23,6 +24,7 @@ pub fn run() -> ExitCode {
     let args = cli::Cli::parse();
     let result = match args.command {
         Some(cli::Command::Render(render)) => render_cmd::run(&render),
+        Some(cli::Command::Measure(measure)) => measure_cmd::run(&measure),
         None => viewer::run_viewer(app::AppOptions {
             scene: args.scene.clone(),
             threads: args.threads.unwrap_or(0) as usize,

@@ -16,6 +16,8 @@ pub struct Prefs {
     pub exposure_stops: f32,
     pub auto_exposure: bool,
     pub tone_map: String,
+    /// "path" (global illumination) or "direct".
+    pub integrator: String,
     pub max_depth: u32,
     pub target_spp: u32,
     pub resolution_scale: f32,
@@ -29,6 +31,9 @@ impl Default for Prefs {
             exposure_stops: 0.0,
             auto_exposure: false,
             tone_map: "filmic".to_owned(),
+            integrator: crate::app::RaygineApp::default_integrator()
+                .name()
+                .to_owned(),
             max_depth: tracer_core::render::DEFAULT_MAX_DEPTH,
             target_spp: 64,
             resolution_scale: 1.0,

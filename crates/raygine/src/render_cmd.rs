@@ -1,20 +1,21 @@
 //! `raygine render`: load a scene, apply the command line's overrides, render, write the image.
 
-use crate::cli::RenderArgs;
+use crate::cli::{RenderArgs, SceneArgs};
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tracer_core::display::{ChannelLut, DisplaySettings};
-use tracer_core::render::{Film, RenderSettings, render};
-use tracer_core::scene::{self, LoadOptions, LoadedScene, PointLight, luminance};
+use tracer_core::integrator::IntegratorKind;
+use tracer_core::render::{Film, RenderSettings, render_for};
+use tracer_core::scene::{self, LightKind, LoadOptions, LoadedScene, luminance};
 
 /// Samples per pixel of `-A/--antialiased`.
 pub const ANTIALIASED_SAMPLES: u32 = 16;
 
 /// Loads the scene the arguments name (the built-in Cornell box without one).
-pub fn load_scene(args: &RenderArgs) -> Result<LoadedScene> {
+pub fn load_scene(args: &SceneArgs) -> Result<LoadedScene> {
     match &args.scene_path {
         Some(path) => {
             let options = LoadOptions {
@@ -47,14 +48,12 @@ pub fn apply_overrides(loaded: &mut LoadedScene, args: &RenderArgs) -> Result<()
         bail!("at most 7 positional values: lx ly lz cx cy cz cf");
     }
     if !p.is_empty() || args.intensity.is_some() {
-        if setup.lights.is_empty() {
-            setup.lights.push(scene::default_light(
-                &loaded.scene,
-                setup.unit,
-                setup.camera.position,
-            ));
-        }
-        let light: &mut PointLight = &mut setup.lights[0];
+        let Some(light) = setup.lights.iter_mut().find(|l| l.kind == LightKind::Point) else {
+            bail!(
+                "-I and the positional light position address the first point light, \
+                 and the scene has none"
+            );
+        };
         for (i, v) in p.iter().take(3).enumerate() {
             light.position[i] = *v;
         }
@@ -94,22 +93,42 @@ pub fn default_render_path(scene_path: Option<&Path>) -> PathBuf {
     }
 }
 
+/// The render settings the shared options give (without size and depth).
+pub fn sampling_settings(args: &SceneArgs, direct_samples: u32) -> RenderSettings {
+    RenderSettings {
+        samples_per_pixel: args.samples_or(direct_samples),
+        integrator: args.integrator,
+        max_bounces: args.max_bounces,
+        ..RenderSettings::default()
+    }
+}
+
+/// A rayon pool of `--threads` workers (all cores by default).
+pub fn thread_pool(args: &SceneArgs) -> Result<rayon::ThreadPool> {
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = args.threads {
+        pool = pool.num_threads(n as usize);
+    }
+    pool.build().context("cannot start the render threads")
+}
+
 pub fn run(args: &RenderArgs) -> Result<()> {
     let started = Instant::now();
-    let mut loaded = load_scene(args)?;
+    let mut loaded = load_scene(&args.scene)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
     apply_overrides(&mut loaded, args)?;
+    let direct_samples = if args.antialiased {
+        ANTIALIASED_SAMPLES
+    } else {
+        1
+    };
     let settings = RenderSettings {
         width: args.width,
         height: args.height,
-        samples_per_pixel: args.samples.unwrap_or(if args.antialiased {
-            ANTIALIASED_SAMPLES
-        } else {
-            1
-        }),
         max_depth: args.depth,
+        ..sampling_settings(&args.scene, direct_samples)
     };
     let display = DisplaySettings {
         exposure_stops: args.exposure.unwrap_or(0.0),
@@ -123,18 +142,26 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let png_path = args
         .render_path
         .clone()
-        .unwrap_or_else(|| default_render_path(args.scene_path.as_deref()));
+        .unwrap_or_else(|| default_render_path(args.scene.scene_path.as_deref()));
     check_output_path(&png_path)?;
     if let Some(exr) = &args.exr {
         check_output_path(exr)?;
     }
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = args.threads {
-        pool = pool.num_threads(n as usize);
-    }
-    let pool = pool.build().context("cannot start the render threads")?;
+    let pool = thread_pool(&args.scene)?;
     let threads = pool.current_num_threads();
-    let (film, stats) = pool.install(|| render(&loaded.scene, &loaded.setup, &settings));
+    let time_limit = args
+        .scene
+        .time_limit
+        .map(std::time::Duration::from_secs_f64);
+    let (film, stats) =
+        pool.install(|| render_for(&loaded.scene, &loaded.setup, &settings, time_limit));
+    if film.rejected_samples() > 0 {
+        bail!(
+            "{} samples were not finite or beyond the film's range (2^62 cd/m² a sample); \
+             nothing was written",
+            film.rejected_samples()
+        );
+    }
     let rendered_at = Instant::now();
     let exposure = display.effective_exposure(&film);
     let image = pool.install(|| map_film_rgb(&film, &display, exposure));
@@ -143,18 +170,30 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         tracer_core::export::write_exr(exr, &film)?;
     }
     let scene = &loaded.scene;
+    let transport = match settings.integrator {
+        IntegratorKind::Direct => format!("direct, mirror depth {}", settings.max_depth),
+        IntegratorKind::Path => match settings.max_bounces {
+            Some(n) => format!("path, at most {n} bounces"),
+            None => "path, unlimited bounces".to_owned(),
+        },
+    };
     println!(
-        "{}: {} triangles, {} breps, BVH {:.1} ms; {}x{} px, {} spp, depth {}, {} threads",
+        "{}: {} triangles, {} breps, BVH {:.1} ms; {}x{} px, {} spp, {transport}, {} threads",
         scene.name,
         scene.triangle_count(),
         scene.breps.len(),
         scene.bvh_build_secs * 1e3,
         settings.width,
         settings.height,
-        settings.samples_per_pixel,
-        settings.max_depth,
+        stats.samples_per_pixel,
         threads
     );
+    if let Some(noise) = film.relative_noise() {
+        println!(
+            "remaining noise: {:.2} % (RMS standard error of pixel luminance / mean luminance)",
+            noise * 100.0
+        );
+    }
     println!(
         "rendered in {:.1} ms, {:.2} Mrays/s; luminance mean {:.3} cd/m², max {:.3} cd/m²; exposure {:+.2} stops",
         stats.elapsed_secs * 1e3,
@@ -220,12 +259,7 @@ pub fn map_film_rgb(film: &Film, display: &DisplaySettings, exposure_stops: f32)
         .map(|(out, sums)| {
             let (mut y_sum, mut y_max) = (0.0f64, 0.0f32);
             for (o, p) in out.chunks_exact_mut(3).zip(sums) {
-                let (mean, e) = if p.count == 0 {
-                    (Vec3::ZERO, 0.0)
-                } else {
-                    let n = p.count as f32;
-                    (p.rgb / n, p.illuminance_lx / n)
-                };
+                let (mean, e): (Vec3, f32) = (p.mean_rgb(), p.mean_illuminance());
                 let code = match &lut {
                     Some(lut) => [lut.code(mean.x), lut.code(mean.y), lut.code(mean.z)],
                     None => {

@@ -20,6 +20,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
+use tracer_core::integrator::IntegratorKind;
 use tracer_core::scene::framing_camera;
 
 /// Samples per pixel the tests render to: enough to be a real progressive render, fast in debug.
@@ -103,8 +104,38 @@ fn viewer() -> (Viewer, TextureMirror) {
             .unwrap()
         });
     h.state_mut().render.target_spp = TEST_SPP;
+    // UI mechanics are tested on the cheaper direct mode; `starts_in_global_illumination`
+    // covers the default.
+    h.state_mut().render.integrator = IntegratorKind::Direct;
     settle(&mut h);
     (h, mirror)
+}
+
+/// The viewer starts in global-illumination mode, and its film is brighter than direct light's
+/// (light reflected by the walls reaches the ceiling, which direct light misses but for the
+/// spot above the lamp).
+#[test]
+fn starts_in_global_illumination() {
+    let (mut h, _mirror) = viewer();
+    let mean = |h: &Viewer| {
+        h.state().worker.with_film(|f| {
+            let f = f.unwrap();
+            (0..f.accum.pixels.len())
+                .map(|i| f64::from(tracer_core::scene::luminance(f.shown_rgb(i))))
+                .sum::<f64>()
+        })
+    };
+    let direct = mean(&h);
+    assert_eq!(
+        RaygineApp::default_integrator(),
+        IntegratorKind::Path,
+        "a new user gets global illumination"
+    );
+    h.state_mut().render.integrator = IntegratorKind::Path;
+    h.state_mut().render.target_spp = 1;
+    settle(&mut h);
+    let gi = mean(&h);
+    assert!(gi > 1.3 * direct, "GI {gi} vs direct {direct}");
 }
 
 fn render_done(app: &RaygineApp) -> bool {
@@ -262,6 +293,9 @@ fn open(h: &mut Viewer, path: &Path) {
         path.display()
     );
     h.state_mut().render.target_spp = TEST_SPP;
+    // UI mechanics are tested on the cheaper direct mode; `starts_in_global_illumination`
+    // covers the default.
+    h.state_mut().render.integrator = IntegratorKind::Direct;
     settle(h);
 }
 
@@ -662,6 +696,8 @@ fn render_image_job_writes_the_chosen_size() {
         height: 120,
         samples_per_pixel: 3,
         max_depth: app.render.max_depth,
+        integrator: app.render.integrator,
+        max_bounces: None,
     };
     let (film, _) = tracer_core::render::render(&app.doc.scene, &app.doc.setup, &settings);
     let expected = app.effective_display().map_film(&film);

@@ -5,8 +5,10 @@
 use glam::Vec3;
 use std::f32::consts::PI;
 use tracer_core::Ray;
-use tracer_core::scene::{Camera, Handedness, LengthUnit, Material, PointLight, Scene, Setup};
-use tracer_core::shading::{Prepared, trace};
+use tracer_core::integrator::trace_direct;
+use tracer_core::sampling::SampleRng;
+use tracer_core::scene::{Camera, Handedness, LengthUnit, Light, Material, Scene, Setup};
+use tracer_core::shading::Prepared;
 use tracer_core::shp::{BrepDef, ShpDescription};
 
 /// A brep of quads (each 4 corners, counter-clockwise) split into triangles.
@@ -43,7 +45,7 @@ fn floor(s: f64) -> BrepDef {
     )
 }
 
-fn setup(scene: &Scene, unit: LengthUnit, lights: Vec<PointLight>, mats: Vec<Material>) -> Setup {
+fn setup(scene: &Scene, unit: LengthUnit, lights: Vec<Light>, mats: Vec<Material>) -> Setup {
     Setup {
         unit,
         handedness: Handedness::Left,
@@ -56,6 +58,7 @@ fn setup(scene: &Scene, unit: LengthUnit, lights: Vec<PointLight>, mats: Vec<Mat
         lights,
         hidden: vec![false; scene.slots.len()],
         materials: mats,
+        grids: Vec::new(),
     }
 }
 
@@ -64,20 +67,21 @@ fn diffuse(rho: f32) -> Material {
         kd: [rho; 3],
         ks: [0.0; 3],
         glossiness: 0.0,
+        ..Material::default()
     }
 }
 
-fn light(p: [f32; 3], cd: f32) -> PointLight {
-    PointLight {
-        position: p,
-        intensity_cd: cd,
-        color: [1.0; 3],
-    }
+fn light(p: [f32; 3], cd: f32) -> Light {
+    Light::point(p, cd)
 }
 
 /// Luminance seen along the ray from `eye` towards `target`.
 fn seen(prep: &Prepared<'_>, eye: Vec3, target: Vec3) -> (Vec3, f32) {
-    let s = trace(prep, &Ray::new(eye, (target - eye).normalize()));
+    let s = trace_direct(
+        prep,
+        &Ray::new(eye, (target - eye).normalize()),
+        &mut SampleRng::new(0, 0),
+    );
     (s.rgb, s.illuminance_lx)
 }
 
@@ -189,6 +193,7 @@ fn mirror_shows_the_wall_at_ks_times_its_luminance() {
         kd: [0.0; 3],
         ks: [0.5, 0.4, 0.3],
         glossiness: 0.0,
+        ..Material::default()
     };
     let st = setup(
         &sc,
@@ -226,6 +231,7 @@ fn blinn_phong_highlight_is_normalised() {
         kd: [0.0; 3],
         ks: [0.3; 3],
         glossiness: g,
+        ..Material::default()
     };
     let st = setup(
         &sc,

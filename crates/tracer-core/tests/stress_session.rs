@@ -63,6 +63,7 @@ fn base_snapshot(loaded: &LoadedScene, scene: &Arc<Scene>) -> Snapshot {
             height: 32,
             samples_per_pixel: 2,
             max_depth: 3,
+            ..RenderSettings::default()
         },
         time_limit: None,
     }
@@ -100,6 +101,7 @@ fn change(rng: &mut Rng, snap: &mut Snapshot) {
                 kd,
                 ks,
                 glossiness: rng.range(0.0, 50.0),
+                ..Material::default()
             };
         }
         4 => snap.settings.samples_per_pixel = 1 + rng.below(4) as u32,

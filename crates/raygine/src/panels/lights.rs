@@ -1,8 +1,9 @@
-//! Point lights: position (slider over the scene bounds and out to the camera, or typed), intensity (logarithmic, cd),
-//! colour; add and remove.
+//! Point and spot lights: kind, position (slider over the scene bounds and out to the camera,
+//! or typed), intensity (logarithmic, cd), spot axis and angles, colour; add and remove.
+//! Emissive surfaces are edited with their material.
 
 use crate::app::RaygineApp;
-use tracer_core::scene::{PointLight, default_light};
+use tracer_core::scene::{Light, LightKind, default_light};
 
 pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let b = app.doc.scene.bounds;
@@ -18,6 +19,17 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         ui.push_id(i, |ui| {
             ui.horizontal(|ui| {
                 ui.strong(format!("Light {}", i + 1));
+                egui::ComboBox::from_id_salt("kind")
+                    .selected_text(match light.kind {
+                        LightKind::Point => "point",
+                        LightKind::Spot => "spot",
+                    })
+                    .show_ui(ui, |ui| {
+                        ui.selectable_value(&mut light.kind, LightKind::Point, "point");
+                        ui.selectable_value(&mut light.kind, LightKind::Spot, "spot");
+                    })
+                    .response
+                    .on_hover_text("Point: the same intensity in every direction. Spot: a cone");
                 if ui
                     .small_button("Remove")
                     .on_hover_text("Remove this light")
@@ -43,7 +55,14 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                     .clamping(egui::SliderClamping::Never)
                     .text("intensity (cd)"),
             )
-            .on_hover_text("Luminous intensity in candela, the same in every direction");
+            .on_hover_text(match light.kind {
+                LightKind::Point => "Luminous intensity in candela, the same in every direction",
+                LightKind::Spot => "Luminous intensity in candela on the spot's axis",
+            });
+            if light.kind == LightKind::Spot {
+                spot_ui(ui, light);
+            }
+            ui.label(format!("flux {:.0} lm", light.flux_lm()));
             ui.horizontal(|ui| {
                 ui.color_edit_button_rgb(&mut light.color);
                 ui.label("colour (tint, normalised to luminance 1)");
@@ -61,11 +80,36 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         .on_hover_text("A new point light where a scene without a sidecar gets its light")
         .clicked()
     {
-        let light: PointLight = default_light(
+        let light: Light = default_light(
             &app.doc.scene,
             app.doc.setup.unit,
             app.doc.setup.camera.position,
         );
         app.doc.setup.lights.push(light);
+    }
+}
+
+/// The spot's axis and angles (degrees at this edge).
+fn spot_ui(ui: &mut egui::Ui, light: &mut Light) {
+    ui.horizontal(|ui| {
+        ui.label("aim");
+        for (axis, name) in ["x", "y", "z"].iter().enumerate() {
+            ui.add(
+                egui::DragValue::new(&mut light.aim[axis])
+                    .speed(0.01)
+                    .prefix(format!("{name} ")),
+            )
+            .on_hover_text("Direction of the spot's axis (any length)");
+        }
+    });
+    if glam::Vec3::from(light.aim).length_squared() <= 0.0 {
+        light.aim = [0.0, -1.0, 0.0];
+    }
+    ui.add(egui::Slider::new(&mut light.cone_deg, 0.0..=180.0).text("cone (°)"))
+        .on_hover_text("Half-angle of full intensity, degrees");
+    ui.add(egui::Slider::new(&mut light.falloff_deg, 0.0..=180.0).text("falloff (°)"))
+        .on_hover_text("Half-angle where the intensity reaches zero (smoothstep from the cone)");
+    if light.falloff_deg < light.cone_deg {
+        light.falloff_deg = light.cone_deg;
     }
 }

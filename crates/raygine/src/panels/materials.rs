@@ -2,6 +2,7 @@
 //! surface clicked in the viewport is selected here.
 
 use crate::app::RaygineApp;
+use tracer_core::light::EmissionSides;
 
 pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let scene = std::sync::Arc::clone(&app.doc.scene);
@@ -82,7 +83,34 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             .logarithmic(true)
             .text("glossiness"),
     )
-    .on_hover_text("Blinn-Phong exponent of the point lights' highlight (0: none)");
+    .on_hover_text(
+        "Blinn-Phong exponent of the Ks lobe: 0 makes Ks a perfect mirror; in direct mode it \
+         is the point lights' highlight",
+    );
+    ui.add(
+        egui::Slider::new(&mut m.emission_cd_m2, 0.0..=1.0e6)
+            .logarithmic(true)
+            .clamping(egui::SliderClamping::Never)
+            .text("emission (cd/m²)"),
+    )
+    .on_hover_text("Luminance this surface emits as a Lambertian light (0: not a light)");
+    if m.emission_cd_m2 > 0.0 {
+        ui.horizontal(|ui| {
+            ui.color_edit_button_rgb(&mut m.emission_color);
+            ui.label("emission colour (tint, normalised to luminance 1)");
+        });
+        egui::ComboBox::from_label("emitting faces")
+            .selected_text(sides_name(m.emission_sides))
+            .show_ui(ui, |ui| {
+                for s in [
+                    EmissionSides::Both,
+                    EmissionSides::Front,
+                    EmissionSides::Back,
+                ] {
+                    ui.selectable_value(&mut m.emission_sides, s, sides_name(s));
+                }
+            });
+    }
     let (clamped, changed) = m.clamped();
     if changed {
         *m = clamped;
@@ -90,5 +118,13 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             egui::Color32::YELLOW,
             "Kd + Ks was above 1: scaled down per channel",
         );
+    }
+}
+
+fn sides_name(s: EmissionSides) -> &'static str {
+    match s {
+        EmissionSides::Both => "both",
+        EmissionSides::Front => "front",
+        EmissionSides::Back => "back",
     }
 }

@@ -199,13 +199,21 @@ pub fn status_bar(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 "rendering"
             };
             ui.label(format!(
-                "{state} · {}/{} spp · {} · {:.1} Mrays/s · {:.1} s",
+                "{state} · {} · {}/{} spp · {} · {:.1} Mrays/s · {:.1} s",
+                app.render.integrator.label(),
                 s.samples_per_pixel,
                 s.target_spp,
                 s.pass,
                 s.mrays_per_sec(),
                 s.elapsed_secs
             ));
+            if let Some(noise) = s.relative_noise {
+                ui.label(format!("noise ±{:.1} %", noise * 100.0))
+                    .on_hover_text(
+                        "Remaining noise: RMS standard error of the pixels' luminance over the \
+                     mean luminance, from the summed squares of the samples",
+                    );
+            }
             ui.separator();
             ui.label(format!(
                 "{} tris · BVH {:.0} ms · parse {:.0} ms",

@@ -2,12 +2,28 @@
 
 use crate::app::RaygineApp;
 use tracer_core::display::{FalseColourQuantity, FalseColourScale, ToneMap};
+use tracer_core::integrator::IntegratorKind;
 
 pub fn render_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let r = &mut app.render;
-    ui.add(egui::Slider::new(&mut r.max_depth, 0..=16).text("max reflection depth"))
-        .on_hover_text("Mirror bounces traced after the camera ray");
+    egui::ComboBox::from_label("light transport")
+        .selected_text(r.integrator.label())
+        .show_ui(ui, |ui| {
+            for k in IntegratorKind::ALL {
+                ui.selectable_value(&mut r.integrator, k, k.label());
+            }
+        })
+        .response
+        .on_hover_text(
+            "Global illumination: all light, reflected any number of times (unbiased path \
+             tracing). Direct: the coursework's model, direct light and mirrors only.",
+        );
+    ui.add_enabled(
+        r.integrator == IntegratorKind::Direct,
+        egui::Slider::new(&mut r.max_depth, 0..=16).text("max reflection depth"),
+    )
+    .on_hover_text("Direct mode: mirror bounces traced after the camera ray");
     ui.add(
         egui::Slider::new(&mut r.target_spp, 1..=4096)
             .logarithmic(true)

@@ -135,11 +135,7 @@ mod tests {
 
     #[test]
     fn auto_exposure_maps_log_average_to_middle_grey() {
-        let mut film = Film::new(2, 1);
-        film.pixels[0].rgb = Vec3::splat(10.0);
-        film.pixels[0].count = 1;
-        film.pixels[1].rgb = Vec3::splat(1000.0);
-        film.pixels[1].count = 1;
+        let film = Film::from_values(2, 1, &[Vec3::splat(10.0), Vec3::splat(1000.0)], &[0.0; 2]);
         // log average = 100 cd/m², so 0.18 * 100 / 100 -> log2(0.18).
         let stops = auto_exposure_stops(&film);
         assert!((stops - 0.18f32.log2()).abs() < 1e-4, "{stops}");

@@ -1,23 +1,153 @@
-//! The HDR film: per-pixel sums of linear luminance (cd/m² per channel) and of the first hit's
-//! illuminance (lx), with a sample count, so the mean converges as samples accumulate.
+//! The HDR film: per-pixel sums of linear luminance (cd/m² per channel), of the first hit's
+//! illuminance (lx) and of the squared luminance, with a sample count, so the mean and its
+//! standard error converge as samples accumulate.
+//!
+//! Sums are exact: each sample is rounded once to fixed point and added as an integer, so a
+//! pixel's sum does not depend on the order its samples arrive in. Images are therefore
+//! bit-identical for any thread count, after restarts, and when sample ranges computed
+//! separately (in other processes, on other machines) are added with [`Film::merge`].
+//!
+//! Scales: luminance and illuminance in units of 2⁻³² cd/m² (lx), squared luminance in units of
+//! 2⁻¹⁶ (cd/m²)². One sample may be at most 2⁶² cd/m² (lx) and its luminance at most 2³⁹ cd/m²;
+//! a sample beyond that, or not a finite number, is not added: it is counted in
+//! [`PixelSum::rejected`] and the film reports it ([`Film::rejected_samples`]).
 
 use super::tiles::Tile;
-use crate::shading::Sample;
+use crate::integrator::Sample;
+use crate::light::LUMINANCE_WEIGHTS;
 use glam::Vec3;
 
-/// The sum of some samples of one pixel.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// Fixed-point units per cd/m² (and per lx).
+pub const VALUE_SCALE: f64 = 4_294_967_296.0; // 2^32
+/// Fixed-point units per (cd/m²)² of the squared-luminance sums.
+pub const SQUARE_SCALE: f64 = 65_536.0; // 2^16
+/// Largest fixed-point magnitude one sample may contribute (2^94): 2^33 samples fit in i128.
+const SAMPLE_LIMIT: f64 = 19_807_040_628_566_084_398_385_987_584.0;
+
+fn to_fixed(v: f64, scale: f64) -> Option<i128> {
+    let x = (v * scale).round();
+    (x.is_finite() && x.abs() < SAMPLE_LIMIT).then_some(x as i128)
+}
+
+fn from_fixed(x: i128, scale: f64) -> f64 {
+    x as f64 / scale
+}
+
+/// The exact sum of some samples of one pixel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PixelSum {
-    pub rgb: Vec3,
-    pub illuminance_lx: f32,
+    /// Σ luminance per channel, units of 2⁻³² cd/m².
+    pub rgb: [i128; 3],
+    /// Σ illuminance, units of 2⁻³² lx.
+    pub illuminance: i128,
+    /// Σ (Rec. 709 luminance)², units of 2⁻¹⁶ (cd/m²)².
+    pub luminance_sq: i128,
+    /// Samples added.
     pub count: u32,
+    /// Samples refused (not finite, or beyond the fixed-point range).
+    pub rejected: u32,
 }
 
 impl PixelSum {
-    pub fn add(&mut self, s: &Sample) {
-        self.rgb += s.rgb;
-        self.illuminance_lx += s.illuminance_lx;
-        self.count += 1;
+    /// Adds one sample; returns false (and counts it as rejected) when it cannot be represented.
+    pub fn add(&mut self, s: &Sample) -> bool {
+        let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
+        let fixed = (
+            to_fixed(f64::from(s.rgb.x), VALUE_SCALE),
+            to_fixed(f64::from(s.rgb.y), VALUE_SCALE),
+            to_fixed(f64::from(s.rgb.z), VALUE_SCALE),
+            to_fixed(f64::from(s.illuminance_lx), VALUE_SCALE),
+            to_fixed(y * y, SQUARE_SCALE),
+        );
+        let (Some(r), Some(g), Some(b), Some(e), Some(q)) = fixed else {
+            self.rejected += 1;
+            return false;
+        };
+        let sum = PixelSum {
+            rgb: [r, g, b],
+            illuminance: e,
+            luminance_sq: q,
+            count: 1,
+            rejected: 0,
+        };
+        self.merge(&sum)
+    }
+
+    /// Adds another sum of the same pixel; false when the result would overflow (the sum is
+    /// then unchanged and `other`'s samples are counted as rejected).
+    pub fn merge(&mut self, other: &PixelSum) -> bool {
+        let sum = (|| {
+            Some(PixelSum {
+                rgb: [
+                    self.rgb[0].checked_add(other.rgb[0])?,
+                    self.rgb[1].checked_add(other.rgb[1])?,
+                    self.rgb[2].checked_add(other.rgb[2])?,
+                ],
+                illuminance: self.illuminance.checked_add(other.illuminance)?,
+                luminance_sq: self.luminance_sq.checked_add(other.luminance_sq)?,
+                count: self.count.checked_add(other.count)?,
+                rejected: self.rejected.saturating_add(other.rejected),
+            })
+        })();
+        match sum {
+            Some(s) => {
+                *self = s;
+                true
+            }
+            None => {
+                self.rejected = self
+                    .rejected
+                    .saturating_add(other.count)
+                    .saturating_add(other.rejected);
+                false
+            }
+        }
+    }
+
+    /// Mean luminance per channel (cd/m²); black without samples.
+    pub fn mean_rgb(&self) -> Vec3 {
+        if self.count == 0 {
+            return Vec3::ZERO;
+        }
+        let n = f64::from(self.count);
+        Vec3::new(
+            (from_fixed(self.rgb[0], VALUE_SCALE) / n) as f32,
+            (from_fixed(self.rgb[1], VALUE_SCALE) / n) as f32,
+            (from_fixed(self.rgb[2], VALUE_SCALE) / n) as f32,
+        )
+    }
+
+    /// Mean illuminance (lx).
+    pub fn mean_illuminance(&self) -> f32 {
+        if self.count == 0 {
+            return 0.0;
+        }
+        (from_fixed(self.illuminance, VALUE_SCALE) / f64::from(self.count)) as f32
+    }
+
+    /// Mean Rec. 709 luminance (cd/m²), in f64.
+    pub fn mean_luminance(&self) -> f64 {
+        if self.count == 0 {
+            return 0.0;
+        }
+        let w = LUMINANCE_WEIGHTS.as_dvec3();
+        let sum = w.x * from_fixed(self.rgb[0], VALUE_SCALE)
+            + w.y * from_fixed(self.rgb[1], VALUE_SCALE)
+            + w.z * from_fixed(self.rgb[2], VALUE_SCALE);
+        sum / f64::from(self.count)
+    }
+
+    /// Standard error of the mean luminance (cd/m²) from the summed squares; None with fewer
+    /// than two samples.
+    pub fn luminance_std_error(&self) -> Option<f64> {
+        if self.count < 2 {
+            return None;
+        }
+        let n = f64::from(self.count);
+        let mean = self.mean_luminance();
+        let mean_sq = from_fixed(self.luminance_sq, SQUARE_SCALE) / n;
+        let var = (mean_sq - mean * mean).max(0.0) * n / (n - 1.0);
+        Some((var / n).sqrt())
     }
 }
 
@@ -27,6 +157,15 @@ pub struct Film {
     pub height: u32,
     /// Row-major, top row first.
     pub pixels: Vec<PixelSum>,
+}
+
+/// Why two films cannot be added.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum FilmError {
+    #[error("films of {0}x{1} and {2}x{3} pixels cannot be added")]
+    SizeMismatch(u32, u32, u32, u32),
+    #[error("pixel ({x}, {y}): the sum exceeds the film's fixed-point range")]
+    Overflow { x: u32, y: u32 },
 }
 
 impl Film {
@@ -46,40 +185,164 @@ impl Film {
     pub fn add_tile(&mut self, tile: &Tile, sums: &[PixelSum]) {
         for ((x, y), s) in tile.pixels().zip(sums) {
             let i = self.index(x, y);
-            let p = &mut self.pixels[i];
-            p.rgb += s.rgb;
-            p.illuminance_lx += s.illuminance_lx;
-            p.count += s.count;
+            self.pixels[i].merge(s);
         }
+    }
+
+    /// Adds every pixel of `other` (samples of the same image rendered separately). Exact: the
+    /// result does not depend on the order films are added in.
+    pub fn merge(&mut self, other: &Film) -> Result<(), FilmError> {
+        if (self.width, self.height) != (other.width, other.height) {
+            return Err(FilmError::SizeMismatch(
+                self.width,
+                self.height,
+                other.width,
+                other.height,
+            ));
+        }
+        for (i, (a, b)) in self.pixels.iter_mut().zip(&other.pixels).enumerate() {
+            if !a.merge(b) {
+                let w = self.width.max(1) as usize;
+                return Err(FilmError::Overflow {
+                    x: (i % w) as u32,
+                    y: (i / w) as u32,
+                });
+            }
+        }
+        Ok(())
     }
 
     /// Mean linear luminance per channel (cd/m²); black where no sample landed yet.
     pub fn mean_rgb(&self, i: usize) -> Vec3 {
-        let p = self.pixels[i];
-        if p.count == 0 {
-            Vec3::ZERO
-        } else {
-            p.rgb / p.count as f32
-        }
+        self.pixels[i].mean_rgb()
     }
 
     /// Mean illuminance (lx) on the surface seen in pixel `i`.
     pub fn mean_illuminance(&self, i: usize) -> f32 {
-        let p = self.pixels[i];
-        if p.count == 0 {
-            0.0
-        } else {
-            p.illuminance_lx / p.count as f32
-        }
+        self.pixels[i].mean_illuminance()
     }
 
     /// All mean colours, row-major.
     pub fn mean_rgb_all(&self) -> Vec<Vec3> {
-        (0..self.pixels.len()).map(|i| self.mean_rgb(i)).collect()
+        self.pixels.iter().map(PixelSum::mean_rgb).collect()
     }
 
     /// The fewest samples any pixel has.
     pub fn min_samples(&self) -> u32 {
         self.pixels.iter().map(|p| p.count).min().unwrap_or(0)
+    }
+
+    /// Samples refused anywhere (non-finite or out of range); should be 0.
+    pub fn rejected_samples(&self) -> u64 {
+        self.pixels.iter().map(|p| u64::from(p.rejected)).sum()
+    }
+
+    /// The remaining noise of the image: the root-mean-square standard error of the pixels'
+    /// luminance over their mean luminance, leaving out the 0.5 % brightest pixels (a light's
+    /// hot spot would otherwise stand for the whole picture, as in BENCHMARK.md's G1). Relative;
+    /// None before two samples per pixel or for a black image.
+    pub fn relative_noise(&self) -> Option<f64> {
+        let mut means: Vec<f64> = self.pixels.iter().map(PixelSum::mean_luminance).collect();
+        if means.is_empty() {
+            return None;
+        }
+        let drop = means.len() / 200;
+        let keep = means.len() - drop;
+        let cut = *means.select_nth_unstable_by(keep - 1, f64::total_cmp).1;
+        let (mut se2, mut sum, mut n) = (0.0f64, 0.0f64, 0usize);
+        for p in &self.pixels {
+            let y = p.mean_luminance();
+            if y <= cut && n < keep {
+                se2 += p.luminance_std_error()?.powi(2);
+                sum += y;
+                n += 1;
+            }
+        }
+        let n = n.max(1) as f64;
+        let mean = sum / n;
+        (mean > 0.0).then(|| (se2 / n).sqrt() / mean)
+    }
+
+    /// A film whose pixel `i` holds one sample of `rgb[i]` and `lx[i]` (for display mapping of
+    /// values that were not accumulated here).
+    pub fn from_values(width: u32, height: u32, rgb: &[Vec3], lx: &[f32]) -> Film {
+        let mut film = Film::new(width, height);
+        for (i, p) in film.pixels.iter_mut().enumerate() {
+            p.add(&Sample {
+                rgb: rgb.get(i).copied().unwrap_or_default(),
+                illuminance_lx: lx.get(i).copied().unwrap_or_default(),
+                rays: 0,
+            });
+        }
+        film
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    use super::*;
+
+    fn sample(v: f32) -> Sample {
+        Sample {
+            rgb: Vec3::new(v, 2.0 * v, 0.5 * v),
+            illuminance_lx: 3.0 * v,
+            rays: 1,
+        }
+    }
+
+    #[test]
+    fn sums_do_not_depend_on_order_and_keep_precision() {
+        let values: Vec<f32> = (0..1000)
+            .map(|i| ((i * 7919) % 1000) as f32 * 0.37 + 1e-3)
+            .collect();
+        let mut forward = PixelSum::default();
+        let mut backward = PixelSum::default();
+        for v in &values {
+            forward.add(&sample(*v));
+        }
+        for v in values.iter().rev() {
+            backward.add(&sample(*v));
+        }
+        assert_eq!(forward, backward);
+        let mut halves = PixelSum::default();
+        let mut second = PixelSum::default();
+        for v in &values[..400] {
+            halves.add(&sample(*v));
+        }
+        for v in &values[400..] {
+            second.add(&sample(*v));
+        }
+        assert!(halves.merge(&second));
+        assert_eq!(halves, forward);
+        let exact: f64 = values.iter().map(|v| f64::from(*v)).sum::<f64>() / 1000.0;
+        assert!((f64::from(forward.mean_rgb().x) / exact - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn standard_error_matches_the_textbook_formula() {
+        let mut p = PixelSum::default();
+        for v in [1.0f32, 2.0, 3.0, 4.0] {
+            p.add(&Sample {
+                rgb: Vec3::splat(v),
+                ..Sample::default()
+            });
+        }
+        // Sample variance of 1..4 is 5/3; the standard error is sqrt(5/3 / 4).
+        let se = p.luminance_std_error().unwrap_or(0.0);
+        assert!((se - (5.0f64 / 12.0).sqrt()).abs() < 1e-6, "{se}");
+    }
+
+    #[test]
+    fn values_out_of_range_are_rejected_and_counted() {
+        let mut p = PixelSum::default();
+        assert!(!p.add(&sample(f32::NAN)));
+        assert!(!p.add(&sample(f32::INFINITY)));
+        assert!(!p.add(&sample(1e30)));
+        assert!(p.add(&sample(1e9)));
+        assert_eq!((p.count, p.rejected), (1, 3));
+        let mut film = Film::new(1, 1);
+        film.pixels[0] = p;
+        assert_eq!(film.rejected_samples(), 3);
     }
 }

@@ -3,21 +3,24 @@
 
 mod film;
 mod passes;
+mod pixel;
 mod progressive_film;
 mod sampler;
 mod session;
 mod tiles;
 
-pub use film::{Film, PixelSum};
+pub use film::{Film, FilmError, PixelSum, SQUARE_SCALE, VALUE_SCALE};
 pub use passes::{PREVIEW_BLOCKS, Pass};
+pub use pixel::FrameSampler;
 pub use progressive_film::ProgressiveFilm;
 pub use sampler::{pixel_sample_offset, sample_hash};
 pub use session::{Notify, RenderSession, SessionStats, Snapshot};
 pub use tiles::{Tile, tiles_centre_out};
 
+use crate::integrator::IntegratorKind;
 use crate::scene::{Scene, Setup};
-use crate::shading::{Prepared, trace};
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// Default maximum number of mirror reflections.
 pub const DEFAULT_MAX_DEPTH: u32 = 5;
@@ -29,8 +32,12 @@ pub struct RenderSettings {
     pub height: u32,
     /// Samples per pixel: sample 0 at the pixel centre, later ones jittered.
     pub samples_per_pixel: u32,
-    /// Maximum mirror reflections after the camera ray.
+    /// Maximum mirror reflections after the camera ray (direct mode).
     pub max_depth: u32,
+    /// Light transport: direct (the coursework's model) or path (global illumination).
+    pub integrator: IntegratorKind,
+    /// Path mode: non-delta bounces allowed (None: unlimited, the unbiased answer).
+    pub max_bounces: Option<u32>,
 }
 
 impl Default for RenderSettings {
@@ -40,6 +47,8 @@ impl Default for RenderSettings {
             height: 720,
             samples_per_pixel: 1,
             max_depth: DEFAULT_MAX_DEPTH,
+            integrator: IntegratorKind::Direct,
+            max_bounces: None,
         }
     }
 }
@@ -49,6 +58,8 @@ impl Default for RenderSettings {
 pub struct RenderStats {
     pub rays: u64,
     pub elapsed_secs: f64,
+    /// Samples every pixel received (fewer than asked when a time limit stopped the render).
+    pub samples_per_pixel: u32,
 }
 
 impl RenderStats {
@@ -70,15 +81,57 @@ pub const TILE_SIZE: u32 = 32;
 pub const BAND_ROWS: u32 = 8;
 
 /// Renders every sample of every pixel on the current rayon pool. The result does not depend on
-/// the number of threads: each sample's position comes from (pixel, sample index) only, and each
-/// pixel's samples are summed in sample order by one thread.
+/// the number of threads (see [`render_samples`]).
 pub fn render(scene: &Scene, setup: &Setup, settings: &RenderSettings) -> (Film, RenderStats) {
+    render_samples(scene, setup, settings, 0..settings.samples_per_pixel.max(1))
+}
+
+/// Renders sample after sample of the whole image until `settings.samples_per_pixel` or until
+/// `time_limit` has passed (checked after each full pass, at least one pass). The film equals
+/// [`render`]'s with the number of samples reached.
+pub fn render_for(
+    scene: &Scene,
+    setup: &Setup,
+    settings: &RenderSettings,
+    time_limit: Option<std::time::Duration>,
+) -> (Film, RenderStats) {
+    let Some(limit) = time_limit else {
+        return render(scene, setup, settings);
+    };
     let started = std::time::Instant::now();
-    let prep = Prepared::new(scene, setup, settings.max_depth);
-    let basis = setup
-        .camera
-        .basis(setup.handedness, settings.width, settings.height);
-    let spp = settings.samples_per_pixel.max(1);
+    let mut film = Film::new(settings.width, settings.height);
+    let mut rays = 0;
+    let mut done = 0;
+    while done < settings.samples_per_pixel.max(1) {
+        let (pass, stats) = render_samples(scene, setup, settings, done..done + 1);
+        // Same size, one sample a pixel: only an overflow can fail, and it is counted as
+        // rejected samples in the film.
+        let _ = film.merge(&pass);
+        rays += stats.rays;
+        done += 1;
+        if started.elapsed() >= limit {
+            break;
+        }
+    }
+    let stats = RenderStats {
+        rays,
+        elapsed_secs: started.elapsed().as_secs_f64(),
+        samples_per_pixel: done,
+    };
+    (film, stats)
+}
+
+/// Renders sample indices `samples` of every pixel. Films of disjoint ranges added with
+/// [`Film::merge`] equal the film of their union, bit for bit: each sample depends on (pixel,
+/// sample index) only, and sums are exact integers.
+pub fn render_samples(
+    scene: &Scene,
+    setup: &Setup,
+    settings: &RenderSettings,
+    samples: Range<u32>,
+) -> (Film, RenderStats) {
+    let started = std::time::Instant::now();
+    let frame = FrameSampler::new(scene, setup, settings);
     let mut film = Film::new(settings.width, settings.height);
     let width = settings.width as usize;
     let band_len = width * BAND_ROWS as usize;
@@ -96,13 +149,7 @@ pub fn render(scene: &Scene, setup: &Setup, settings: &RenderSettings) -> (Film,
                     let row = (y - y0) as usize * width;
                     for x in x0..x1 {
                         let sum = &mut pixels[row + x as usize];
-                        for s in 0..spp {
-                            let (dx, dy) = pixel_sample_offset(x, y, settings.width, s);
-                            let ray = basis.ray(x as f32 + dx, y as f32 + dy);
-                            let sample = trace(&prep, &ray);
-                            band_rays += u64::from(sample.rays);
-                            sum.add(&sample);
-                        }
+                        band_rays += frame.add_samples(x, y, samples.clone(), sum);
                     }
                 }
             }
@@ -112,6 +159,7 @@ pub fn render(scene: &Scene, setup: &Setup, settings: &RenderSettings) -> (Film,
     let stats = RenderStats {
         rays,
         elapsed_secs: started.elapsed().as_secs_f64(),
+        samples_per_pixel: samples.len() as u32,
     };
     (film, stats)
 }

@@ -81,14 +81,9 @@ impl ProgressiveFilm {
 
     /// A plain film of what is shown (one "sample" per pixel), for display mapping and export.
     pub fn shown(&self) -> Film {
-        let mut film = Film::new(self.width(), self.height());
-        for (i, p) in film.pixels.iter_mut().enumerate() {
-            *p = PixelSum {
-                rgb: self.shown_rgb(i),
-                illuminance_lx: self.shown_illuminance(i),
-                count: 1,
-            };
-        }
-        film
+        let n = self.accum.pixels.len();
+        let rgb: Vec<Vec3> = (0..n).map(|i| self.shown_rgb(i)).collect();
+        let lx: Vec<f32> = (0..n).map(|i| self.shown_illuminance(i)).collect();
+        Film::from_values(self.width(), self.height(), &rgb, &lx)
     }
 }

@@ -9,11 +9,10 @@
 use super::RenderSettings;
 use super::film::PixelSum;
 use super::passes::Pass;
+use super::pixel::FrameSampler;
 use super::progressive_film::ProgressiveFilm;
-use super::sampler::pixel_sample_offset;
 use super::tiles::{Tile, tiles_centre_out};
-use crate::scene::{CameraBasis, Scene, Setup};
-use crate::shading::{Prepared, trace};
+use crate::scene::{Scene, Setup};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
@@ -50,6 +49,9 @@ pub struct SessionStats {
     pub finished: bool,
     pub paused: bool,
     pub threads: usize,
+    /// Remaining noise after the last full pass: RMS standard error of the pixels' luminance
+    /// over the mean luminance (None before two samples per pixel).
+    pub relative_noise: Option<f64>,
 }
 
 impl SessionStats {
@@ -319,11 +321,7 @@ fn run_generation(
     if !prepare_film(shared, generation, s) {
         return;
     }
-    let prep = Prepared::new(&snap.scene, &snap.setup, s.max_depth);
-    let basis = snap
-        .setup
-        .camera
-        .basis(snap.setup.handedness, s.width, s.height);
+    let frame = FrameSampler::new(&snap.scene, &snap.setup, s);
     let rays = AtomicU64::new(0);
     let mut pass = Some(Pass::first());
     while let Some(current) = pass {
@@ -340,8 +338,7 @@ fn run_generation(
         let ctx = PassContext {
             shared,
             generation,
-            prep: &prep,
-            basis: &basis,
+            frame: &frame,
             pass: current,
             rays: &rays,
         };
@@ -365,6 +362,13 @@ fn run_generation(
             }
             Pass::Full { index } => {
                 st.stats.samples_per_pixel = index + 1;
+                if index > 0 {
+                    st.stats.relative_noise = st
+                        .film
+                        .as_ref()
+                        .filter(|f| f.generation == generation)
+                        .and_then(|f| f.accum.relative_noise());
+                }
                 if index == 0 {
                     st.stats.first_full_secs = Some(elapsed);
                 }
@@ -423,8 +427,7 @@ fn full_frame(s: &RenderSettings) -> Tile {
 struct PassContext<'a> {
     shared: &'a Shared,
     generation: u64,
-    prep: &'a Prepared<'a>,
-    basis: &'a CameraBasis,
+    frame: &'a FrameSampler<'a>,
     pass: Pass,
     rays: &'a AtomicU64,
 }
@@ -470,7 +473,7 @@ impl PassContext<'_> {
                 };
                 let cx = (rect.x0 + rect.x1) as f32 * 0.5;
                 let cy = (rect.y0 + rect.y1) as f32 * 0.5;
-                let sample = trace(self.prep, &self.basis.ray(cx, cy));
+                let sample = self.frame.preview(cx, cy);
                 rays += u64::from(sample.rays);
                 blocks.push((rect, sample));
             }
@@ -486,17 +489,13 @@ impl PassContext<'_> {
     fn full_tile(&self, tile: &Tile, index: u32) {
         let mut sums = Vec::with_capacity(tile.pixel_count());
         let mut rays = 0u64;
-        let width = self.basis.width;
         for y in tile.y0..tile.y1 {
             if !self.shared.is_current(self.generation) {
                 return;
             }
             for x in tile.x0..tile.x1 {
-                let (dx, dy) = pixel_sample_offset(x, y, width, index);
-                let sample = trace(self.prep, &self.basis.ray(x as f32 + dx, y as f32 + dy));
-                rays += u64::from(sample.rays);
                 let mut sum = PixelSum::default();
-                sum.add(&sample);
+                rays += self.frame.add_samples(x, y, index..index + 1, &mut sum);
                 sums.push(sum);
             }
         }

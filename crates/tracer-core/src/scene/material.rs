@@ -1,5 +1,6 @@
 //! Surface materials: Lambertian diffuse plus a mirror with a normalised Blinn-Phong highlight.
 
+use crate::light::EmissionSides;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -20,6 +21,31 @@ pub struct Material {
     /// Blinn-Phong exponent g of the highlight of point lights (0: no highlight, mirror only).
     #[serde(default)]
     pub glossiness: f32,
+    /// Luminance the surface emits as a Lambertian emitter, cd/m² (0: not a light).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub emission_cd_m2: f32,
+    /// RGB tint of the emission, normalised to luminance 1 (so `emission_cd_m2` stays cd/m²).
+    #[serde(default = "white", skip_serializing_if = "is_white")]
+    pub emission_color: [f32; 3],
+    /// Which faces emit: both (default), front or back.
+    #[serde(default, skip_serializing_if = "is_both")]
+    pub emission_sides: EmissionSides,
+}
+
+fn is_zero(x: &f32) -> bool {
+    *x == 0.0
+}
+
+fn white() -> [f32; 3] {
+    [1.0; 3]
+}
+
+fn is_white(c: &[f32; 3]) -> bool {
+    *c == [1.0; 3]
+}
+
+fn is_both(s: &EmissionSides) -> bool {
+    *s == EmissionSides::Both
 }
 
 impl Default for Material {
@@ -29,6 +55,9 @@ impl Default for Material {
             kd: [0.7; 3],
             ks: [0.0; 3],
             glossiness: 0.0,
+            emission_cd_m2: 0.0,
+            emission_color: [1.0; 3],
+            emission_sides: EmissionSides::Both,
         }
     }
 }
@@ -40,6 +69,15 @@ impl Material {
 
     pub fn ks(&self) -> Vec3 {
         Vec3::from(self.ks)
+    }
+
+    /// Emitted luminance per channel (cd/m²): `emission_cd_m2` times the unit-luminance tint.
+    pub fn emission(&self) -> Vec3 {
+        if self.emission_cd_m2 > 0.0 && self.emission_cd_m2.is_finite() {
+            crate::light::unit_luminance_tint(self.emission_color) * self.emission_cd_m2
+        } else {
+            Vec3::ZERO
+        }
     }
 
     /// Clamps every value into its physical range (0..=1 reflectances, Kd + Ks <= 1 per channel
@@ -67,7 +105,22 @@ impl Material {
         } else {
             0.0
         };
-        let out = Material { kd, ks, glossiness };
+        let emission_cd_m2 = if self.emission_cd_m2.is_finite() {
+            self.emission_cd_m2.max(0.0)
+        } else {
+            0.0
+        };
+        let emission_color = self
+            .emission_color
+            .map(|c| if c.is_finite() { c.max(0.0) } else { 0.0 });
+        let out = Material {
+            kd,
+            ks,
+            glossiness,
+            emission_cd_m2,
+            emission_color,
+            emission_sides: self.emission_sides,
+        };
         (out, out != *self)
     }
 }
@@ -82,6 +135,7 @@ mod tests {
             kd: [0.8, 0.5, 2.0],
             ks: [0.4, 0.5, -1.0],
             glossiness: -3.0,
+            ..Material::default()
         };
         let (c, changed) = m.clamped();
         assert!(changed);

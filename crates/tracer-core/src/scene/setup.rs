@@ -3,7 +3,7 @@
 
 use super::camera::Camera;
 use super::geometry::Scene;
-use super::light::PointLight;
+use super::light::Light;
 use super::material::Material;
 use super::units::{Handedness, LengthUnit};
 
@@ -15,11 +15,13 @@ pub struct Setup {
     pub unit: LengthUnit,
     pub handedness: Handedness,
     pub camera: Camera,
-    pub lights: Vec<PointLight>,
+    pub lights: Vec<Light>,
     /// One material per slot of the scene (`Scene::slots`).
     pub materials: Vec<Material>,
     /// Slots not drawn (hidden breps). Indexed like `materials`.
     pub hidden: Vec<bool>,
+    /// Calculation grids measured by `raygine measure` and shown by the viewer.
+    pub grids: Vec<crate::measure::Grid>,
 }
 
 impl Setup {
@@ -35,6 +37,7 @@ impl Setup {
             lights: vec![default_light(scene, unit, camera.position)],
             materials: vec![Material::default(); slots],
             hidden: vec![false; slots],
+            grids: Vec::new(),
         }
     }
 
@@ -72,7 +75,7 @@ pub fn framing_camera(scene: &Scene, fov_deg: f32) -> Camera {
 /// and `eye` (the top centre is inside a closed mesh, which from inside looks like a room: ogre
 /// and nefertiti rendered black), it becomes the key light, and when that is hidden too, it
 /// goes to the eye itself.
-pub fn default_light(scene: &Scene, unit: LengthUnit, eye: [f32; 3]) -> PointLight {
+pub fn default_light(scene: &Scene, unit: LengthUnit, eye: [f32; 3]) -> Light {
     let b = scene.bounds;
     let height = b.extent().y;
     let c = b.center();
@@ -99,11 +102,7 @@ pub fn default_light(scene: &Scene, unit: LengthUnit, eye: [f32; 3]) -> PointLig
     };
     let d_m = (reach * unit.metres_per_unit()).max(1e-6);
     let intensity = 100.0 * std::f32::consts::PI * d_m * d_m / 0.7;
-    PointLight {
-        position: position.to_array(),
-        intensity_cd: round_2_significant(intensity),
-        color: [1.0; 3],
-    }
+    Light::point(position.to_array(), round_2_significant(intensity))
 }
 
 /// Whether `p`, just under the top centre, is under a ceiling with open space below (a room or

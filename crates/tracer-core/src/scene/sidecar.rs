@@ -27,10 +27,12 @@
 use super::camera::Camera;
 use super::error::SceneError;
 use super::geometry::Scene;
-use super::light::PointLight;
+use super::light_spec::{GridSpec, LightSpec};
 use super::material::Material;
 use super::setup::Setup;
 use super::units::{Handedness, LengthUnit};
+use crate::light::Light;
+use crate::measure::{Grid, GridError};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -45,7 +47,7 @@ pub struct Sidecar {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera: Option<Camera>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lights: Option<Vec<PointLight>>,
+    pub lights: Option<Vec<LightSpec>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub default_material: Option<Material>,
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
@@ -53,6 +55,9 @@ pub struct Sidecar {
     /// Breps (or `brep/part` keys) that are not drawn.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub hidden: Vec<String>,
+    /// Calculation grids (sensor rectangles).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub grids: Vec<GridSpec>,
 }
 
 fn set_material(
@@ -91,10 +96,44 @@ pub fn sidecar_path(scene_path: &Path) -> PathBuf {
 impl Sidecar {
     /// Parses sidecar text; errors name the file, line and column (toml's message).
     pub fn parse(text: &str, path: &Path) -> Result<Sidecar, SceneError> {
-        toml::from_str(text).map_err(|e| SceneError::Sidecar {
+        let sidecar: Sidecar = toml::from_str(text).map_err(|e| SceneError::Sidecar {
             path: path.to_owned(),
             message: e.to_string().trim_end().replace('\n', " "),
-        })
+        })?;
+        let invalid = |message: String| SceneError::Sidecar {
+            path: path.to_owned(),
+            message,
+        };
+        sidecar.model_lights().map_err(invalid)?;
+        sidecar.model_grids().map_err(invalid)?;
+        Ok(sidecar)
+    }
+
+    /// The lights as model values, or the first table's problem.
+    pub fn model_lights(&self) -> Result<Option<Vec<Light>>, String> {
+        self.lights
+            .as_ref()
+            .map(|specs| {
+                specs
+                    .iter()
+                    .enumerate()
+                    .map(|(i, s)| s.to_light(i))
+                    .collect::<Result<Vec<_>, _>>()
+            })
+            .transpose()
+    }
+
+    /// The grids as model values, or the first grid's problem (duplicate names too).
+    pub fn model_grids(&self) -> Result<Vec<Grid>, String> {
+        let mut grids: Vec<Grid> = Vec::with_capacity(self.grids.len());
+        for spec in &self.grids {
+            let g = spec.to_grid()?;
+            if grids.iter().any(|o| o.name == g.name) {
+                return Err(GridError::Duplicate(g.name).to_string());
+            }
+            grids.push(g);
+        }
+        Ok(grids)
     }
 
     /// Reads the sidecar if the file exists (`Ok(None)` when it does not).
@@ -135,8 +174,14 @@ impl Sidecar {
                 );
             }
         }
-        if let Some(lights) = &self.lights {
-            setup.lights.clone_from(lights);
+        match self.model_lights() {
+            Ok(Some(lights)) => setup.lights = lights,
+            Ok(None) => {}
+            Err(e) => warnings.push(format!("{e}; using the default light")),
+        }
+        match self.model_grids() {
+            Ok(grids) => setup.grids = grids,
+            Err(e) => warnings.push(format!("{e}; grids ignored")),
         }
         if let Some(m) = &self.default_material {
             let all: Vec<u32> = (0..scene.slots.len() as u32).collect();
@@ -160,10 +205,7 @@ impl Sidecar {
             }
         }
         for (i, light) in setup.lights.iter().enumerate() {
-            let valid = light.intensity_cd.is_finite()
-                && light.intensity_cd >= 0.0
-                && light.position.iter().all(|x| x.is_finite());
-            if !valid {
+            if !light.is_valid() {
                 warnings.push(format!(
                     "light {i}: position and intensity must be finite, intensity >= 0"
                 ));
@@ -201,10 +243,11 @@ impl Sidecar {
             unit: Some(setup.unit),
             handedness: Some(setup.handedness),
             camera: Some(setup.camera),
-            lights: Some(setup.lights.clone()),
+            lights: Some(setup.lights.iter().map(LightSpec::from_light).collect()),
             default_material: None,
             materials,
             hidden,
+            grids: setup.grids.iter().map(GridSpec::from_grid).collect(),
         }
     }
 

@@ -1,9 +1,11 @@
 //! Per-render constants derived once from a scene and its setup, so the per-ray code does no
-//! conversions: light tints scaled to luminance 1, Kd / π, highlight normalisation, unit factor.
+//! conversions: light tints scaled to luminance 1, spot profiles, Kd / π, highlight
+//! normalisation, emission, the emitter table, the unit factor and the front side.
 
 use crate::bvh::Hit;
 use crate::geometry::Ray;
-use crate::scene::{Scene, Setup};
+use crate::light::{EmissiveTriangle, EmitterTable, SpotProfile};
+use crate::scene::{Handedness, Scene, Setup};
 use glam::Vec3;
 
 #[derive(Clone, Copy, Debug)]
@@ -12,6 +14,18 @@ pub struct PreparedLight {
     pub intensity_cd: f32,
     /// Colour with Rec. 709 luminance 1.
     pub tint: Vec3,
+    /// The angular profile of a spot (None: isotropic).
+    pub spot: Option<SpotProfile>,
+}
+
+impl PreparedLight {
+    /// Intensity (cd) towards unit direction `dir` (from the light).
+    pub fn intensity_towards(&self, dir: Vec3) -> f32 {
+        match &self.spot {
+            None => self.intensity_cd,
+            Some(p) => self.intensity_cd * p.factor(dir),
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -21,6 +35,8 @@ pub struct PreparedMaterial {
     pub glossiness: f32,
     /// (g + 8) / (8π), the normalisation of the Blinn-Phong lobe.
     pub highlight_norm: f32,
+    /// Emitted luminance per channel, cd/m² (zero for surfaces that are not lights).
+    pub emission: Vec3,
 }
 
 /// Everything the integrator needs for one render.
@@ -29,6 +45,11 @@ pub struct Prepared<'a> {
     pub scene: &'a Scene,
     pub lights: Vec<PreparedLight>,
     pub materials: Vec<PreparedMaterial>,
+    /// Emissive triangles of drawn surfaces.
+    pub emitters: EmitterTable,
+    /// +1 when the front normal is (v1 − v0) × (v2 − v0) (right-handed scenes), −1 when it is
+    /// its negation (left-handed, as `.shp` files are mirror images).
+    pub front_sign: f32,
     /// (metres per scene unit)², to turn squared scene distances into m².
     pub metres_per_unit_sq: f32,
     /// Offset of secondary ray origins along the normal, scene units.
@@ -49,29 +70,39 @@ impl<'a> Prepared<'a> {
                 position: l.position(),
                 intensity_cd: l.intensity_cd.max(0.0),
                 tint: l.tint(),
+                spot: l.spot_profile(),
             })
             .collect();
-        let materials = (0..scene.slots.len())
+        let clamped: Vec<_> = (0..scene.slots.len())
             .map(|slot| {
-                let m = setup
+                setup
                     .materials
                     .get(slot)
                     .copied()
                     .unwrap_or_default()
                     .clamped()
-                    .0;
-                PreparedMaterial {
-                    kd_over_pi: m.kd() / std::f32::consts::PI,
-                    ks: m.ks(),
-                    glossiness: m.glossiness,
-                    highlight_norm: (m.glossiness + 8.0) / (8.0 * std::f32::consts::PI),
-                }
+                    .0
+            })
+            .collect();
+        let materials: Vec<PreparedMaterial> = clamped
+            .iter()
+            .map(|m| PreparedMaterial {
+                kd_over_pi: m.kd() / std::f32::consts::PI,
+                ks: m.ks(),
+                glossiness: m.glossiness,
+                highlight_norm: (m.glossiness + 8.0) / (8.0 * std::f32::consts::PI),
+                emission: m.emission(),
             })
             .collect();
         let mpu = setup.unit.metres_per_unit();
         let hidden: Vec<bool> = (0..scene.slots.len())
             .map(|s| setup.is_hidden(s as u32))
             .collect();
+        let front_sign = match setup.handedness {
+            Handedness::Right => 1.0,
+            Handedness::Left => -1.0,
+        };
+        let emitters = emitter_table(scene, &clamped, &materials, &hidden, front_sign);
         // Relative to the scene's size and its distance from the origin (f32 precision).
         let b = scene.bounds;
         let scale = b
@@ -82,6 +113,8 @@ impl<'a> Prepared<'a> {
             scene,
             lights,
             materials,
+            emitters,
+            front_sign,
             metres_per_unit_sq: mpu * mpu,
             epsilon: (scale * 2e-5).max(1e-6),
             max_depth,
@@ -114,8 +147,46 @@ impl<'a> Prepared<'a> {
         self.closest_visible(&ray).is_some()
     }
 
+    /// The unit front normal of triangle `prim` (see `front_sign`).
+    pub fn front_normal(&self, prim: u32) -> Vec3 {
+        self.scene.normals[prim as usize] * self.front_sign
+    }
+
+    /// The material of triangle `prim`.
+    pub fn material_of(&self, prim: u32) -> &PreparedMaterial {
+        &self.materials[self.scene.triangle_slots[prim as usize] as usize]
+    }
+
     fn is_hidden_prim(&self, prim: u32) -> bool {
         let slot = self.scene.triangle_slots[prim as usize] as usize;
         self.hidden[slot]
     }
+}
+
+/// The emitter table of every drawn triangle whose material emits.
+fn emitter_table(
+    scene: &Scene,
+    models: &[crate::scene::Material],
+    materials: &[PreparedMaterial],
+    hidden: &[bool],
+    front_sign: f32,
+) -> EmitterTable {
+    let emissive = |slot: usize| materials[slot].emission.max_element() > 0.0 && !hidden[slot];
+    if !(0..materials.len()).any(emissive) {
+        return EmitterTable::default();
+    }
+    let triangles: Vec<EmissiveTriangle> = scene
+        .triangle_slots
+        .iter()
+        .enumerate()
+        .filter(|(_, slot)| emissive(**slot as usize))
+        .map(|(t, &slot)| EmissiveTriangle {
+            triangle: t as u32,
+            vertices: scene.triangles[t],
+            front: scene.normals[t] * front_sign,
+            radiance: materials[slot as usize].emission,
+            sides: models[slot as usize].emission_sides,
+        })
+        .collect();
+    EmitterTable::new(scene.triangles.len(), &triangles)
 }

@@ -1,0 +1,114 @@
+//! The coursework's model, extended to every light kind: direct light with hard shadows,
+//! `L = Σ E · (Kd/π + Ks (g+8)/(8π) (n·h)^g) + Ks · L_reflected`, mirrors traced to a depth
+//! limit, and emissive surfaces seen directly or sampled as lights.
+//!
+//! - Point and spot lights: `E = I(ω) cos θ / R²`, exact, one shadow ray each.
+//! - Emissive triangles: one light sample per shading point (an unbiased estimate of their
+//!   direct illuminance), picked by flux.
+
+use super::Sample;
+use crate::geometry::Ray;
+use crate::sampling::SampleRng;
+use crate::shading::{Prepared, PreparedMaterial, facing_normal};
+use glam::Vec3;
+
+/// Luminance arriving along the camera ray `ray`, with the first hit's direct illuminance.
+pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
+    let mut sample = Sample::default();
+    let mut ray = *ray;
+    // Throughput: the product of Ks along the mirror chain so far.
+    let mut weight = Vec3::ONE;
+    for depth in 0..=prep.max_depth {
+        sample.rays += 1;
+        let Some(hit) = prep.closest_visible(&ray) else {
+            break;
+        };
+        let p = ray.at(hit.t);
+        let n = facing_normal(prep, &hit, ray.dir);
+        let mat = prep.material_of(hit.prim);
+        let view = -ray.dir.normalize();
+        if mat.emission.max_element() > 0.0 {
+            sample.rgb += weight * prep.emitters.radiance(hit.prim, view);
+        }
+        let origin = p + n * prep.epsilon;
+        let (direct, e_total, rays) = direct_light(prep, mat, p, n, view, origin, rng);
+        sample.rays += rays;
+        if depth == 0 {
+            sample.illuminance_lx = e_total;
+        }
+        sample.rgb += weight * direct;
+        weight *= mat.ks;
+        if depth == prep.max_depth || weight.max_element() <= 0.0 {
+            break;
+        }
+        let d = ray.dir.normalize();
+        let reflected = d - n * (2.0 * d.dot(n));
+        ray = Ray::new(origin, reflected);
+    }
+    sample
+}
+
+/// Reflected direct luminance (cd/m² per channel), illuminance (lx) and rays traced at `p`.
+fn direct_light(
+    prep: &Prepared<'_>,
+    mat: &PreparedMaterial,
+    p: Vec3,
+    n: Vec3,
+    view: Vec3,
+    origin: Vec3,
+    rng: &mut SampleRng,
+) -> (Vec3, f32, u32) {
+    let brdf = |wi: Vec3| {
+        let mut f = mat.kd_over_pi;
+        if mat.glossiness > 0.0 {
+            let h = (wi + view).normalize_or_zero();
+            let n_dot_h = n.dot(h).max(0.0);
+            f += mat.ks * (mat.highlight_norm * n_dot_h.powf(mat.glossiness));
+        }
+        f
+    };
+    let mut direct = Vec3::ZERO;
+    let mut e_total = 0.0;
+    let mut rays = 0;
+    for light in &prep.lights {
+        let to_light = light.position - p;
+        let dist2 = to_light.length_squared();
+        if dist2 <= 0.0 {
+            continue;
+        }
+        let wi = to_light / dist2.sqrt();
+        let cos_theta = n.dot(wi);
+        if cos_theta <= 0.0 {
+            continue;
+        }
+        let intensity = light.intensity_towards(-wi);
+        if intensity <= 0.0 {
+            continue;
+        }
+        rays += 1;
+        if prep.occluded(origin, light.position - origin) {
+            continue;
+        }
+        // E = I cos θ / R², R converted to metres.
+        let e = intensity * cos_theta / (dist2 * prep.metres_per_unit_sq);
+        e_total += e;
+        direct += light.tint * e * brdf(wi);
+    }
+    if !prep.emitters.is_empty() {
+        let u_pick = rng.next_f32();
+        let (u, v) = rng.next_2d();
+        if let Some(s) = prep.emitters.sample(p, u_pick, u, v) {
+            let cos_theta = n.dot(s.wi);
+            if cos_theta > 0.0 && s.radiance.max_element() > 0.0 {
+                rays += 1;
+                if !prep.occluded(origin, s.point - origin) {
+                    // dE = L cos θ dω: the sample estimates ∫ L cos θ dω over the emitters.
+                    let e_rgb = s.radiance * (cos_theta / s.pdf_solid_angle);
+                    e_total += crate::light::luminance(e_rgb);
+                    direct += e_rgb * brdf(s.wi);
+                }
+            }
+        }
+    }
+    (direct, e_total, rays)
+}

@@ -1,0 +1,301 @@
+//! The path tracer: global illumination, unbiased.
+//!
+//! - Next-event estimation at every non-delta vertex: every point and spot light (one shadow
+//!   ray each, exact) and one sample of the emissive triangles, combined with BSDF sampling by
+//!   multiple importance sampling (power heuristic).
+//! - Russian roulette instead of a bounce cap: once a path's throughput falls below
+//!   [`RR_THRESHOLD`] it survives with probability throughput / threshold and is reweighted, so
+//!   the expected value is unchanged. [`MAX_VERTICES`] only guards against lossless enclosures
+//!   (reflectance 1), which would never end; a room of reflectance 0.9 reaches it with
+//!   probability below 1e-180. Sample 0 of every pixel starts the roulette at once (threshold
+//!   1): shorter paths, more noise, the same expected value, so the first full-resolution pass
+//!   of the viewer arrives sooner.
+//! - `max_bounces` (None: unlimited) counts non-delta scattering events: 1 is direct light
+//!   only. Mirror reflections do not count, as in direct mode, whose mirror depth is its own.
+//! - Pixel illuminance: the irradiance of the first surface seen, estimated like a sensor (light
+//!   sampling with MIS against cosine sampling, and a cosine-sampled path for the rest). On a
+//!   purely Lambertian surface the same estimate gives the luminance, `L = Le + Kd/π · E`, so
+//!   one path serves both.
+
+use super::Sample;
+use crate::geometry::Ray;
+use crate::light::luminance;
+use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
+use crate::shading::{Bsdf, Prepared, facing_normal};
+use glam::Vec3;
+use std::f32::consts::PI;
+
+/// Throughput below which Russian roulette starts.
+pub const RR_THRESHOLD: f32 = 0.05;
+
+/// Hard limit on vertices per path (see the module docs).
+pub const MAX_VERTICES: u32 = 4096;
+
+/// A surface point a path has reached.
+#[derive(Clone, Copy, Debug)]
+struct Vertex {
+    prim: u32,
+    /// The surface point itself (distances to lights are measured from here).
+    point: Vec3,
+    /// Origin for rays leaving the facing side.
+    origin: Vec3,
+    /// Unit normal facing `wo`.
+    n: Vec3,
+    /// Unit direction back along the arriving ray.
+    wo: Vec3,
+}
+
+/// How the ray that arrives at a vertex was chosen, for the MIS weight of emission found there.
+#[derive(Clone, Copy, Debug)]
+enum Came {
+    /// From the camera or a mirror: light sampling could not have produced it.
+    Delta,
+    /// Sampled with this solid-angle density at a vertex that also sampled the emitters.
+    Pdf(f32),
+}
+
+/// A path tracer over a prepared scene.
+#[derive(Clone, Copy, Debug)]
+pub struct PathTracer<'p, 'a> {
+    pub prep: &'p Prepared<'a>,
+    /// Non-delta bounces allowed (u32::MAX: unlimited).
+    pub max_bounces: u32,
+    /// Throughput below which Russian roulette starts ([`RR_THRESHOLD`]; 1 for the cheaper
+    /// first pass, which is just as unbiased).
+    pub rr_threshold: f32,
+}
+
+fn power_heuristic(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
+}
+
+impl PathTracer<'_, '_> {
+    /// Luminance along the camera ray `ray` and the illuminance of the first surface it meets.
+    pub fn trace(&self, ray: &Ray, rng: &mut SampleRng) -> Sample {
+        let mut sample = Sample::default();
+        let mut rays = 0u32;
+        let Some((v, le)) = self.arrive(ray, Came::Delta, &mut rays) else {
+            sample.rays = rays;
+            return sample;
+        };
+        let mat = self.prep.material_of(v.prim);
+        if self.max_bounces == 0 {
+            sample.rgb = le;
+            sample.rays = rays;
+            return sample;
+        }
+        let p = v.point;
+        if mat.ks.max_element() <= 0.0 {
+            let e = self.irradiance(p, v.n, rng, &mut rays);
+            sample.rgb = le + mat.kd_over_pi * e;
+            sample.illuminance_lx = luminance(e);
+        } else {
+            let reflected = self.continue_at(v, 0, rng, &mut rays);
+            sample.rgb = le + reflected;
+            let e = self.irradiance(p, v.n, &mut rng.split(1), &mut rays);
+            sample.illuminance_lx = luminance(e);
+        }
+        sample.rays = rays;
+        sample
+    }
+
+    /// Irradiance (per channel; its luminance is the illuminance in lx) arriving at `p` from
+    /// the side of unit normal `n`, counting this point as one bounce. Blocks no light; rays
+    /// leave from just above `p` so a surface at `p` does not shadow it.
+    pub fn irradiance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
+        let prep = self.prep;
+        let mut e = Vec3::ZERO;
+        if self.max_bounces == 0 {
+            return e;
+        }
+        let origin = p + n * prep.epsilon;
+        for light in &prep.lights {
+            let to_light = light.position - p;
+            let dist2 = to_light.length_squared();
+            if dist2 <= 0.0 {
+                continue;
+            }
+            let wi = to_light / dist2.sqrt();
+            let cos = n.dot(wi);
+            let intensity = light.intensity_towards(-wi);
+            if cos <= 0.0 || intensity <= 0.0 {
+                continue;
+            }
+            *rays += 1;
+            if !prep.occluded(origin, light.position - origin) {
+                e += light.tint * (intensity * cos / (dist2 * prep.metres_per_unit_sq));
+            }
+        }
+        if !prep.emitters.is_empty() {
+            let u_pick = rng.next_f32();
+            let (u, v) = rng.next_2d();
+            if let Some(s) = prep.emitters.sample(origin, u_pick, u, v) {
+                let cos = n.dot(s.wi);
+                if cos > 0.0 && s.radiance.max_element() > 0.0 {
+                    *rays += 1;
+                    if !prep.occluded(origin, s.point - origin) {
+                        let w = power_heuristic(s.pdf_solid_angle, cos / PI);
+                        e += s.radiance * (cos * w / s.pdf_solid_angle);
+                    }
+                }
+            }
+        }
+        let (u, v) = rng.next_2d();
+        let wi = to_world(cosine_hemisphere(u, v), n);
+        let cos = n.dot(wi);
+        if cos > 0.0 {
+            // cos θ / pdf = π for cosine sampling.
+            let l_in = self.incoming(&Ray::new(origin, wi), Came::Pdf(cos / PI), 1, rng, rays);
+            e += l_in * PI;
+        }
+        e
+    }
+
+    /// Luminance arriving along `ray` (unit direction), which left a vertex after `bounces`
+    /// non-delta bounces.
+    fn incoming(
+        &self,
+        ray: &Ray,
+        came: Came,
+        bounces: u32,
+        rng: &mut SampleRng,
+        rays: &mut u32,
+    ) -> Vec3 {
+        match self.arrive(ray, came, rays) {
+            Some((v, le)) => le + self.continue_at(v, bounces, rng, rays),
+            None => Vec3::ZERO,
+        }
+    }
+
+    /// Traces `ray` to the next drawn surface; returns the vertex and the MIS-weighted emission
+    /// seen there.
+    fn arrive(&self, ray: &Ray, came: Came, rays: &mut u32) -> Option<(Vertex, Vec3)> {
+        let prep = self.prep;
+        *rays += 1;
+        let hit = prep.closest_visible(ray)?;
+        let dir = ray.dir.normalize();
+        let p = ray.at(hit.t);
+        let n = facing_normal(prep, &hit, dir);
+        let wo = -dir;
+        let mat = prep.material_of(hit.prim);
+        let mut le = Vec3::ZERO;
+        if mat.emission.max_element() > 0.0 {
+            let radiance = prep.emitters.radiance(hit.prim, wo);
+            let w = match came {
+                Came::Delta => 1.0,
+                Came::Pdf(pdf) => {
+                    let distance = hit.t * ray.dir.length();
+                    power_heuristic(pdf, prep.emitters.pdf(hit.prim, dir, distance))
+                }
+            };
+            le = radiance * w;
+        }
+        let v = Vertex {
+            prim: hit.prim,
+            point: p,
+            origin: p + n * prep.epsilon,
+            n,
+            wo,
+        };
+        Some((v, le))
+    }
+
+    /// Luminance reflected at `v` towards `v.wo`, by a path continued from it; `bounces` is the
+    /// number of non-delta bounces before `v`.
+    fn continue_at(&self, v: Vertex, bounces: u32, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
+        let prep = self.prep;
+        let mut l = Vec3::ZERO;
+        let mut beta = Vec3::ONE;
+        let mut v = v;
+        let mut bounces = bounces;
+        for _ in 0..MAX_VERTICES {
+            let bsdf = Bsdf::new(prep.material_of(v.prim));
+            if bsdf.is_black() {
+                break;
+            }
+            let smooth_allowed = bounces < self.max_bounces;
+            if smooth_allowed && bsdf.has_smooth_lobe() {
+                l += beta * self.next_event(&bsdf, &v, rng, rays);
+            }
+            let Some(s) = bsdf.sample(v.n, v.wo, rng) else {
+                break;
+            };
+            if !s.delta {
+                if !smooth_allowed {
+                    break;
+                }
+                bounces += 1;
+            }
+            beta *= s.weight;
+            let m = beta.max_element();
+            if m.is_nan() || m <= 0.0 || !m.is_finite() {
+                break;
+            }
+            if m < self.rr_threshold {
+                let survive = m / self.rr_threshold;
+                if rng.next_f32() >= survive {
+                    break;
+                }
+                beta /= survive;
+            }
+            let came = if s.delta {
+                Came::Delta
+            } else {
+                Came::Pdf(s.pdf)
+            };
+            let Some((next, le)) = self.arrive(&Ray::new(v.origin, s.wi), came, rays) else {
+                break;
+            };
+            l += beta * le;
+            v = next;
+        }
+        l
+    }
+
+    /// Light sampled at `v` and reflected towards `v.wo` by the smooth lobes.
+    fn next_event(&self, bsdf: &Bsdf, v: &Vertex, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
+        let prep = self.prep;
+        let mut l = Vec3::ZERO;
+        for light in &prep.lights {
+            let to_light = light.position - v.point;
+            let dist2 = to_light.length_squared();
+            if dist2 <= 0.0 {
+                continue;
+            }
+            let wi = to_light / dist2.sqrt();
+            let cos = v.n.dot(wi);
+            let intensity = light.intensity_towards(-wi);
+            if cos <= 0.0 || intensity <= 0.0 {
+                continue;
+            }
+            let f = bsdf.eval(v.n, v.wo, wi);
+            if f.max_element() <= 0.0 {
+                continue;
+            }
+            *rays += 1;
+            if !prep.occluded(v.origin, light.position - v.origin) {
+                let e = intensity * cos / (dist2 * prep.metres_per_unit_sq);
+                l += f * light.tint * e;
+            }
+        }
+        if !prep.emitters.is_empty() {
+            let u_pick = rng.next_f32();
+            let (a, b) = rng.next_2d();
+            if let Some(s) = prep.emitters.sample(v.origin, u_pick, a, b) {
+                let cos = v.n.dot(s.wi);
+                if cos > 0.0 && s.radiance.max_element() > 0.0 {
+                    let f = bsdf.eval(v.n, v.wo, s.wi);
+                    if f.max_element() > 0.0 {
+                        *rays += 1;
+                        if !prep.occluded(v.origin, s.point - v.origin) {
+                            let w = power_heuristic(s.pdf_solid_angle, bsdf.pdf(v.n, v.wo, s.wi));
+                            l += f * s.radiance * (cos * w / s.pdf_solid_angle);
+                        }
+                    }
+                }
+            }
+        }
+        l
+    }
+}

@@ -1,0 +1,9 @@
+//! Sensors and calculation grids: the illuminance at points with a normal, with its standard
+//! error. Sensors block no light; each point's estimate comes from the integrator's irradiance
+//! estimator, sampled with streams keyed by (grid, point, sample index).
+
+mod grid;
+mod sensors;
+
+pub use grid::{Grid, GridError, SensorPoint};
+pub use sensors::{GridResult, MeasureSettings, PointResult, measure_grids};

@@ -1,0 +1,219 @@
+//! The sidecar's serde form of lights and grids, kept apart from the model types so the file can
+//! say things in the user's terms (flux or intensity, optional fields) and be checked once.
+//!
+//! ```toml
+//! [[lights]]                 # kind defaults to "point"
+//! position = [0.0, 2.9, 0.0]
+//! flux_lm = 1000.0           # or intensity_cd, not both
+//!
+//! [[lights]]
+//! kind = "spot"
+//! position = [0.0, 2.9, 0.0]
+//! aim = [0.0, -1.0, 0.0]
+//! intensity_cd = 500.0       # on the axis
+//! cone_deg = 20.0            # full intensity out to here
+//! falloff_deg = 35.0         # zero from here (default: cone_deg)
+//!
+//! [[grids]]
+//! name = "floor"
+//! origin = [0.0, 0.0, 0.0]
+//! u = [4.0, 0.0, 0.0]
+//! v = [0.0, 0.0, 4.0]
+//! nu = 8
+//! nv = 8
+//! normal = [0.0, 1.0, 0.0]   # default: u × v normalised
+//! ```
+
+use crate::light::{Light, LightKind};
+use crate::measure::Grid;
+use serde::{Deserialize, Serialize};
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LightKindSpec {
+    #[default]
+    Point,
+    Spot,
+}
+
+/// One `[[lights]]` table.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightSpec {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<LightKindSpec>,
+    pub position: [f32; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub intensity_cd: Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flux_lm: Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub color: Option<[f32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aim: Option<[f32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cone_deg: Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub falloff_deg: Option<f32>,
+}
+
+impl LightSpec {
+    /// The model light, or why the table is wrong (`index` names it: `lights[2]`).
+    pub fn to_light(&self, index: usize) -> Result<Light, String> {
+        let at = format!("lights[{index}]");
+        let kind = match self.kind.unwrap_or_default() {
+            LightKindSpec::Point => LightKind::Point,
+            LightKindSpec::Spot => LightKind::Spot,
+        };
+        let mut light = Light {
+            kind,
+            position: self.position,
+            color: self.color.unwrap_or([1.0; 3]),
+            ..Light::default()
+        };
+        if !self.position.iter().all(|x| x.is_finite()) {
+            return Err(format!("{at}: position must be finite numbers"));
+        }
+        match kind {
+            LightKind::Point => {
+                if self.aim.is_some() || self.cone_deg.is_some() || self.falloff_deg.is_some() {
+                    return Err(format!(
+                        "{at}: aim, cone_deg and falloff_deg belong to kind = \"spot\""
+                    ));
+                }
+            }
+            LightKind::Spot => {
+                let aim = self
+                    .aim
+                    .ok_or_else(|| format!("{at}: a spot needs aim = [x, y, z]"))?;
+                let cone = self
+                    .cone_deg
+                    .ok_or_else(|| format!("{at}: a spot needs cone_deg (degrees)"))?;
+                let falloff = self.falloff_deg.unwrap_or(cone);
+                light.aim = aim;
+                light.cone_deg = cone;
+                light.falloff_deg = falloff;
+                if !aim.iter().all(|x| x.is_finite())
+                    || glam::Vec3::from(aim).length_squared() <= 0.0
+                {
+                    return Err(format!("{at}: aim must be a finite, non-zero direction"));
+                }
+                if !(cone.is_finite() && (0.0..=180.0).contains(&cone)) {
+                    return Err(format!(
+                        "{at}: cone_deg must be between 0 and 180, got {cone}"
+                    ));
+                }
+                if !(falloff.is_finite() && (cone..=180.0).contains(&falloff)) {
+                    return Err(format!(
+                        "{at}: falloff_deg must be between cone_deg ({cone}) and 180, got {falloff}"
+                    ));
+                }
+            }
+        }
+        light.intensity_cd = match (self.intensity_cd, self.flux_lm) {
+            (Some(_), Some(_)) => {
+                return Err(format!("{at}: give intensity_cd or flux_lm, not both"));
+            }
+            (None, None) => return Err(format!("{at}: give intensity_cd or flux_lm")),
+            (Some(i), None) => i,
+            (None, Some(flux)) => {
+                if !(flux.is_finite() && flux >= 0.0) {
+                    return Err(format!("{at}: flux_lm must be a finite number >= 0"));
+                }
+                let per_cd = Light {
+                    intensity_cd: 1.0,
+                    ..light
+                }
+                .flux_lm();
+                if per_cd > 0.0 { flux / per_cd } else { 0.0 }
+            }
+        };
+        if !(light.intensity_cd.is_finite() && light.intensity_cd >= 0.0) {
+            return Err(format!("{at}: intensity_cd must be a finite number >= 0"));
+        }
+        Ok(light)
+    }
+
+    /// The table that reproduces `light` (intensity in candela).
+    pub fn from_light(light: &Light) -> LightSpec {
+        let spot = light.kind == LightKind::Spot;
+        LightSpec {
+            kind: spot.then_some(LightKindSpec::Spot),
+            position: light.position,
+            intensity_cd: Some(light.intensity_cd),
+            flux_lm: None,
+            color: Some(light.color),
+            aim: spot.then_some(light.aim),
+            cone_deg: spot.then_some(light.cone_deg),
+            falloff_deg: spot.then_some(light.falloff_deg),
+        }
+    }
+}
+
+/// One `[[grids]]` table.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridSpec {
+    pub name: String,
+    pub origin: [f32; 3],
+    pub u: [f32; 3],
+    pub v: [f32; 3],
+    pub nu: u32,
+    pub nv: u32,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal: Option<[f32; 3]>,
+}
+
+impl GridSpec {
+    pub fn to_grid(&self) -> Result<Grid, String> {
+        Grid::new(
+            &self.name,
+            self.origin,
+            self.u,
+            self.v,
+            self.nu,
+            self.nv,
+            self.normal,
+        )
+        .map_err(|e| e.to_string())
+    }
+
+    pub fn from_grid(g: &Grid) -> GridSpec {
+        GridSpec {
+            name: g.name.clone(),
+            origin: g.origin,
+            u: g.u,
+            v: g.v,
+            nu: g.nu,
+            nv: g.nv,
+            normal: Some(g.normal),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    use super::*;
+
+    fn spec(text: &str) -> LightSpec {
+        toml::from_str(text).unwrap_or_default()
+    }
+
+    #[test]
+    fn flux_and_intensity_are_exclusive_and_convert() {
+        let both = spec("position = [0.0, 0.0, 0.0]\nintensity_cd = 1.0\nflux_lm = 2.0");
+        assert!(both.to_light(0).is_err_and(|e| e.contains("not both")));
+        let flux = spec("position = [0.0, 0.0, 0.0]\nflux_lm = 1000.0");
+        let l = flux.to_light(0).unwrap_or_default();
+        assert!((l.intensity_cd - 1000.0 / (4.0 * std::f32::consts::PI)).abs() < 1e-3);
+        let spot = spec(
+            "kind = \"spot\"\nposition = [0.0, 0.0, 0.0]\naim = [0.0, -1.0, 0.0]\n\
+             intensity_cd = 10.0\ncone_deg = 10.0\nfalloff_deg = 5.0",
+        );
+        assert!(spot.to_light(3).is_err_and(|e| e.starts_with("lights[3]")));
+        let point_with_aim =
+            spec("position = [0.0, 0.0, 0.0]\nintensity_cd = 1.0\naim = [0.0, 1.0, 0.0]");
+        assert!(point_with_aim.to_light(0).is_err());
+    }
+}

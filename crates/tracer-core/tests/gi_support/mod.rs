@@ -1,0 +1,230 @@
+//! Scenes and exact answers shared by the global-illumination tests: boxes and rooms built in
+//! code (scene unit m, right-handed), and Lambert's contour form factor.
+#![allow(dead_code, clippy::unwrap_used, clippy::expect_used)]
+
+use glam::{DVec3, Vec3};
+use tracer_core::measure::Grid;
+use tracer_core::scene::{Camera, Handedness, LengthUnit, Light, Material, Scene, Setup};
+use tracer_core::shp::{BrepDef, ShpDescription};
+
+/// A quad as four corners; the front normal (right-handed) is (c1 − c0) × (c2 − c0).
+pub type Quad = [[f64; 3]; 4];
+
+pub fn brep(name: &str, quads: &[Quad]) -> BrepDef {
+    let mut b = BrepDef {
+        name: name.into(),
+        part_count: 1,
+        ..BrepDef::default()
+    };
+    for q in quads {
+        let base = b.vertices.len() as u32;
+        b.vertices.extend_from_slice(q);
+        b.triangles.push([base, base + 1, base + 2]);
+        b.triangles.push([base, base + 2, base + 3]);
+    }
+    b.parts = vec![0; b.triangles.len()];
+    b
+}
+
+pub fn scene(breps: Vec<BrepDef>) -> Scene {
+    let desc = ShpDescription {
+        breps,
+        ..ShpDescription::default()
+    };
+    Scene::build(&desc, "test").unwrap()
+}
+
+/// The six inner faces of the box [0, sx] x [0, sy] x [0, sz], front normals pointing inwards:
+/// floor, ceiling, x = 0, x = sx, z = 0, z = sz.
+pub fn box_faces(sx: f64, sy: f64, sz: f64) -> Vec<(&'static str, Quad)> {
+    vec![
+        (
+            "floor",
+            [
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, sz],
+                [sx, 0.0, sz],
+                [sx, 0.0, 0.0],
+            ],
+        ),
+        (
+            "ceiling",
+            [[0.0, sy, 0.0], [sx, sy, 0.0], [sx, sy, sz], [0.0, sy, sz]],
+        ),
+        (
+            "wall_x0",
+            [
+                [0.0, 0.0, 0.0],
+                [0.0, sy, 0.0],
+                [0.0, sy, sz],
+                [0.0, 0.0, sz],
+            ],
+        ),
+        (
+            "wall_x1",
+            [[sx, 0.0, 0.0], [sx, 0.0, sz], [sx, sy, sz], [sx, sy, 0.0]],
+        ),
+        (
+            "wall_z0",
+            [
+                [0.0, 0.0, 0.0],
+                [sx, 0.0, 0.0],
+                [sx, sy, 0.0],
+                [0.0, sy, 0.0],
+            ],
+        ),
+        (
+            "wall_z1",
+            [[0.0, 0.0, sz], [0.0, sy, sz], [sx, sy, sz], [sx, 0.0, sz]],
+        ),
+    ]
+}
+
+/// A box scene whose faces are one brep each (slot i = face i of [`box_faces`]).
+pub fn box_scene(sx: f64, sy: f64, sz: f64, extra: Vec<BrepDef>) -> Scene {
+    let mut breps: Vec<BrepDef> = box_faces(sx, sy, sz)
+        .into_iter()
+        .map(|(n, q)| brep(n, &[q]))
+        .collect();
+    breps.extend(extra);
+    scene(breps)
+}
+
+pub fn diffuse(rho: f32) -> Material {
+    Material {
+        kd: [rho; 3],
+        ks: [0.0; 3],
+        glossiness: 0.0,
+        ..Material::default()
+    }
+}
+
+pub fn emitting(mut m: Material, l: f32) -> Material {
+    m.emission_cd_m2 = l;
+    m
+}
+
+/// Setup in metres, right-handed, with the given camera, lights and one material per slot.
+pub fn setup(scene: &Scene, camera: Camera, lights: Vec<Light>, materials: Vec<Material>) -> Setup {
+    assert_eq!(materials.len(), scene.slots.len());
+    Setup {
+        unit: LengthUnit::M,
+        handedness: Handedness::Right,
+        camera,
+        lights,
+        hidden: vec![false; scene.slots.len()],
+        materials,
+        grids: Vec::new(),
+    }
+}
+
+pub fn camera(position: [f32; 3], look_at: [f32; 3], fov_deg: f32) -> Camera {
+    Camera {
+        position,
+        look_at,
+        up: [0.0, 1.0, 0.0],
+        fov_deg,
+    }
+}
+
+/// An `n` x `n` grid just inside each face of the box (offset 1e-4 m), facing inwards.
+pub fn face_grids(sx: f32, sy: f32, sz: f32, n: u32) -> Vec<Grid> {
+    let e = 1e-4;
+    let g = |name: &str, o: [f32; 3], u: [f32; 3], v: [f32; 3], normal: [f32; 3]| {
+        Grid::new(name, o, u, v, n, n, Some(normal)).unwrap()
+    };
+    vec![
+        g(
+            "floor",
+            [0.0, e, 0.0],
+            [sx, 0.0, 0.0],
+            [0.0, 0.0, sz],
+            [0.0, 1.0, 0.0],
+        ),
+        g(
+            "ceiling",
+            [0.0, sy - e, 0.0],
+            [sx, 0.0, 0.0],
+            [0.0, 0.0, sz],
+            [0.0, -1.0, 0.0],
+        ),
+        g(
+            "x0",
+            [e, 0.0, 0.0],
+            [0.0, sy, 0.0],
+            [0.0, 0.0, sz],
+            [1.0, 0.0, 0.0],
+        ),
+        g(
+            "x1",
+            [sx - e, 0.0, 0.0],
+            [0.0, sy, 0.0],
+            [0.0, 0.0, sz],
+            [-1.0, 0.0, 0.0],
+        ),
+        g(
+            "z0",
+            [0.0, 0.0, e],
+            [sx, 0.0, 0.0],
+            [0.0, sy, 0.0],
+            [0.0, 0.0, 1.0],
+        ),
+        g(
+            "z1",
+            [0.0, 0.0, sz - e],
+            [sx, 0.0, 0.0],
+            [0.0, sy, 0.0],
+            [0.0, 0.0, -1.0],
+        ),
+    ]
+}
+
+/// The point-to-polygon form factor by Lambert's contour formula:
+/// F = (1/2π) |Σ_edges β_i (n · γ_i)|, β_i the angle edge i subtends at `p` and γ_i the unit
+/// normal of the plane through `p` and the edge.
+pub fn form_factor(p: DVec3, n: DVec3, polygon: &[DVec3]) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..polygon.len() {
+        let a = (polygon[i] - p).normalize();
+        let b = (polygon[(i + 1) % polygon.len()] - p).normalize();
+        let beta = a.dot(b).clamp(-1.0, 1.0).acos();
+        let gamma = a.cross(b).normalize_or_zero();
+        sum += beta * n.dot(gamma);
+    }
+    (sum / (2.0 * std::f64::consts::PI)).abs()
+}
+
+pub fn v3(p: Vec3) -> DVec3 {
+    p.as_dvec3()
+}
+
+/// Checks an estimate against the exact value by the criteria: within `rel_tol`
+/// (0.5 %) of it and within 4 reported standard errors, with the standard error below
+/// `max_rel_se` (0.2 %) of the exact value.
+pub fn check(what: &str, estimate: f64, std_error: f64, exact: f64, rel_tol: f64, max_rel_se: f64) {
+    let rel = (estimate - exact) / exact;
+    println!(
+        "{what}: estimate {estimate:.5}, exact {exact:.5}, error {:+.3} %, std error {:.3} %",
+        rel * 100.0,
+        std_error / exact * 100.0
+    );
+    assert!(
+        std_error.is_finite() && std_error > 0.0,
+        "{what}: no standard error"
+    );
+    assert!(
+        std_error / exact.abs() < max_rel_se,
+        "{what}: standard error {:.3} % above {:.3} %",
+        std_error / exact * 100.0,
+        max_rel_se * 100.0
+    );
+    assert!(
+        rel.abs() < rel_tol,
+        "{what}: {estimate} is {:+.3} % from the exact {exact}",
+        rel * 100.0
+    );
+    assert!(
+        (estimate - exact).abs() < 4.0 * std_error,
+        "{what}: {estimate} is more than 4 standard errors ({std_error}) from {exact}"
+    );
+}

@@ -1,0 +1,192 @@
+//! `raygine measure` and `raygine render --gi path` through the real binary: the CSV's exact
+//! header and values against E = I cos θ / R², the shared options, and clear errors.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use raygine_e2e::{floor_quad, raygine_in, read_png, render_in, shp_of_quads, temp_dir};
+use std::path::Path;
+
+/// A 4 x 4 m black floor (unit m) with a 100 cd point light 2 m above its centre.
+fn floor_scene(dir: &Path, extra_sidecar: &str) -> std::path::PathBuf {
+    let shp = dir.join("floor.shp");
+    std::fs::write(&shp, shp_of_quads(&[("floor", &[floor_quad(2.0)])])).unwrap();
+    let sidecar = format!(
+        "unit = \"m\"\n\n[camera]\nposition = [0.0, 3.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_deg = 60.0\n\n\
+         [[lights]]\nposition = [0.0, 2.0, 0.0]\nintensity_cd = 100.0\n\n\
+         [default_material]\nkd = [0.0, 0.0, 0.0]\n\n{extra_sidecar}"
+    );
+    std::fs::write(dir.join("floor.raygine.toml"), sidecar).unwrap();
+    shp
+}
+
+const GRID: &str = "[[grids]]\nname = \"floor\"\norigin = [-2.0, 0.0, -2.0]\nu = [4.0, 0.0, 0.0]\n\
+                    v = [0.0, 0.0, 4.0]\nnu = 4\nnv = 2\nnormal = [0.0, 1.0, 0.0]\n";
+
+#[test]
+fn measure_writes_the_csv_with_exact_direct_illuminance() {
+    let dir = temp_dir();
+    let shp = floor_scene(dir.path(), GRID);
+    for integrator in ["direct", "path"] {
+        let csv = dir.path().join(format!("{integrator}.csv"));
+        let run = raygine_in(
+            dir.path(),
+            [
+                "measure".as_ref(),
+                "-S".as_ref(),
+                shp.as_os_str(),
+                "--gi".as_ref(),
+                integrator.as_ref(),
+                "--samples".as_ref(),
+                "8".as_ref(),
+                "--csv".as_ref(),
+                csv.as_os_str(),
+            ],
+        );
+        run.assert_ok();
+        assert!(
+            run.stdout.contains("grid floor: 8 points"),
+            "{}",
+            run.stdout
+        );
+        assert!(run.stdout.contains("lx"), "{}", run.stdout);
+        let text = std::fs::read_to_string(&csv).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(
+            lines.next(),
+            Some("grid,i,j,x,y,z,illuminance_lx,std_error_lx")
+        );
+        let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+        assert_eq!(rows.len(), 8);
+        for r in &rows {
+            let (i, j): (u32, u32) = (r[1].parse().unwrap(), r[2].parse().unwrap());
+            let x: f64 = r[3].parse().unwrap();
+            let z: f64 = r[5].parse().unwrap();
+            // Cell centres: origin + (i + ½)/nu · u + (j + ½)/nv · v.
+            assert!((x - (-2.0 + (f64::from(i) + 0.5))).abs() < 1e-5, "{r:?}");
+            assert!(
+                (z - (-2.0 + (f64::from(j) + 0.5) * 2.0)).abs() < 1e-5,
+                "{r:?}"
+            );
+            let d2 = x * x + z * z + 4.0;
+            let exact = 100.0 * 2.0 / d2.sqrt() / d2;
+            let e: f64 = r[6].parse().unwrap();
+            assert!(
+                (e / exact - 1.0).abs() < 1e-4,
+                "{integrator} {r:?}: exact {exact}"
+            );
+        }
+    }
+}
+
+#[test]
+fn measure_refuses_bad_grids_and_scenes_without_grids() {
+    let dir = temp_dir();
+    let shp = floor_scene(dir.path(), "");
+    let csv = dir.path().join("out.csv");
+    let args = |shp: &Path| {
+        vec![
+            "measure".into(),
+            "-S".into(),
+            shp.as_os_str().to_owned(),
+            "--csv".into(),
+            csv.as_os_str().to_owned(),
+        ]
+    };
+    let run = raygine_in(dir.path(), args(&shp));
+    assert!(!run.success());
+    assert!(run.stderr.contains("no grids"), "{}", run.stderr);
+    let bad = GRID
+        .replace("nu = 4", "nu = 0")
+        .replace("\"floor\"", "\"desk\"");
+    let shp = floor_scene(dir.path(), &bad);
+    let run = raygine_in(dir.path(), args(&shp));
+    assert!(!run.success());
+    assert!(
+        run.stderr.contains("floor.raygine.toml") && run.stderr.contains("grid desk"),
+        "{}",
+        run.stderr
+    );
+    assert!(!csv.exists(), "nothing written on an error");
+    let both = "[[lights]]\nposition = [0.0, 1.0, 0.0]\nintensity_cd = 1.0\nflux_lm = 3.0\n";
+    std::fs::write(dir.path().join("floor.raygine.toml"), both).unwrap();
+    let run = render_in(dir.path(), ["-S".as_ref(), shp.as_os_str()]);
+    assert!(!run.success());
+    assert!(run.stderr.contains("not both"), "{}", run.stderr);
+}
+
+/// Global illumination lights what direct light leaves dark, and the summary says which mode
+/// ran; --time-limit stops a render before its sample cap.
+#[test]
+fn render_with_gi_is_brighter_and_time_limited() {
+    let dir = temp_dir();
+    let direct = dir.path().join("direct.png");
+    let path = dir.path().join("path.png");
+    let size = ["-W", "64", "-H", "48"];
+    render_in(
+        dir.path(),
+        size.iter()
+            .map(|s| s.to_string())
+            .chain(["--samples", "4", "-R"].map(String::from))
+            .chain([direct.display().to_string()]),
+    )
+    .assert_ok();
+    let run = render_in(
+        dir.path(),
+        size.iter()
+            .map(|s| s.to_string())
+            .chain(
+                [
+                    "--gi",
+                    "path",
+                    "--samples",
+                    "100000",
+                    "--time-limit",
+                    "1",
+                    "-R",
+                ]
+                .map(String::from),
+            )
+            .chain([path.display().to_string()]),
+    );
+    run.assert_ok();
+    assert!(
+        run.stdout.contains("path, unlimited bounces"),
+        "{}",
+        run.stdout
+    );
+    let spp: u32 = run
+        .stdout
+        .split(" spp")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|s| s.parse().ok())
+        .expect("spp in the summary");
+    assert!((1..100_000).contains(&spp), "{}", run.stdout);
+    let mean = |p: &Path| {
+        let img = read_png(p);
+        let c = img.mean_frac(0.0, 0.0, 1.0, 1.0);
+        0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+    };
+    // The ceiling and the shadows receive reflected light.
+    let ceiling = |p: &Path| read_png(p).mean_frac(0.3, 0.02, 0.45, 0.08)[1];
+    assert!(
+        mean(&path) > mean(&direct) + 10.0,
+        "{} vs {}",
+        mean(&path),
+        mean(&direct)
+    );
+    assert!(ceiling(&path) > ceiling(&direct) + 30.0);
+}
+
+#[test]
+fn light_options_need_a_point_light() {
+    let dir = temp_dir();
+    let shp = dir.path().join("s.shp");
+    std::fs::write(&shp, shp_of_quads(&[("floor", &[floor_quad(2.0)])])).unwrap();
+    std::fs::write(dir.path().join("s.raygine.toml"), "lights = []\n").unwrap();
+    let run = render_in(
+        dir.path(),
+        ["-S".as_ref(), shp.as_os_str(), "-I".as_ref(), "5".as_ref()],
+    );
+    assert!(!run.success());
+    assert!(run.stderr.contains("first point light"), "{}", run.stderr);
+}
