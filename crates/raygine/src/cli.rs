@@ -32,6 +32,17 @@ pub enum Command {
     Render(RenderArgs),
     /// Measure the illuminance on the sidecar's [[grids]] and write it as CSV.
     Measure(MeasureArgs),
+    /// Say what a scene holds: unit, bounds, triangles, materials, lights, camera.
+    Info(InfoArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Samples per pixel (or per sensor point) in path mode when `--samples` is not given.

@@ -7,6 +7,7 @@ pub mod cli;
 pub mod document;
 pub mod file_ops;
 pub mod history;
+pub mod info_cmd;
 pub mod measure_cmd;
 pub mod panels;
 pub mod prefs;
@@ -25,6 +26,7 @@ pub fn run() -> ExitCode {
     let result = match args.command {
         Some(cli::Command::Render(render)) => render_cmd::run(&render),
         Some(cli::Command::Measure(measure)) => measure_cmd::run(&measure),
+        Some(cli::Command::Info(info)) => info_cmd::run(&info),
         None => viewer::run_viewer(app::AppOptions {
             scene: args.scene.clone(),
             threads: args.threads.unwrap_or(0) as usize,

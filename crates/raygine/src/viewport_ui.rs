@@ -5,6 +5,7 @@ use crate::app::{HoverInfo, RaygineApp};
 use crate::camera_control::{dolly, orbit, pan};
 use egui::{Align2, Color32, FontId, Pos2, Rect, Sense, Stroke, Vec2};
 use glam::Vec3;
+use tracer_core::scene::LightKind;
 use tracer_core::scene::{CameraBasis, luminance};
 
 pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
@@ -136,13 +137,25 @@ fn draw_light_markers(ui: &egui::Ui, app: &RaygineApp, basis: &CameraBasis, rect
                 Color32::from_rgb(c[0], c[1], c[2]),
                 Stroke::new(2.0, Color32::BLACK),
             );
+            let label = match light.kind {
+                LightKind::Luminaire => format!("L{} {:.0} lm", i + 1, light.flux_lm()),
+                _ => format!("L{} {:.0} cd", i + 1, light.intensity_cd),
+            };
             painter.text(
                 pos + Vec2::new(9.0, -9.0),
                 Align2::LEFT_BOTTOM,
-                format!("L{} {:.0} cd", i + 1, light.intensity_cd),
+                label,
                 FontId::proportional(12.0),
                 Color32::YELLOW,
             );
+            // Spots and luminaires: their aim, a tenth of the scene's size long.
+            if light.kind != LightKind::Point {
+                let reach = app.doc.scene.bounds.radius() * 0.2;
+                let tip = light.position() + Vec3::from(light.aim).normalize_or_zero() * reach;
+                if let Some(end) = to_screen(rect, basis, tip) {
+                    painter.arrow(pos, end - pos, Stroke::new(2.0, Color32::YELLOW));
+                }
+            }
         }
     }
 }

@@ -23,6 +23,7 @@
 pub mod bvh;
 pub mod display;
 pub mod export;
+pub mod formats;
 pub mod geometry;
 pub mod integrator;
 pub mod light;

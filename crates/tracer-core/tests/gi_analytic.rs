@@ -139,7 +139,7 @@ fn cie_5_8_internal_reflected_component() {
     let source = Light::point([2.0, 2.0, 2.0], flux / (4.0 * std::f32::consts::PI));
     for (rho, samples) in [(0.5f32, 32), (0.9, 32)] {
         let cam = camera([2.0, 2.0, 3.9], [2.0, 2.0, 0.0], 60.0);
-        let mut st = setup(&sc, cam, vec![source], vec![diffuse(rho); 6]);
+        let mut st = setup(&sc, cam, vec![source.clone()], vec![diffuse(rho); 6]);
         // 32 x 32 points a face: the cell-centre (midpoint) rule's own error on the area mean
         // is then below 0.03 % (0.5 % at 8 x 8, 0.2 % at 16 x 16 for ρ = 0.5).
         st.grids = face_grids(4.0, 4.0, 4.0, 32);

@@ -19,17 +19,23 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         ui.push_id(i, |ui| {
             ui.horizontal(|ui| {
                 ui.strong(format!("Light {}", i + 1));
-                egui::ComboBox::from_id_salt("kind")
-                    .selected_text(match light.kind {
-                        LightKind::Point => "point",
-                        LightKind::Spot => "spot",
-                    })
-                    .show_ui(ui, |ui| {
-                        ui.selectable_value(&mut light.kind, LightKind::Point, "point");
-                        ui.selectable_value(&mut light.kind, LightKind::Spot, "spot");
-                    })
-                    .response
-                    .on_hover_text("Point: the same intensity in every direction. Spot: a cone");
+                if light.kind == LightKind::Luminaire {
+                    ui.label("luminaire");
+                } else {
+                    egui::ComboBox::from_id_salt("kind")
+                        .selected_text(match light.kind {
+                            LightKind::Spot => "spot",
+                            _ => "point",
+                        })
+                        .show_ui(ui, |ui| {
+                            ui.selectable_value(&mut light.kind, LightKind::Point, "point");
+                            ui.selectable_value(&mut light.kind, LightKind::Spot, "spot");
+                        })
+                        .response
+                        .on_hover_text(
+                            "Point: the same intensity in every direction. Spot: a cone",
+                        );
+                }
                 if ui
                     .small_button("Remove")
                     .on_hover_text("Remove this light")
@@ -49,16 +55,21 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                     i + 1
                 ));
             }
-            ui.add(
-                egui::Slider::new(&mut light.intensity_cd, 0.01..=1.0e6)
-                    .logarithmic(true)
-                    .clamping(egui::SliderClamping::Never)
-                    .text("intensity (cd)"),
-            )
-            .on_hover_text(match light.kind {
-                LightKind::Point => "Luminous intensity in candela, the same in every direction",
-                LightKind::Spot => "Luminous intensity in candela on the spot's axis",
-            });
+            if light.kind == LightKind::Luminaire {
+                luminaire_ui(ui, light);
+            } else {
+                ui.add(
+                    egui::Slider::new(&mut light.intensity_cd, 0.01..=1.0e6)
+                        .logarithmic(true)
+                        .clamping(egui::SliderClamping::Never)
+                        .text("intensity (cd)"),
+                )
+                .on_hover_text(if light.kind == LightKind::Spot {
+                    "Luminous intensity in candela on the spot's axis"
+                } else {
+                    "Luminous intensity in candela, the same in every direction"
+                });
+            }
             if light.kind == LightKind::Spot {
                 spot_ui(ui, light);
             }
@@ -87,6 +98,112 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         );
         app.doc.setup.lights.push(light);
     }
+    add_luminaire_ui(ui, app);
+}
+
+/// A typed path and a button that add a luminaire from an IES or EULUMDAT file.
+fn add_luminaire_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
+    let id = ui.scope_id().with("luminaire-path");
+    let mut text: String = ui.data_mut(|d| d.get_temp::<String>(id).unwrap_or_default());
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::TextEdit::singleline(&mut text)
+                .hint_text("path/to/lamp.ies or .ldt")
+                .desired_width(170.0),
+        )
+        .on_hover_text("An IES LM-63 or EULUMDAT file");
+        if ui
+            .button("Add luminaire")
+            .on_hover_text("A luminaire from the file, aimed down where a new light goes")
+            .clicked()
+        {
+            let path = std::path::PathBuf::from(text.trim());
+            match tracer_core::formats::read_photometry(&path) {
+                Ok(photometry) => {
+                    let base = default_light(
+                        &app.doc.scene,
+                        app.doc.setup.unit,
+                        app.doc.setup.camera.position,
+                    );
+                    app.doc.setup.lights.push(Light {
+                        kind: LightKind::Luminaire,
+                        luminaire: Some(std::sync::Arc::new(tracer_core::light::Luminaire::new(
+                            photometry, path,
+                        ))),
+                        ..base
+                    });
+                    app.error = None;
+                }
+                Err(e) => app.error = Some(e.to_string()),
+            }
+        }
+    });
+    ui.data_mut(|d| d.insert_temp(id, text));
+}
+
+/// A luminaire's multiplier, aim, rotation and polar intensity diagram.
+fn luminaire_ui(ui: &mut egui::Ui, light: &mut Light) {
+    if let Some(l) = &light.luminaire {
+        ui.label(format!("file {}", l.file.display()));
+    }
+    ui.add(
+        egui::Slider::new(&mut light.multiplier, 0.001..=1000.0)
+            .logarithmic(true)
+            .clamping(egui::SliderClamping::Never)
+            .text("multiplier"),
+    )
+    .on_hover_text("Factor on the file's intensities (1: as measured)");
+    ui.horizontal(|ui| {
+        ui.label("aim (nadir)");
+        for (axis, name) in ["x", "y", "z"].iter().enumerate() {
+            ui.add(
+                egui::DragValue::new(&mut light.aim[axis])
+                    .speed(0.01)
+                    .prefix(format!("{name} ")),
+            )
+            .on_hover_text("Direction of the photometric nadir, γ = 0 (any length)");
+        }
+    });
+    if glam::Vec3::from(light.aim).length_squared() <= 0.0 {
+        light.aim = [0.0, -1.0, 0.0];
+    }
+    ui.add(egui::Slider::new(&mut light.rotation_deg, -180.0..=180.0).text("rotation (°)"))
+        .on_hover_text("Turn of the C planes about the aim");
+    if let Some(l) = &light.luminaire {
+        polar_ui(ui, &l.photometry, light.multiplier);
+    }
+}
+
+/// The C0–C180 and C90–C270 planes of a distribution in cd, nadir down.
+fn polar_ui(ui: &mut egui::Ui, p: &tracer_core::light::Photometry, multiplier: f32) {
+    use egui_plot::{Legend, Line, Plot, PlotPoints};
+    let curve = |c_a: f32, c_b: f32| -> PlotPoints<'static> {
+        let mut pts = Vec::with_capacity(362);
+        for i in 0..=180 {
+            let g = i as f32;
+            let v = f64::from(p.intensity(c_a, g) * multiplier);
+            let r = f64::from(g).to_radians();
+            pts.push([v * r.sin(), -v * r.cos()]);
+        }
+        for i in (0..=180).rev() {
+            let g = i as f32;
+            let v = f64::from(p.intensity(c_b, g) * multiplier);
+            let r = f64::from(g).to_radians();
+            pts.push([-v * r.sin(), -v * r.cos()]);
+        }
+        PlotPoints::from(pts)
+    };
+    Plot::new(ui.scope_id().with("polar"))
+        .height(180.0)
+        .data_aspect(1.0)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .legend(Legend::default())
+        .show(ui, |plot| {
+            plot.line(Line::new("C0-C180 (cd)", curve(0.0, 180.0)));
+            plot.line(Line::new("C90-C270 (cd)", curve(90.0, 270.0)));
+        });
 }
 
 /// The spot's axis and angles (degrees at this edge).

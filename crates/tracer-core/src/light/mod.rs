@@ -7,12 +7,15 @@
 //! tint normalised to Rec. 709 luminance 1, so its intensity stays in candela.
 
 mod emitters;
+mod goniometric;
 mod spot;
 
 pub use emitters::{EmissionSides, EmissiveTriangle, EmitterSample, EmitterTable};
+pub use goniometric::{Photometry, PhotometryError, Plane, cosine_flux};
 pub use spot::SpotProfile;
 
 use glam::Vec3;
+use std::sync::Arc;
 
 /// Rec. 709 / sRGB luminance weights of linear RGB.
 pub const LUMINANCE_WEIGHTS: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
@@ -42,10 +45,34 @@ pub enum LightKind {
     /// `intensity_cd` on the axis `aim`, full out to `cone_deg`, falling smoothly to zero at
     /// `falloff_deg` (see [`SpotProfile`]).
     Spot,
+    /// A measured distribution (IES or EULUMDAT file) times `multiplier`, its nadir along `aim`,
+    /// turned by `rotation_deg` about it (see [`LuminaireFrame`]).
+    Luminaire,
+}
+
+/// A photometric file as loaded: the distribution and where it came from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Luminaire {
+    pub photometry: Photometry,
+    /// The path as the sidecar wrote it (relative to the sidecar, or absolute).
+    pub file: std::path::PathBuf,
+    /// The file's luminous flux as rendered (lm), integrated once.
+    pub flux_lm: f64,
+}
+
+impl Luminaire {
+    pub fn new(photometry: Photometry, file: std::path::PathBuf) -> Self {
+        let flux_lm = photometry.flux_lm();
+        Self {
+            photometry,
+            file,
+            flux_lm,
+        }
+    }
 }
 
 /// A light the user places and edits (the model type; the sidecar has its own serde type).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Light {
     pub kind: LightKind,
     /// Position in scene coordinates (the file's numbers, scene unit).
@@ -61,6 +88,12 @@ pub struct Light {
     pub cone_deg: f32,
     /// Spot: half-angle where the intensity reaches zero, degrees (>= `cone_deg`).
     pub falloff_deg: f32,
+    /// Luminaire: turn of the C planes about the aim, degrees.
+    pub rotation_deg: f32,
+    /// Luminaire: factor applied to the file's intensities (1: as measured).
+    pub multiplier: f32,
+    /// Luminaire: the distribution (None for points and spots).
+    pub luminaire: Option<Arc<Luminaire>>,
 }
 
 impl Default for Light {
@@ -73,6 +106,9 @@ impl Default for Light {
             aim: [0.0, -1.0, 0.0],
             cone_deg: 30.0,
             falloff_deg: 45.0,
+            rotation_deg: 0.0,
+            multiplier: 1.0,
+            luminaire: None,
         }
     }
 }
@@ -103,6 +139,14 @@ impl Light {
             && self.position.iter().all(|x| x.is_finite());
         match self.kind {
             LightKind::Point => finite,
+            LightKind::Luminaire => {
+                finite
+                    && self.luminaire.is_some()
+                    && self.multiplier.is_finite()
+                    && self.multiplier >= 0.0
+                    && self.rotation_deg.is_finite()
+                    && Vec3::from(self.aim).try_normalize().is_some()
+            }
             LightKind::Spot => {
                 finite
                     && Vec3::from(self.aim).try_normalize().is_some()
@@ -114,10 +158,10 @@ impl Light {
         }
     }
 
-    /// The angular profile, or `None` for an isotropic light.
+    /// The angular profile of a spot, or `None` for other kinds.
     pub fn spot_profile(&self) -> Option<SpotProfile> {
         match self.kind {
-            LightKind::Point => None,
+            LightKind::Point | LightKind::Luminaire => None,
             LightKind::Spot => Some(SpotProfile::new(
                 Vec3::from(self.aim),
                 self.cone_deg.to_radians(),
@@ -127,12 +171,24 @@ impl Light {
     }
 
     /// Luminous flux (lm) the light emits: 4π I for a point light, the integral of the profile
-    /// for a spot.
+    /// for a spot, of the distribution as rendered (times the multiplier) for a luminaire.
     pub fn flux_lm(&self) -> f32 {
+        if self.kind == LightKind::Luminaire {
+            return self
+                .luminaire
+                .as_ref()
+                .map_or(0.0, |l| (l.flux_lm * f64::from(self.multiplier)) as f32);
+        }
         let solid_angle = self
             .spot_profile()
             .map_or(4.0 * std::f32::consts::PI, |p| p.solid_angle_sr());
         self.intensity_cd * solid_angle
+    }
+
+    /// The luminaire's photometric frame, for a scene of `handedness_sign` (+1 right-handed,
+    /// −1 left-handed).
+    pub fn luminaire_frame(&self, handedness_sign: f32) -> LuminaireFrame {
+        LuminaireFrame::new(Vec3::from(self.aim), self.rotation_deg, handedness_sign)
     }
 }
 
@@ -156,8 +212,67 @@ mod tests {
     }
 
     #[test]
+    fn luminaire_frame_turns_counter_clockwise_with_rotation() {
+        let f = LuminaireFrame::new(Vec3::NEG_Y, 0.0, 1.0);
+        assert!((f.c0 - Vec3::X).length() < 1e-6);
+        assert!((f.c90 - Vec3::NEG_Z).length() < 1e-6, "{}", f.c90);
+        let turned = LuminaireFrame::new(Vec3::NEG_Y, 90.0, 1.0);
+        assert!((turned.c0 - f.c90).length() < 1e-6);
+        let (c, g) = f.angles_deg(Vec3::new(0.0, -1.0, -1.0).normalize());
+        assert!(
+            (c - 90.0).abs() < 1e-3 && (g - 45.0).abs() < 1e-3,
+            "{c} {g}"
+        );
+        // Aim along X: C0 along +Z.
+        let side = LuminaireFrame::new(Vec3::X, 0.0, 1.0);
+        assert!((side.c0 - Vec3::Z).length() < 1e-6);
+    }
+
+    #[test]
     fn point_flux_is_four_pi_intensity() {
         let l = Light::point([0.0; 3], 100.0);
         assert!((l.flux_lm() - 400.0 * std::f32::consts::PI).abs() < 1e-3);
+    }
+}
+
+/// The orientation of a goniometric distribution in the scene: the nadir (γ = 0) along the aim;
+/// at rotation 0 the C0 plane contains +X projected perpendicular to the aim (+Z when the aim is
+/// parallel to X); C angles increase counter-clockwise in the picture raygine draws, looking
+/// along the aim from behind the luminaire (LM-63 type C). As `.shp` scenes are drawn mirrored
+/// (left-handed), the C90 direction is `aim × C0` there and `C0 × aim` in right-handed scenes,
+/// so a file's C90 lobe lands in the same place on screen in both.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LuminaireFrame {
+    pub nadir: Vec3,
+    pub c0: Vec3,
+    pub c90: Vec3,
+}
+
+impl LuminaireFrame {
+    pub fn new(aim: Vec3, rotation_deg: f32, handedness_sign: f32) -> Self {
+        let nadir = aim.try_normalize().unwrap_or(Vec3::NEG_Y);
+        let reference = if nadir.cross(Vec3::X).length_squared() < 1e-8 {
+            Vec3::Z
+        } else {
+            Vec3::X
+        };
+        let c0 = (reference - nadir * nadir.dot(reference)).normalize();
+        let c90 = c0.cross(nadir) * handedness_sign.signum();
+        // Turn the C planes by the rotation, counter-clockwise as C angles run.
+        let (s, c) = rotation_deg.to_radians().sin_cos();
+        let c0r = c0 * c + c90 * s;
+        let c90r = c90 * c - c0 * s;
+        Self {
+            nadir,
+            c0: c0r,
+            c90: c90r,
+        }
+    }
+
+    /// (C, γ) in degrees of the unit direction `dir` leaving the luminaire.
+    pub fn angles_deg(&self, dir: Vec3) -> (f32, f32) {
+        let gamma = dir.dot(self.nadir).clamp(-1.0, 1.0).acos().to_degrees();
+        let c = dir.dot(self.c90).atan2(dir.dot(self.c0)).to_degrees();
+        (c.rem_euclid(360.0), gamma)
     }
 }

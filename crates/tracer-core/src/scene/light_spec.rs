@@ -24,9 +24,11 @@
 //! normal = [0.0, 1.0, 0.0]   # default: u × v normalised
 //! ```
 
-use crate::light::{Light, LightKind};
+use crate::light::{Light, LightKind, Luminaire};
 use crate::measure::Grid;
 use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -34,6 +36,7 @@ pub enum LightKindSpec {
     #[default]
     Point,
     Spot,
+    Luminaire,
 }
 
 /// One `[[lights]]` table.
@@ -55,16 +58,32 @@ pub struct LightSpec {
     pub cone_deg: Option<f32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub falloff_deg: Option<f32>,
+    /// Luminaire: IES or EULUMDAT file, relative to the sidecar.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<PathBuf>,
+    /// Luminaire: turn of the C planes about the aim, degrees.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotation_deg: Option<f32>,
+    /// Luminaire: factor on the file's intensities (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub multiplier: Option<f32>,
 }
 
 impl LightSpec {
-    /// The model light, or why the table is wrong (`index` names it: `lights[2]`).
-    pub fn to_light(&self, index: usize) -> Result<Light, String> {
+    /// The model light, or why the table is wrong (`index` names it: `lights[2]`). Luminaire
+    /// files are read relative to `base_dir` (the sidecar's folder).
+    pub fn to_light(&self, index: usize, base_dir: Option<&Path>) -> Result<Light, String> {
         let at = format!("lights[{index}]");
         let kind = match self.kind.unwrap_or_default() {
             LightKindSpec::Point => LightKind::Point,
             LightKindSpec::Spot => LightKind::Spot,
+            LightKindSpec::Luminaire => return self.to_luminaire(&at, base_dir),
         };
+        if self.file.is_some() || self.rotation_deg.is_some() || self.multiplier.is_some() {
+            return Err(format!(
+                "{at}: file, rotation_deg and multiplier belong to kind = \"luminaire\""
+            ));
+        }
         let mut light = Light {
             kind,
             position: self.position,
@@ -75,6 +94,7 @@ impl LightSpec {
             return Err(format!("{at}: position must be finite numbers"));
         }
         match kind {
+            LightKind::Luminaire => {}
             LightKind::Point => {
                 if self.aim.is_some() || self.cone_deg.is_some() || self.falloff_deg.is_some() {
                     return Err(format!(
@@ -122,7 +142,7 @@ impl LightSpec {
                 }
                 let per_cd = Light {
                     intensity_cd: 1.0,
-                    ..light
+                    ..light.clone()
                 }
                 .flux_lm();
                 if per_cd > 0.0 { flux / per_cd } else { 0.0 }
@@ -134,9 +154,79 @@ impl LightSpec {
         Ok(light)
     }
 
+    fn to_luminaire(&self, at: &str, base_dir: Option<&Path>) -> Result<Light, String> {
+        if self.intensity_cd.is_some() || self.cone_deg.is_some() || self.falloff_deg.is_some() {
+            return Err(format!(
+                "{at}: a luminaire takes its intensities from its file: use multiplier or \
+                 flux_lm, not intensity_cd, cone_deg or falloff_deg"
+            ));
+        }
+        let file = self
+            .file
+            .as_ref()
+            .ok_or_else(|| format!("{at}: a luminaire needs file = \"NAME.ies\" (or .ldt)"))?;
+        let full = match base_dir {
+            Some(dir) if file.is_relative() => dir.join(file),
+            _ => file.clone(),
+        };
+        let photometry =
+            crate::formats::read_photometry(&full).map_err(|e| format!("{at}: {e}"))?;
+        let aim = self.aim.unwrap_or([0.0, -1.0, 0.0]);
+        if !aim.iter().all(|x| x.is_finite()) || glam::Vec3::from(aim).length_squared() <= 0.0 {
+            return Err(format!("{at}: aim must be a finite, non-zero direction"));
+        }
+        let rotation_deg = self.rotation_deg.unwrap_or(0.0);
+        if !rotation_deg.is_finite() {
+            return Err(format!("{at}: rotation_deg must be a finite number"));
+        }
+        if !self.position.iter().all(|x| x.is_finite()) {
+            return Err(format!("{at}: position must be finite numbers"));
+        }
+        let luminaire = Luminaire::new(photometry, file.clone());
+        let file_flux = luminaire.flux_lm;
+        let multiplier = match (self.multiplier, self.flux_lm) {
+            (Some(_), Some(_)) => {
+                return Err(format!("{at}: give multiplier or flux_lm, not both"));
+            }
+            (Some(m), None) => m,
+            (None, Some(flux)) if file_flux > 0.0 => flux / file_flux as f32,
+            (None, Some(_)) => {
+                return Err(format!("{at}: the file emits no light to scale to flux_lm"));
+            }
+            (None, None) => 1.0,
+        };
+        if !(multiplier.is_finite() && multiplier >= 0.0) {
+            return Err(format!(
+                "{at}: multiplier and flux_lm must be finite and not negative"
+            ));
+        }
+        Ok(Light {
+            kind: LightKind::Luminaire,
+            position: self.position,
+            color: self.color.unwrap_or([1.0; 3]),
+            aim,
+            rotation_deg,
+            multiplier,
+            luminaire: Some(Arc::new(luminaire)),
+            ..Light::default()
+        })
+    }
+
     /// The table that reproduces `light` (intensity in candela).
     pub fn from_light(light: &Light) -> LightSpec {
         let spot = light.kind == LightKind::Spot;
+        if light.kind == LightKind::Luminaire {
+            return LightSpec {
+                kind: Some(LightKindSpec::Luminaire),
+                position: light.position,
+                color: Some(light.color),
+                aim: Some(light.aim),
+                file: light.luminaire.as_ref().map(|l| l.file.clone()),
+                rotation_deg: Some(light.rotation_deg),
+                multiplier: Some(light.multiplier),
+                ..LightSpec::default()
+            };
+        }
         LightSpec {
             kind: spot.then_some(LightKindSpec::Spot),
             position: light.position,
@@ -146,6 +236,7 @@ impl LightSpec {
             aim: spot.then_some(light.aim),
             cone_deg: spot.then_some(light.cone_deg),
             falloff_deg: spot.then_some(light.falloff_deg),
+            ..LightSpec::default()
         }
     }
 }
@@ -203,17 +294,23 @@ mod tests {
     #[test]
     fn flux_and_intensity_are_exclusive_and_convert() {
         let both = spec("position = [0.0, 0.0, 0.0]\nintensity_cd = 1.0\nflux_lm = 2.0");
-        assert!(both.to_light(0).is_err_and(|e| e.contains("not both")));
+        assert!(
+            both.to_light(0, None)
+                .is_err_and(|e| e.contains("not both"))
+        );
         let flux = spec("position = [0.0, 0.0, 0.0]\nflux_lm = 1000.0");
-        let l = flux.to_light(0).unwrap_or_default();
+        let l = flux.to_light(0, None).unwrap_or_default();
         assert!((l.intensity_cd - 1000.0 / (4.0 * std::f32::consts::PI)).abs() < 1e-3);
         let spot = spec(
             "kind = \"spot\"\nposition = [0.0, 0.0, 0.0]\naim = [0.0, -1.0, 0.0]\n\
              intensity_cd = 10.0\ncone_deg = 10.0\nfalloff_deg = 5.0",
         );
-        assert!(spot.to_light(3).is_err_and(|e| e.starts_with("lights[3]")));
+        assert!(
+            spot.to_light(3, None)
+                .is_err_and(|e| e.starts_with("lights[3]"))
+        );
         let point_with_aim =
             spec("position = [0.0, 0.0, 0.0]\nintensity_cd = 1.0\naim = [0.0, 1.0, 0.0]");
-        assert!(point_with_aim.to_light(0).is_err());
+        assert!(point_with_aim.to_light(0, None).is_err());
     }
 }

@@ -58,6 +58,9 @@ pub struct Sidecar {
     /// Calculation grids (sensor rectangles).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub grids: Vec<GridSpec>,
+    /// The sidecar's folder: luminaire files are relative to it (not part of the file).
+    #[serde(skip)]
+    pub base_dir: Option<PathBuf>,
 }
 
 fn set_material(
@@ -88,6 +91,26 @@ fn camera_is_finite(c: &Camera) -> bool {
         && c.fov_deg.is_finite()
 }
 
+/// Distance from `p` to the nearest surface, looking along the 26 directions of a cube's faces,
+/// edges and corners.
+fn nearest_surface(scene: &Scene, p: glam::Vec3) -> Option<f32> {
+    let mut best: Option<f32> = None;
+    for x in -1..=1 {
+        for y in -1..=1 {
+            for z in -1..=1 {
+                let dir = glam::Vec3::new(x as f32, y as f32, z as f32);
+                let Some(dir) = dir.try_normalize() else {
+                    continue;
+                };
+                if let Some(hit) = scene.bvh.intersect(&crate::geometry::Ray::new(p, dir)) {
+                    best = Some(best.map_or(hit.t, |b: f32| b.min(hit.t)));
+                }
+            }
+        }
+    }
+    best
+}
+
 /// The sidecar path for a scene file: `room.shp` -> `room.raygine.toml`.
 pub fn sidecar_path(scene_path: &Path) -> PathBuf {
     scene_path.with_extension("raygine.toml")
@@ -96,10 +119,11 @@ pub fn sidecar_path(scene_path: &Path) -> PathBuf {
 impl Sidecar {
     /// Parses sidecar text; errors name the file, line and column (toml's message).
     pub fn parse(text: &str, path: &Path) -> Result<Sidecar, SceneError> {
-        let sidecar: Sidecar = toml::from_str(text).map_err(|e| SceneError::Sidecar {
+        let mut sidecar: Sidecar = toml::from_str(text).map_err(|e| SceneError::Sidecar {
             path: path.to_owned(),
             message: e.to_string().trim_end().replace('\n', " "),
         })?;
+        sidecar.base_dir = path.parent().map(Path::to_path_buf);
         let invalid = |message: String| SceneError::Sidecar {
             path: path.to_owned(),
             message,
@@ -117,7 +141,7 @@ impl Sidecar {
                 specs
                     .iter()
                     .enumerate()
-                    .map(|(i, s)| s.to_light(i))
+                    .map(|(i, s)| s.to_light(i, self.base_dir.as_deref()))
                     .collect::<Result<Vec<_>, _>>()
             })
             .transpose()
@@ -205,6 +229,22 @@ impl Sidecar {
             }
         }
         for (i, light) in setup.lights.iter().enumerate() {
+            if let Some(lum) = &light.luminaire {
+                let opening = lum.photometry.opening_m / setup.unit.metres_per_unit();
+                if let Some(d) = nearest_surface(scene, light.position())
+                    && opening > 0.0
+                    && d < 5.0 * opening
+                {
+                    warnings.push(format!(
+                        "light {i}: a surface is {d:.3} {} away, closer than five times the \
+                         luminous opening ({:.3} {}): the far-field (point source) assumption \
+                         breaks there",
+                        setup.unit.symbol(),
+                        opening,
+                        setup.unit.symbol()
+                    ));
+                }
+            }
             if !light.is_valid() {
                 warnings.push(format!(
                     "light {i}: position and intensity must be finite, intensity >= 0"
@@ -248,6 +288,7 @@ impl Sidecar {
             materials,
             hidden,
             grids: setup.grids.iter().map(GridSpec::from_grid).collect(),
+            base_dir: None,
         }
     }
 

@@ -6,7 +6,7 @@ mod bsdf;
 mod prepared;
 
 pub use bsdf::{Bsdf, BsdfSample};
-pub use prepared::{Prepared, PreparedLight, PreparedMaterial};
+pub use prepared::{Prepared, PreparedLight, PreparedMaterial, Profile};
 
 use crate::bvh::Hit;
 use glam::Vec3;

@@ -4,26 +4,41 @@
 
 use crate::bvh::Hit;
 use crate::geometry::Ray;
-use crate::light::{EmissiveTriangle, EmitterTable, SpotProfile};
+use crate::light::LightKind;
+use crate::light::{EmissiveTriangle, EmitterTable, Luminaire, LuminaireFrame, SpotProfile};
 use crate::scene::{Handedness, Scene, Setup};
 use glam::Vec3;
+use std::sync::Arc;
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct PreparedLight {
     pub position: Vec3,
     pub intensity_cd: f32,
     /// Colour with Rec. 709 luminance 1.
     pub tint: Vec3,
-    /// The angular profile of a spot (None: isotropic).
-    pub spot: Option<SpotProfile>,
+    /// How the intensity depends on direction.
+    pub profile: Profile,
+}
+
+/// The angular dependence of a light's intensity.
+#[derive(Clone, Debug)]
+pub enum Profile {
+    Isotropic,
+    Spot(SpotProfile),
+    /// A measured distribution (cd, already times the multiplier) in its frame.
+    Goniometric(Arc<Luminaire>, LuminaireFrame),
 }
 
 impl PreparedLight {
     /// Intensity (cd) towards unit direction `dir` (from the light).
     pub fn intensity_towards(&self, dir: Vec3) -> f32 {
-        match &self.spot {
-            None => self.intensity_cd,
-            Some(p) => self.intensity_cd * p.factor(dir),
+        match &self.profile {
+            Profile::Isotropic => self.intensity_cd,
+            Profile::Spot(p) => self.intensity_cd * p.factor(dir),
+            Profile::Goniometric(table, frame) => {
+                let (c, gamma) = frame.angles_deg(dir);
+                self.intensity_cd * table.photometry.intensity(c, gamma)
+            }
         }
     }
 }
@@ -62,15 +77,32 @@ pub struct Prepared<'a> {
 
 impl<'a> Prepared<'a> {
     pub fn new(scene: &'a Scene, setup: &Setup, max_depth: u32) -> Self {
+        let handedness_sign = match setup.handedness {
+            Handedness::Right => 1.0,
+            Handedness::Left => -1.0,
+        };
         let lights = setup
             .lights
             .iter()
-            .filter(|l| l.intensity_cd.is_finite() && l.position().is_finite())
-            .map(|l| PreparedLight {
-                position: l.position(),
-                intensity_cd: l.intensity_cd.max(0.0),
-                tint: l.tint(),
-                spot: l.spot_profile(),
+            .filter(|l| l.is_valid())
+            .map(|l| {
+                let (intensity_cd, profile) = match (l.kind, &l.luminaire) {
+                    (LightKind::Luminaire, Some(lum)) => (
+                        l.multiplier,
+                        Profile::Goniometric(Arc::clone(lum), l.luminaire_frame(handedness_sign)),
+                    ),
+                    (LightKind::Spot, _) => (
+                        l.intensity_cd,
+                        l.spot_profile().map_or(Profile::Isotropic, Profile::Spot),
+                    ),
+                    _ => (l.intensity_cd, Profile::Isotropic),
+                };
+                PreparedLight {
+                    position: l.position(),
+                    intensity_cd: intensity_cd.max(0.0),
+                    tint: l.tint(),
+                    profile,
+                }
             })
             .collect();
         let clamped: Vec<_> = (0..scene.slots.len())

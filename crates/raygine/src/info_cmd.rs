@@ -1,0 +1,162 @@
+//! `raygine info`: what a scene holds (unit, handedness, bounds, triangles, materials, lights,
+//! camera), as text or JSON.
+
+use crate::cli::InfoArgs;
+use crate::render_cmd::load_scene;
+use anyhow::Result;
+use serde_json::{Value, json};
+use tracer_core::scene::{LightKind, LoadedScene, Material};
+
+pub fn run(args: &InfoArgs) -> Result<()> {
+    let loaded = load_scene(&args.scene)?;
+    for w in &loaded.warnings {
+        eprintln!("warning: {w}");
+    }
+    let info = describe(&loaded);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&info)?);
+    } else {
+        print_text(&info);
+    }
+    Ok(())
+}
+
+fn material_json(name: &str, m: &Material) -> Value {
+    json!({
+        "name": name,
+        "kd": m.kd,
+        "ks": m.ks,
+        "glossiness": m.glossiness,
+        "emission_cd_m2": m.emission_cd_m2,
+        "emission_color": m.emission_color,
+        "emission_sides": m.emission_sides,
+    })
+}
+
+/// The JSON description (also the source of the text form).
+pub fn describe(loaded: &LoadedScene) -> Value {
+    let (scene, setup) = (&loaded.scene, &loaded.setup);
+    let materials: Vec<Value> = (0..scene.slots.len() as u32)
+        .map(|slot| {
+            let m = setup
+                .materials
+                .get(slot as usize)
+                .copied()
+                .unwrap_or_default();
+            material_json(&scene.slot_label(slot), &m)
+        })
+        .collect();
+    let lights: Vec<Value> = setup
+        .lights
+        .iter()
+        .map(|l| {
+            let mut v = json!({
+                "kind": match l.kind {
+                    LightKind::Point => "point",
+                    LightKind::Spot => "spot",
+                    LightKind::Luminaire => "luminaire",
+                },
+                "position": l.position,
+                "flux_lm": l.flux_lm(),
+                "color": l.color,
+            });
+            match l.kind {
+                LightKind::Point => v["intensity_cd"] = json!(l.intensity_cd),
+                LightKind::Spot => {
+                    v["intensity_cd"] = json!(l.intensity_cd);
+                    v["aim"] = json!(l.aim);
+                    v["cone_deg"] = json!(l.cone_deg);
+                    v["falloff_deg"] = json!(l.falloff_deg);
+                }
+                LightKind::Luminaire => {
+                    v["aim"] = json!(l.aim);
+                    v["rotation_deg"] = json!(l.rotation_deg);
+                    v["multiplier"] = json!(l.multiplier);
+                    if let Some(lum) = &l.luminaire {
+                        v["file"] = json!(lum.file.display().to_string());
+                        v["intensity_cd"] = json!(lum.photometry.max_cd() * l.multiplier);
+                    }
+                }
+            }
+            v
+        })
+        .collect();
+    let b = scene.bounds;
+    json!({
+        "name": scene.name,
+        "unit": setup.unit.symbol(),
+        "handedness": match setup.handedness {
+            tracer_core::scene::Handedness::Left => "left",
+            tracer_core::scene::Handedness::Right => "right",
+        },
+        "bounds": {"min": b.min.to_array(), "max": b.max.to_array()},
+        "triangles": scene.triangle_count(),
+        "materials": materials,
+        "lights": lights,
+        "camera": {
+            "position": setup.camera.position,
+            "look_at": setup.camera.look_at,
+            "up": setup.camera.up,
+            "fov_deg": setup.camera.fov_deg,
+        },
+        "grids": setup.grids.iter().map(|g| json!({"name": g.name, "points": g.point_count()})).collect::<Vec<_>>(),
+    })
+}
+
+fn print_text(v: &Value) {
+    let unit = v["unit"].as_str().unwrap_or("mm");
+    println!("scene {}", v["name"]);
+    println!(
+        "unit {unit}, {}-handed",
+        v["handedness"].as_str().unwrap_or("?")
+    );
+    println!(
+        "bounds {} .. {} ({unit}), {} triangles",
+        v["bounds"]["min"], v["bounds"]["max"], v["triangles"]
+    );
+    println!("materials (sidecar keys):");
+    for m in v["materials"].as_array().into_iter().flatten() {
+        let mut line = format!(
+            "  {}: kd {} ks {} glossiness {}",
+            m["name"], m["kd"], m["ks"], m["glossiness"]
+        );
+        if m["emission_cd_m2"].as_f64().unwrap_or(0.0) > 0.0 {
+            line.push_str(&format!(
+                ", emits {} cd/m² ({} faces)",
+                m["emission_cd_m2"], m["emission_sides"]
+            ));
+        }
+        println!("{line}");
+    }
+    println!("lights:");
+    for (i, l) in v["lights"].as_array().into_iter().flatten().enumerate() {
+        let mut line = format!(
+            "  {}: {} at {} ({unit}), {:.1} lm",
+            i + 1,
+            l["kind"].as_str().unwrap_or("?"),
+            l["position"],
+            l["flux_lm"].as_f64().unwrap_or(0.0)
+        );
+        if let Some(cd) = l["intensity_cd"].as_f64() {
+            line.push_str(&format!(
+                ", {cd:.1} cd{}",
+                if l["kind"] == "point" { "" } else { " max" }
+            ));
+        }
+        if let Some(aim) = l.get("aim") {
+            line.push_str(&format!(", aim {aim}"));
+        }
+        if let Some(file) = l.get("file") {
+            line.push_str(&format!(", file {file}"));
+        }
+        println!("{line}");
+    }
+    let c = &v["camera"];
+    println!(
+        "camera at {} looking at {}, up {}, field of view {}°",
+        c["position"], c["look_at"], c["up"], c["fov_deg"]
+    );
+    for g in v["grids"].as_array().into_iter().flatten() {
+        println!("grid {}: {} points", g["name"], g["points"]);
+    }
+}
