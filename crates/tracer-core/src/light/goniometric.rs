@@ -192,7 +192,11 @@ mod tests {
             iso.flux_lm()
         );
         let down: Vec<f32> = (0..=18).map(|i| i as f32 * 5.0).collect();
-        let cos = table(&down, |_, g| 1000.0 * g.to_radians().cos(), &[0.0]);
+        let cos = table(
+            &down,
+            |_, g| (1000.0 * g.to_radians().cos()).max(0.0),
+            &[0.0],
+        );
         // Piecewise-linear cos γ at 5° steps lies just under the curve.
         let rel = cos.flux_lm() / cosine_flux(1000.0) - 1.0;
         assert!(rel.abs() < 2e-3, "{rel}");
