@@ -9,11 +9,13 @@ export RUSTC_BOOTSTRAP=1
 secs="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(shp brs sidecar)
+[ ${#targets[@]} -gt 0 ] || targets=(shp brs sidecar ies ldt)
 mkdir -p logs
 for t in "${targets[@]}"; do
     dict=shp.dict
     [ "$t" = sidecar ] && dict=sidecar.dict
+    [ "$t" = ies ] && dict=ies.dict
+    [ "$t" = ldt ] && dict=ldt.dict
     dirs=("corpus/$t")
     [ -d "seeds/$t" ] && dirs+=("seeds/$t")
     echo "== $t: ${secs}s" >&2

@@ -65,6 +65,7 @@ fuzz_target!(|data: &[u8]| {
         height: 3,
         samples_per_pixel: 1,
         max_depth: 3,
+        ..RenderSettings::default()
     };
     let _ = render(scene, &setup, &settings);
     let _ = Sidecar::from_setup(scene, &setup).to_toml();

@@ -190,3 +190,51 @@ fn light_options_need_a_point_light() {
     assert!(!run.success());
     assert!(run.stderr.contains("first point light"), "{}", run.stderr);
 }
+
+/// `raygine info --json` lists the scene's unit, materials, lights and camera; a luminaire from
+/// an IES file beside the sidecar shows its flux and file.
+#[test]
+fn info_describes_the_scene_with_its_luminaire() {
+    let dir = temp_dir();
+    let ies =
+        "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0\n100 100 100\n";
+    std::fs::write(dir.path().join("lamp.ies"), ies).unwrap();
+    let shp = floor_scene(
+        dir.path(),
+        "[[lights]]\nkind = \"luminaire\"\nfile = \"lamp.ies\"\nposition = [0.0, 1.0, 0.0]\n",
+    );
+    let run = raygine_in(
+        dir.path(),
+        [
+            "info".as_ref(),
+            "-S".as_ref(),
+            shp.as_os_str(),
+            "--json".as_ref(),
+        ],
+    );
+    run.assert_ok();
+    for key in [
+        "\"unit\": \"m\"",
+        "\"handedness\"",
+        "\"bounds\"",
+        "\"triangles\": 2",
+        "\"materials\"",
+        "\"camera\"",
+        "\"kind\": \"luminaire\"",
+        "lamp.ies",
+        "\"flux_lm\"",
+    ] {
+        assert!(run.stdout.contains(key), "{key} missing: {}", run.stdout);
+    }
+    let text = raygine_in(
+        dir.path(),
+        ["info".as_ref(), "-S".as_ref(), shp.as_os_str()],
+    );
+    text.assert_ok();
+    // 100 cd over the lower hemisphere: 2π · 100 = 628 lm.
+    assert!(
+        text.stdout.contains("628.") && text.stdout.contains("lm"),
+        "{}",
+        text.stdout
+    );
+}

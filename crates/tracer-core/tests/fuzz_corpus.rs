@@ -72,12 +72,17 @@ fn sidecar_scene() -> Scene {
     Scene::build(&desc, "fuzz").unwrap()
 }
 
-/// What every fuzz target does with `data`, all three in turn.
+/// What every fuzz target does with `data`, all of them in turn.
 fn replay(data: &[u8], scene: &Scene) {
     if let Ok(desc) = parse_shp(data, Path::new("fuzz.shp")) {
         let _ = Scene::build(&desc, "fuzz");
     }
     let _ = parse_brs(data, Path::new("fuzz.brs"), "fuzz");
+    for name in ["fuzz.ies", "fuzz.ldt"] {
+        if let Ok(p) = tracer_core::formats::parse_photometry(data, Path::new(name)) {
+            let _ = p.intensity(45.0, 30.0);
+        }
+    }
     if let Ok(text) = std::str::from_utf8(data)
         && let Ok(sidecar) = Sidecar::parse(text, Path::new("fuzz.raygine.toml"))
     {
@@ -129,7 +134,7 @@ fn saved_fuzz_inputs_never_panic_or_hang() {
 
 #[test]
 fn every_target_has_a_corpus() {
-    for target in ["shp", "brs", "sidecar"] {
+    for target in ["shp", "brs", "sidecar", "ies", "ldt"] {
         let dir = fuzz_dir().join("corpus").join(target);
         let count = fs::read_dir(&dir).map(|d| d.count()).unwrap_or(0);
         assert!(count > 0, "{} is empty or missing", dir.display());

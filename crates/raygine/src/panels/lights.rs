@@ -22,7 +22,7 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 if light.kind == LightKind::Luminaire {
                     ui.label("luminaire");
                 } else {
-                    egui::ComboBox::from_id_salt("kind")
+                    egui::ComboBox::from_label("kind")
                         .selected_text(match light.kind {
                             LightKind::Spot => "spot",
                             _ => "point",
@@ -106,11 +106,13 @@ fn add_luminaire_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let id = ui.scope_id().with("luminaire-path");
     let mut text: String = ui.data_mut(|d| d.get_temp::<String>(id).unwrap_or_default());
     ui.horizontal(|ui| {
+        let label = ui.label("luminaire file");
         ui.add(
             egui::TextEdit::singleline(&mut text)
-                .hint_text("path/to/lamp.ies or .ldt")
-                .desired_width(170.0),
+                .hint_text("lamp.ies or .ldt")
+                .desired_width(140.0),
         )
+        .labelled_by(label.id)
         .on_hover_text("An IES LM-63 or EULUMDAT file");
         if ui
             .button("Add luminaire")
