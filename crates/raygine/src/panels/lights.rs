@@ -103,7 +103,8 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
 
 /// A typed path and a button that add a luminaire from an IES or EULUMDAT file.
 fn add_luminaire_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
-    let id = ui.scope_id().with("luminaire-path");
+    // A fixed id: the text must survive from frame to frame wherever the panel is drawn.
+    let id = egui::Id::new("raygine-luminaire-path");
     let mut text: String = ui.data_mut(|d| d.get_temp::<String>(id).unwrap_or_default());
     ui.horizontal(|ui| {
         let label = ui.label("luminaire file");
@@ -120,6 +121,11 @@ fn add_luminaire_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             .clicked()
         {
             let path = std::path::PathBuf::from(text.trim());
+            if text.trim().is_empty() {
+                app.error =
+                    Some("type the path of an IES (.ies) or EULUMDAT (.ldt) file first".into());
+                return;
+            }
             match tracer_core::formats::read_photometry(&path) {
                 Ok(photometry) => {
                     let base = default_light(
