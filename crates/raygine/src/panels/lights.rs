@@ -104,7 +104,7 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
 /// A typed path and a button that add a luminaire from an IES or EULUMDAT file.
 fn add_luminaire_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     // A fixed id: the text must survive from frame to frame wherever the panel is drawn.
-    let id = egui::Id::new("raygine-luminaire-path");
+    let id = egui::Id::unique("raygine-luminaire-path");
     let mut text: String = ui.data_mut(|d| d.get_temp::<String>(id).unwrap_or_default());
     ui.horizontal(|ui| {
         let label = ui.label("luminaire file");
