@@ -707,3 +707,49 @@ fn render_image_job_writes_the_chosen_size() {
         "the saved image is the render through the display mapping"
     );
 }
+
+/// A luminaire added from a typed IES path lights the scene: it is listed with its flux (lm),
+/// the render restarts, and an empty path is refused with a message instead of an attempt.
+#[test]
+fn adding_a_luminaire_from_a_typed_path() {
+    let (mut h, _mirror) = viewer();
+    let path = scratch_dir("luminaire").join("down.ies");
+    // 100 cd over the lower hemisphere: 2π · 100 = 628 lm.
+    std::fs::write(
+        &path,
+        "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0\n100 100 100\n",
+    )
+    .unwrap();
+    h.get_by_role_and_label(Role::Button, "Add luminaire")
+        .click();
+    h.step();
+    assert!(
+        h.state()
+            .error
+            .as_deref()
+            .unwrap_or_default()
+            .contains("type the path"),
+        "{:?}",
+        h.state().error
+    );
+    let generation = h.state().worker.generation();
+    let field = h.get_by_role_and_label(Role::TextInput, "luminaire file");
+    field.focus();
+    field.type_text(&path.display().to_string());
+    h.step();
+    h.get_by_role_and_label(Role::Button, "Add luminaire")
+        .click();
+    h.run_steps(3);
+    let app = h.state();
+    assert!(app.error.is_none(), "{:?}", app.error);
+    let lum = app
+        .doc
+        .setup
+        .lights
+        .iter()
+        .find(|l| l.kind == tracer_core::scene::LightKind::Luminaire)
+        .expect("a luminaire");
+    assert!((lum.flux_lm() - 628.3).abs() < 1.0, "{}", lum.flux_lm());
+    assert!(app.worker.generation() > generation, "the render restarted");
+    assert!(h.query_by_label_contains("flux 628 lm").is_some());
+}
