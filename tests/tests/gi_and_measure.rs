@@ -238,3 +238,78 @@ fn info_describes_the_scene_with_its_luminaire() {
         text.stdout
     );
 }
+
+/// `--json` holds the statistics and every point; the summary line has the format, and
+/// a maintenance factor scales the maintained values and is said.
+#[test]
+fn measure_writes_json_with_statistics() {
+    let dir = temp_dir();
+    let shp = floor_scene(dir.path(), GRID);
+    // A top-level key goes before the tables.
+    let side = dir.path().join("floor.raygine.toml");
+    let text = std::fs::read_to_string(&side).unwrap();
+    std::fs::write(&side, format!("maintenance_factor = 0.5\n{text}")).unwrap();
+    let json = dir.path().join("out.json");
+    let run = raygine_in(
+        dir.path(),
+        [
+            "measure".as_ref(),
+            "-S".as_ref(),
+            shp.as_os_str(),
+            "--json".as_ref(),
+            json.as_os_str(),
+        ],
+    );
+    run.assert_ok();
+    assert!(
+        run.stdout.contains("maintenance factor 0.5"),
+        "{}",
+        run.stdout
+    );
+    let line = run
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("grid floor: 8 points, Emin "))
+        .unwrap_or_else(|| panic!("{}", run.stdout));
+    for part in [
+        " lx, Eavg ",
+        " lx, Emax ",
+        " lx, U0 ",
+        ", Emin/Emax ",
+        ", normal (0.000, 1.000, 0.000)",
+    ] {
+        assert!(line.contains(part), "{line}");
+    }
+    let text = std::fs::read_to_string(&json).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["unit"], "m");
+    assert_eq!(v["integrator"], "direct");
+    assert_eq!(v["samples"], 1);
+    let g = &v["grids"][0];
+    assert_eq!(g["name"], "floor");
+    assert_eq!(g["normal"], serde_json::json!([0.0, 1.0, 0.0]));
+    let points = g["points"].as_array().unwrap();
+    assert_eq!(points.len(), 8);
+    let es: Vec<f64> = points
+        .iter()
+        .map(|p| p["illuminance_lx"].as_f64().unwrap())
+        .collect();
+    let (min, max) = es
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(a, b), &e| (a.min(e), b.max(e)));
+    let avg = es.iter().sum::<f64>() / 8.0;
+    assert!((g["e_min_lx"].as_f64().unwrap() - min).abs() < 1e-9);
+    assert!((g["e_max_lx"].as_f64().unwrap() - max).abs() < 1e-9);
+    assert!((g["e_avg_lx"].as_f64().unwrap() - avg).abs() < 1e-9);
+    assert!((g["u0"].as_f64().unwrap() - min / avg).abs() < 1e-9);
+    assert!((g["emin_over_emax"].as_f64().unwrap() - min / max).abs() < 1e-9);
+    // Maintained: half of E = I cos θ / R² at the first point.
+    let p = &points[0];
+    let (x, z) = (p["x"].as_f64().unwrap(), p["z"].as_f64().unwrap());
+    let d2 = x * x + z * z + 4.0;
+    let exact = 0.5 * 100.0 * 2.0 / d2.sqrt() / d2;
+    assert!((p["illuminance_lx"].as_f64().unwrap() / exact - 1.0).abs() < 1e-4);
+    for key in ["i", "j", "y", "std_error_lx"] {
+        assert!(p.get(key).is_some(), "{key}");
+    }
+}

@@ -92,7 +92,21 @@ pub struct MeasureArgs {
     pub scene: SceneArgs,
     /// Write every grid point's illuminance here (CSV).
     #[arg(long, value_name = "PATH")]
-    pub csv: PathBuf,
+    pub csv: Option<PathBuf>,
+    /// Write the statistics and every point here (JSON).
+    #[arg(long, value_name = "PATH")]
+    pub json: Option<PathBuf>,
+    /// Stop once every point's standard error is at most PCT % of max(E_i, 0.1 × Eavg of its
+    /// grid), after at least 64 samples; --samples caps it (default 65536).
+    #[arg(long, value_name = "PCT", value_parser = parse_percent)]
+    pub target_error: Option<f64>,
+}
+
+fn parse_percent(s: &str) -> Result<f64, String> {
+    s.parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v > 0.0 && *v <= 100.0)
+        .ok_or_else(|| format!("`{s}` is not a percentage between 0 and 100"))
 }
 
 #[derive(Debug, Args)]

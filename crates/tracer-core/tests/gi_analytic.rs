@@ -148,6 +148,7 @@ fn cie_5_8_internal_reflected_component() {
             max_bounces: None,
             samples,
             time_limit: None,
+            target_error: None,
         };
         let results = measure_grids(&sc, &st, &settings);
         let i_cd = f64::from(flux) / (4.0 * PI);
@@ -232,6 +233,7 @@ fn cie_5_3_area_source_form_factors() {
             max_bounces: None,
             samples: 4096,
             time_limit: None,
+            target_error: None,
         };
         let results = measure_grids(&sc, &st, &settings);
         let (mut worst, mut sum_rel, mut n) = (0.0f64, 0.0, 0.0);
@@ -354,6 +356,7 @@ fn error_falls_as_one_over_root_n() {
             max_bounces: None,
             samples: n,
             time_limit: None,
+            target_error: None,
         };
         let r = &measure_grids(&sc, &st, &settings)[0];
         let mse: f64 = r
@@ -437,6 +440,7 @@ fn spot_light_illuminance_follows_its_profile() {
             max_bounces: None,
             samples: 1,
             time_limit: None,
+            target_error: None,
         },
     )[0];
     for p in &r.points {

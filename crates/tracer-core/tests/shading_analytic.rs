@@ -59,6 +59,7 @@ fn setup(scene: &Scene, unit: LengthUnit, lights: Vec<Light>, mats: Vec<Material
         hidden: vec![false; scene.slots.len()],
         materials: mats,
         grids: Vec::new(),
+        maintenance_factor: 1.0,
     }
 }
 

@@ -6,4 +6,7 @@ mod grid;
 mod sensors;
 
 pub use grid::{Grid, GridError, SensorPoint};
-pub use sensors::{GridResult, MeasureSettings, PointResult, measure_grids};
+pub use sensors::{
+    GridResult, GridStatistics, MeasureProgress, MeasureSettings, PointResult, TARGET_MIN_SAMPLES,
+    measure_grids, measure_grids_with_progress,
+};

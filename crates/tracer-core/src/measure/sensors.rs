@@ -17,10 +17,26 @@ use std::time::{Duration, Instant};
 pub struct MeasureSettings {
     pub integrator: IntegratorKind,
     pub max_bounces: Option<u32>,
-    /// Estimates per point (a cap when `time_limit` is set).
+    /// Estimates per point (a cap when `time_limit` or `target_error` is set).
     pub samples: u32,
     /// Stop after this long (checked between rounds of samples).
     pub time_limit: Option<Duration>,
+    /// Stop once every point's standard error is at most this fraction of
+    /// max(E_i, 0.1 × Eavg of its grid), after at least [`TARGET_MIN_SAMPLES`].
+    pub target_error: Option<f64>,
+}
+
+/// Samples every point takes before `target_error` may stop a measurement.
+pub const TARGET_MIN_SAMPLES: u32 = 64;
+
+/// Progress of a measurement, for progress bars.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeasureProgress {
+    pub samples_done: u32,
+    pub samples_cap: u32,
+    pub elapsed_secs: f64,
+    /// The largest standard error relative to its point's target scale (1 = at the target).
+    pub worst_relative_error: Option<f64>,
 }
 
 /// One point's reading.
@@ -57,6 +73,16 @@ const ROUND: u32 = 16;
 /// Measures every grid of `setup` on the current rayon pool. Each estimate depends on (grid,
 /// point, sample index) only: the same for any thread count.
 pub fn measure_grids(scene: &Scene, setup: &Setup, settings: &MeasureSettings) -> Vec<GridResult> {
+    measure_grids_with_progress(scene, setup, settings, &mut |_| {})
+}
+
+/// [`measure_grids`], calling `progress` after every round of samples.
+pub fn measure_grids_with_progress(
+    scene: &Scene,
+    setup: &Setup,
+    settings: &MeasureSettings,
+    progress: &mut dyn FnMut(MeasureProgress),
+) -> Vec<GridResult> {
     let started = Instant::now();
     let prep = Prepared::new(scene, setup, crate::render::DEFAULT_MAX_DEPTH);
     let integrator = Integrator::new(settings.integrator, prep, settings.max_bounces);
@@ -92,10 +118,22 @@ pub fn measure_grids(scene: &Scene, setup: &Setup, settings: &MeasureSettings) -
             })
             .sum::<u64>();
         done = end;
+        let worst = settings
+            .target_error
+            .map(|target| worst_relative_error(&sums, &points, setup.grids.len()) / target);
+        progress(MeasureProgress {
+            samples_done: done,
+            samples_cap: cap,
+            elapsed_secs: started.elapsed().as_secs_f64(),
+            worst_relative_error: worst,
+        });
         if settings
             .time_limit
             .is_some_and(|limit| started.elapsed() >= limit)
         {
+            break;
+        }
+        if done >= TARGET_MIN_SAMPLES && worst.is_some_and(|w| w <= 1.0) {
             break;
         }
     }
@@ -126,9 +164,108 @@ pub fn measure_grids(scene: &Scene, setup: &Setup, settings: &MeasureSettings) -
     results
 }
 
+/// The largest standard error over max(E_i, 0.1 × Eavg of its grid), over all points.
+fn worst_relative_error(
+    sums: &[PixelSum],
+    points: &[(usize, usize, super::SensorPoint)],
+    grids: usize,
+) -> f64 {
+    let mut total = vec![(0.0f64, 0usize); grids];
+    for ((g, _, _), s) in points.iter().zip(sums) {
+        total[*g].0 += s.mean_luminance();
+        total[*g].1 += 1;
+    }
+    let mut worst = 0.0f64;
+    for ((g, _, _), s) in points.iter().zip(sums) {
+        let avg = total[*g].0 / total[*g].1.max(1) as f64;
+        let scale = s.mean_luminance().max(0.1 * avg);
+        let se = s.luminance_std_error().unwrap_or(f64::INFINITY);
+        let rel = if scale > 0.0 {
+            se / scale
+        } else if se > 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        };
+        worst = worst.max(rel);
+    }
+    worst
+}
+
+/// A grid's statistics (lx), maintained values when a maintenance factor applies.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridStatistics {
+    pub e_min_lx: f64,
+    pub e_avg_lx: f64,
+    pub e_max_lx: f64,
+    /// Uniformity U0 = Emin / Eavg (0 when Eavg is 0).
+    pub u0: f64,
+    /// Emin / Emax (0 when Emax is 0).
+    pub emin_over_emax: f64,
+}
+
 impl GridResult {
     /// Mean illuminance over the points (lx).
     pub fn mean_lx(&self) -> f64 {
         self.points.iter().map(|p| p.illuminance_lx).sum::<f64>() / self.points.len().max(1) as f64
+    }
+
+    /// Emin, Eavg, Emax, U0 and Emin/Emax of the points' illuminance.
+    pub fn statistics(&self) -> GridStatistics {
+        let n = self.points.len().max(1) as f64;
+        let (mut lo, mut hi, mut sum) = (f64::INFINITY, f64::NEG_INFINITY, 0.0);
+        for p in &self.points {
+            lo = lo.min(p.illuminance_lx);
+            hi = hi.max(p.illuminance_lx);
+            sum += p.illuminance_lx;
+        }
+        if self.points.is_empty() {
+            (lo, hi) = (0.0, 0.0);
+        }
+        let avg = sum / n;
+        GridStatistics {
+            e_min_lx: lo,
+            e_avg_lx: avg,
+            e_max_lx: hi,
+            u0: if avg > 0.0 { lo / avg } else { 0.0 },
+            emin_over_emax: if hi > 0.0 { lo / hi } else { 0.0 },
+        }
+    }
+
+    /// The readings times `factor` (a maintenance factor: maintained illuminance).
+    pub fn scaled(mut self, factor: f64) -> GridResult {
+        for p in &mut self.points {
+            p.illuminance_lx *= factor;
+            p.std_error_lx *= factor;
+        }
+        self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn statistics_match_hand_computed_values() {
+        let point = |e: f64| PointResult {
+            i: 0,
+            j: 0,
+            position: Vec3::ZERO,
+            illuminance_lx: e,
+            std_error_lx: 0.0,
+        };
+        let r = GridResult {
+            name: "g".into(),
+            normal: Vec3::Y,
+            points: [100.0, 200.0, 300.0, 400.0].map(point).to_vec(),
+            samples: 1,
+            rays: 0,
+        };
+        let s = r.statistics();
+        assert_eq!((s.e_min_lx, s.e_avg_lx, s.e_max_lx), (100.0, 250.0, 400.0));
+        assert!((s.u0 - 0.4).abs() < 1e-12 && (s.emin_over_emax - 0.25).abs() < 1e-12);
+        let m = r.scaled(0.8).statistics();
+        assert!((m.e_avg_lx - 200.0).abs() < 1e-9 && (m.u0 - 0.4).abs() < 1e-12);
     }
 }

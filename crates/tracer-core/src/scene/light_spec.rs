@@ -241,43 +241,134 @@ impl LightSpec {
     }
 }
 
-/// One `[[grids]]` table.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// One `[[grids]]` table: an explicit rectangle (`origin`, `u`, `v`), or `work_plane = true`
+/// (a horizontal rectangle at `height` over the scene's floor, `margin` in from its walls).
+/// Without `nu`/`nv` the points follow EN 12464-1's automatic spacing.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GridSpec {
     pub name: String,
-    pub origin: [f32; 3],
-    pub u: [f32; 3],
-    pub v: [f32; 3],
-    pub nu: u32,
-    pub nv: u32,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub origin: Option<[f32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub u: Option<[f32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub v: Option<[f32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nu: Option<u32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nv: Option<u32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal: Option<[f32; 3]>,
+    /// A work plane over the floor (the bottom of the scene's bounds).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub work_plane: Option<bool>,
+    /// Work plane: height above the floor, scene unit (default 0.75 m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f32>,
+    /// Work plane: distance kept from the walls, scene unit (default 0.5 m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub margin: Option<f32>,
+}
+
+/// EN 12464-1's automatic grid spacing (m) for a rectangle whose longer side is `d_m` metres:
+/// p = 0.2 × 5^log₁₀(d).
+pub fn en12464_spacing_m(d_m: f32) -> f32 {
+    0.2 * 5f32.powf(d_m.max(1e-6).log10())
+}
+
+/// What a work plane needs to know about the scene.
+#[derive(Clone, Copy, Debug)]
+pub struct GridContext {
+    pub bounds: crate::Aabb,
+    pub metres_per_unit: f32,
 }
 
 impl GridSpec {
-    pub fn to_grid(&self) -> Result<Grid, String> {
-        Grid::new(
-            &self.name,
-            self.origin,
-            self.u,
-            self.v,
-            self.nu,
-            self.nv,
-            self.normal,
-        )
-        .map_err(|e| e.to_string())
+    /// The grid, or why not; work planes need `context` (None: checked later, `Ok(None)`).
+    pub fn to_grid(&self, context: Option<GridContext>) -> Result<Option<Grid>, String> {
+        let name = &self.name;
+        let (origin, u, v, normal) = if self.work_plane == Some(true) {
+            if self.origin.is_some() || self.u.is_some() || self.v.is_some() {
+                return Err(format!(
+                    "grid {name}: a work plane takes height and margin, not origin, u and v"
+                ));
+            }
+            let Some(ctx) = context else {
+                return Ok(None);
+            };
+            let in_units = |metres: f64| (metres / f64::from(ctx.metres_per_unit)) as f32;
+            let height = self.height.unwrap_or(in_units(0.75));
+            let margin = self.margin.unwrap_or(in_units(0.5));
+            if !(height.is_finite() && margin.is_finite() && margin >= 0.0) {
+                return Err(format!(
+                    "grid {name}: height and margin must be finite, margin >= 0"
+                ));
+            }
+            let b = ctx.bounds;
+            let (sx, sz) = (b.extent().x - 2.0 * margin, b.extent().z - 2.0 * margin);
+            if sx <= 0.0 || sz <= 0.0 {
+                return Err(format!(
+                    "grid {name}: the wall margin {margin} leaves no area"
+                ));
+            }
+            let origin = [b.min.x + margin, b.min.y + height, b.min.z + margin];
+            (
+                origin,
+                [sx, 0.0, 0.0],
+                [0.0, 0.0, sz],
+                Some(self.normal.unwrap_or([0.0, 1.0, 0.0])),
+            )
+        } else {
+            if self.height.is_some() || self.margin.is_some() {
+                return Err(format!(
+                    "grid {name}: height and margin belong to work_plane = true"
+                ));
+            }
+            match (self.origin, self.u, self.v) {
+                (Some(o), Some(u), Some(v)) => (o, u, v, self.normal),
+                _ => {
+                    return Err(format!(
+                        "grid {name}: give origin, u and v (a rectangle), or work_plane = true"
+                    ));
+                }
+            }
+        };
+        let (nu, nv) = match (self.nu, self.nv) {
+            (Some(a), Some(b)) => (a, b),
+            (None, None) => {
+                // EN 12464-1 spacing needs metres: without a context assume metres.
+                let mpu = context.map_or(1.0, |c| c.metres_per_unit);
+                let (lu, lv) = (
+                    glam::Vec3::from(u).length() * mpu,
+                    glam::Vec3::from(v).length() * mpu,
+                );
+                if !(lu.is_finite() && lv.is_finite()) {
+                    return Err(format!(
+                        "grid {name}: origin, u and v must be finite numbers"
+                    ));
+                }
+                let p = en12464_spacing_m(lu.max(lv));
+                let count = |l: f32| ((l / p).ceil() as u32).clamp(1, 1000);
+                (count(lu), count(lv))
+            }
+            _ => return Err(format!("grid {name}: give both nu and nv, or neither")),
+        };
+        Grid::new(name, origin, u, v, nu, nv, normal)
+            .map(Some)
+            .map_err(|e| e.to_string())
     }
 
     pub fn from_grid(g: &Grid) -> GridSpec {
         GridSpec {
             name: g.name.clone(),
-            origin: g.origin,
-            u: g.u,
-            v: g.v,
-            nu: g.nu,
-            nv: g.nv,
+            origin: Some(g.origin),
+            u: Some(g.u),
+            v: Some(g.v),
+            nu: Some(g.nu),
+            nv: Some(g.nv),
             normal: Some(g.normal),
+            ..GridSpec::default()
         }
     }
 }

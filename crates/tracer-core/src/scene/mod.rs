@@ -18,7 +18,7 @@ pub use camera::{Camera, CameraBasis};
 pub use error::SceneError;
 pub use geometry::{Brep, Scene, SlotOwner};
 pub use light::{LUMINANCE_WEIGHTS, Light, LightKind, luminance};
-pub use light_spec::{GridSpec, LightKindSpec, LightSpec};
+pub use light_spec::{GridContext, GridSpec, LightKindSpec, LightSpec, en12464_spacing_m};
 pub use material::Material;
 pub use setup::{DEFAULT_FOV_DEG, Setup, default_light, framing_camera};
 pub use sidecar::{Sidecar, sidecar_path};

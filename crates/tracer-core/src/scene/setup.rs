@@ -22,6 +22,8 @@ pub struct Setup {
     pub hidden: Vec<bool>,
     /// Calculation grids measured by `raygine measure` and shown by the viewer.
     pub grids: Vec<crate::measure::Grid>,
+    /// Maintenance factor applied to measured illuminance (maintained values; 1: new).
+    pub maintenance_factor: f32,
 }
 
 impl Setup {
@@ -38,6 +40,7 @@ impl Setup {
             materials: vec![Material::default(); slots],
             hidden: vec![false; slots],
             grids: Vec::new(),
+            maintenance_factor: 1.0,
         }
     }
 

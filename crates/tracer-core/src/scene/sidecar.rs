@@ -27,7 +27,7 @@
 use super::camera::Camera;
 use super::error::SceneError;
 use super::geometry::Scene;
-use super::light_spec::{GridSpec, LightSpec};
+use super::light_spec::{GridContext, GridSpec, LightSpec};
 use super::material::Material;
 use super::setup::Setup;
 use super::units::{Handedness, LengthUnit};
@@ -58,6 +58,9 @@ pub struct Sidecar {
     /// Calculation grids (sensor rectangles).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub grids: Vec<GridSpec>,
+    /// Maintenance factor of measured illuminance (0 < MF <= 1; default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub maintenance_factor: Option<f32>,
     /// The sidecar's folder: luminaire files are relative to it (not part of the file).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -129,7 +132,14 @@ impl Sidecar {
             message,
         };
         sidecar.model_lights().map_err(invalid)?;
-        sidecar.model_grids().map_err(invalid)?;
+        sidecar.model_grids(None).map_err(invalid)?;
+        if let Some(mf) = sidecar.maintenance_factor
+            && !(mf.is_finite() && mf > 0.0 && mf <= 1.0)
+        {
+            return Err(invalid(format!(
+                "maintenance_factor must be above 0 and at most 1, got {mf}"
+            )));
+        }
         Ok(sidecar)
     }
 
@@ -147,11 +157,14 @@ impl Sidecar {
             .transpose()
     }
 
-    /// The grids as model values, or the first grid's problem (duplicate names too).
-    pub fn model_grids(&self) -> Result<Vec<Grid>, String> {
+    /// The grids as model values, or the first grid's problem (duplicate names too). Work
+    /// planes need `context` (the scene's bounds and unit); without it they are only checked.
+    pub fn model_grids(&self, context: Option<GridContext>) -> Result<Vec<Grid>, String> {
         let mut grids: Vec<Grid> = Vec::with_capacity(self.grids.len());
         for spec in &self.grids {
-            let g = spec.to_grid()?;
+            let Some(g) = spec.to_grid(context)? else {
+                continue;
+            };
             if grids.iter().any(|o| o.name == g.name) {
                 return Err(GridError::Duplicate(g.name).to_string());
             }
@@ -203,7 +216,12 @@ impl Sidecar {
             Ok(None) => {}
             Err(e) => warnings.push(format!("{e}; using the default light")),
         }
-        match self.model_grids() {
+        let context = GridContext {
+            bounds: scene.bounds,
+            metres_per_unit: setup.unit.metres_per_unit(),
+        };
+        setup.maintenance_factor = self.maintenance_factor.unwrap_or(1.0);
+        match self.model_grids(Some(context)) {
             Ok(grids) => setup.grids = grids,
             Err(e) => warnings.push(format!("{e}; grids ignored")),
         }
@@ -288,6 +306,8 @@ impl Sidecar {
             materials,
             hidden,
             grids: setup.grids.iter().map(GridSpec::from_grid).collect(),
+            maintenance_factor: (setup.maintenance_factor != 1.0)
+                .then_some(setup.maintenance_factor),
             base_dir: None,
         }
     }

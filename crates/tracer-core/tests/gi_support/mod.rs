@@ -115,6 +115,7 @@ pub fn setup(scene: &Scene, camera: Camera, lights: Vec<Light>, materials: Vec<M
         hidden: vec![false; scene.slots.len()],
         materials,
         grids: Vec::new(),
+        maintenance_factor: 1.0,
     }
 }
 
