@@ -116,6 +116,10 @@ pub struct RaygineApp {
     pub hover: Option<HoverInfo>,
     pub paused: bool,
     pub show_help: bool,
+    /// The grids' background measurement (Measure panel, grid overlay).
+    pub measure: crate::measure_worker::MeasureWorker,
+    /// Whether grid readings are drawn over the picture.
+    pub show_grids: bool,
     /// Film size of the viewport, pixels.
     pub viewport_px: [u32; 2],
     /// Recent UI frame intervals while rendering (for the p95 in the status bar).
@@ -189,6 +193,8 @@ impl RaygineApp {
             hover: None,
             paused: false,
             show_help: false,
+            measure: crate::measure_worker::MeasureWorker::default(),
+            show_grids: true,
             viewport_px: [0, 0],
             frame_times: VecDeque::new(),
             frame_work: VecDeque::new(),
@@ -605,6 +611,12 @@ impl RaygineApp {
         let ctx = ui.ctx().clone();
         self.record_frame_time();
         self.poll_background();
+        self.measure.update(
+            &self.doc.scene,
+            &self.doc.setup,
+            self.render.integrator,
+            &ctx,
+        );
         self.handle_shortcuts(&ctx);
         self.handle_dropped_files(&ctx);
         crate::panels::menu_bar(ui, self);

@@ -9,6 +9,7 @@ pub mod file_ops;
 pub mod history;
 pub mod info_cmd;
 pub mod measure_cmd;
+pub mod measure_worker;
 pub mod panels;
 pub mod prefs;
 pub mod render_cmd;

@@ -52,6 +52,7 @@ pub fn run(args: &MeasureArgs) -> Result<()> {
             if let Some(w) = p.worst_relative_error {
                 bar.set_message(format!("worst point at {:.2}x the target error", w));
             }
+            true
         })
     });
     bar.finish_and_clear();

@@ -753,3 +753,60 @@ fn adding_a_luminaire_from_a_typed_path() {
     assert!(app.worker.generation() > generation, "the render restarted");
     assert!(h.query_by_label_contains("flux 628 lm").is_some());
 }
+
+/// The Measure panel adds a work plane over the Cornell box's floor, measures it in the
+/// background and shows its statistics; the readings equal `measure_grids` at the same samples.
+#[test]
+fn measure_panel_adds_a_work_plane_and_shows_its_statistics() {
+    let (mut h, _mirror) = viewer();
+    // Fold the groups above it so the Measure group is on screen.
+    for group in ["Lights", "Camera", "Materials"] {
+        h.get_by_label(group).click();
+        h.step();
+    }
+    h.get_by_label("Measure").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Add work plane")
+        .click();
+    h.step();
+    assert_eq!(h.state().doc.setup.grids.len(), 1);
+    let grid = h.state().doc.setup.grids[0].clone();
+    assert_eq!(grid.name, "workplane1");
+    // The box is 0.55 m tall: the work plane goes halfway up, and the user is told.
+    let b = h.state().doc.scene.bounds;
+    assert!((grid.origin[1] - (b.min.y + 0.5 * b.extent().y)).abs() < 1e-2);
+    assert!(
+        h.state()
+            .notice
+            .as_deref()
+            .unwrap_or_default()
+            .contains("small")
+    );
+    step_until(&mut h, "the first refinement", |app| {
+        app.measure.readings().is_some_and(|r| r.samples >= 16)
+    });
+    h.step();
+    let readings = h.state().measure.readings().unwrap();
+    let r = &readings.results[0];
+    assert_eq!(r.points.len(), grid.point_count());
+    assert!(h.query_by_label_contains("Emin ").is_some());
+    assert!(h.query_by_label_contains("U0 ").is_some());
+    let app = h.state();
+    let settings = tracer_core::measure::MeasureSettings {
+        integrator: app.render.integrator,
+        max_bounces: None,
+        samples: readings.samples,
+        time_limit: None,
+        target_error: None,
+    };
+    let (scene, setup) = (std::sync::Arc::clone(&app.doc.scene), app.doc.setup.clone());
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let direct = pool.install(|| tracer_core::measure::measure_grids(&scene, &setup, &settings));
+    assert_eq!(
+        direct[0].points, r.points,
+        "the viewer's readings are the CLI's"
+    );
+}

@@ -3,6 +3,7 @@
 mod camera;
 mod lights;
 mod materials;
+mod measure;
 mod render;
 mod windows;
 
@@ -32,6 +33,9 @@ pub fn controls_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     egui::CollapsingHeader::new("Materials")
         .default_open(true)
         .show(ui, |ui| materials::materials_ui(ui, app));
+    egui::CollapsingHeader::new("Measure")
+        .default_open(false)
+        .show(ui, |ui| measure::measure_ui(ui, app));
     egui::CollapsingHeader::new("Render")
         .default_open(true)
         .show(ui, |ui| render::render_ui(ui, app));

@@ -73,15 +73,16 @@ const ROUND: u32 = 16;
 /// Measures every grid of `setup` on the current rayon pool. Each estimate depends on (grid,
 /// point, sample index) only: the same for any thread count.
 pub fn measure_grids(scene: &Scene, setup: &Setup, settings: &MeasureSettings) -> Vec<GridResult> {
-    measure_grids_with_progress(scene, setup, settings, &mut |_| {})
+    measure_grids_with_progress(scene, setup, settings, &mut |_| true)
 }
 
-/// [`measure_grids`], calling `progress` after every round of samples.
+/// [`measure_grids`], calling `progress` after every round of samples; when it returns false
+/// the measurement stops there (the results hold the samples done so far).
 pub fn measure_grids_with_progress(
     scene: &Scene,
     setup: &Setup,
     settings: &MeasureSettings,
-    progress: &mut dyn FnMut(MeasureProgress),
+    progress: &mut dyn FnMut(MeasureProgress) -> bool,
 ) -> Vec<GridResult> {
     let started = Instant::now();
     let prep = Prepared::new(scene, setup, crate::render::DEFAULT_MAX_DEPTH);
@@ -121,12 +122,15 @@ pub fn measure_grids_with_progress(
         let worst = settings
             .target_error
             .map(|target| worst_relative_error(&sums, &points, setup.grids.len()) / target);
-        progress(MeasureProgress {
+        let go_on = progress(MeasureProgress {
             samples_done: done,
             samples_cap: cap,
             elapsed_secs: started.elapsed().as_secs_f64(),
             worst_relative_error: worst,
         });
+        if !go_on {
+            break;
+        }
         if settings
             .time_limit
             .is_some_and(|limit| started.elapsed() >= limit)

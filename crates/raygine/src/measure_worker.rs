@@ -1,0 +1,134 @@
+//! The viewer's measurements: the scene's grids measured on a background thread, refined
+//! progressively (16, 64, 256, 1024, 4096 samples a point, each a complete deterministic
+//! measurement, as `raygine measure --samples N` would give), restarted when the scene, its setup
+//! or the integrator changes. The UI thread never waits: it polls the latest results.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use tracer_core::integrator::IntegratorKind;
+use tracer_core::measure::{GridResult, MeasureSettings, measure_grids_with_progress};
+use tracer_core::scene::{Scene, Setup};
+
+/// Samples a point of the successive refinements.
+pub const REFINEMENTS: [u32; 5] = [16, 64, 256, 1024, 4096];
+
+/// What a measurement depends on.
+#[derive(Clone, Debug, PartialEq)]
+struct Key {
+    scene: usize,
+    setup: Setup,
+    integrator: IntegratorKind,
+}
+
+/// The latest finished refinement of the current job.
+#[derive(Clone, Debug, Default)]
+pub struct Readings {
+    pub results: Vec<GridResult>,
+    /// Samples a point behind `results`.
+    pub samples: u32,
+    /// Whether the last refinement is done.
+    pub finished: bool,
+}
+
+/// Background measurement of the current document's grids.
+#[derive(Debug, Default)]
+pub struct MeasureWorker {
+    key: Option<Key>,
+    cancel: Option<Arc<AtomicBool>>,
+    latest: Arc<Mutex<Option<Readings>>>,
+}
+
+impl MeasureWorker {
+    /// Starts a new job when what the grids depend on changed (none without grids).
+    pub fn update(
+        &mut self,
+        scene: &Arc<Scene>,
+        setup: &Setup,
+        integrator: IntegratorKind,
+        ctx: &egui::Context,
+    ) {
+        let key = Key {
+            scene: Arc::as_ptr(scene) as usize,
+            setup: setup.clone(),
+            integrator,
+        };
+        if self.key.as_ref() == Some(&key) {
+            return;
+        }
+        if let Some(c) = self.cancel.take() {
+            c.store(true, Ordering::Release);
+        }
+        self.latest = Arc::new(Mutex::new(None));
+        self.key = Some(key);
+        if setup.grids.is_empty() {
+            return;
+        }
+        let cancel = Arc::new(AtomicBool::new(false));
+        self.cancel = Some(Arc::clone(&cancel));
+        let latest = Arc::clone(&self.latest);
+        let (scene, setup, ctx) = (Arc::clone(scene), setup.clone(), ctx.clone());
+        let spawned = std::thread::Builder::new()
+            .name("raygine-measure".into())
+            .spawn(move || run(&scene, &setup, integrator, &cancel, &latest, &ctx));
+        if let Err(e) = spawned {
+            // Shown in the panel instead of readings.
+            if let Ok(mut l) = self.latest.lock() {
+                *l = Some(Readings::default());
+            }
+            eprintln!("raygine: cannot start the measurement thread: {e}");
+        }
+    }
+
+    /// The latest readings of the current job (None before the first refinement).
+    pub fn readings(&self) -> Option<Readings> {
+        self.latest.lock().ok().and_then(|l| l.clone())
+    }
+}
+
+impl Drop for MeasureWorker {
+    fn drop(&mut self) {
+        if let Some(c) = self.cancel.take() {
+            c.store(true, Ordering::Release);
+        }
+    }
+}
+
+fn run(
+    scene: &Scene,
+    setup: &Setup,
+    integrator: IntegratorKind,
+    cancel: &AtomicBool,
+    latest: &Mutex<Option<Readings>>,
+    ctx: &egui::Context,
+) {
+    // One worker thread: the picture's render keeps the other cores.
+    let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() else {
+        return;
+    };
+    for (k, &samples) in REFINEMENTS.iter().enumerate() {
+        let settings = MeasureSettings {
+            integrator,
+            max_bounces: None,
+            samples,
+            time_limit: None,
+            target_error: None,
+        };
+        let results = pool.install(|| {
+            measure_grids_with_progress(scene, setup, &settings, &mut |_| {
+                !cancel.load(Ordering::Acquire)
+            })
+        });
+        if cancel.load(Ordering::Acquire) {
+            return;
+        }
+        let mf = f64::from(setup.maintenance_factor);
+        if let Ok(mut l) = latest.lock() {
+            *l = Some(Readings {
+                results: results.into_iter().map(|r| r.scaled(mf)).collect(),
+                samples,
+                finished: k + 1 == REFINEMENTS.len(),
+            });
+        }
+        ctx.request_repaint();
+    }
+}

@@ -1,0 +1,146 @@
+//! The Measure panel: the scene's calculation grids, a work plane to add, their statistics as
+//! they refine, and export of the readings to CSV and JSON beside the scene.
+
+use crate::app::RaygineApp;
+use crate::measure_cmd::{csv, json_report};
+use tracer_core::scene::{GridContext, GridSpec};
+
+pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
+    let readings = app.measure.readings();
+    let mut remove = None;
+    if app.doc.setup.grids.is_empty() {
+        ui.label("No calculation grids. Add a work plane, or [[grids]] in the sidecar.");
+    }
+    for (i, grid) in app.doc.setup.grids.iter().enumerate() {
+        ui.push_id(i, |ui| {
+            ui.horizontal(|ui| {
+                ui.strong(format!("{} ({}x{} points)", grid.name, grid.nu, grid.nv));
+                if ui
+                    .small_button("Remove")
+                    .on_hover_text("Remove this grid")
+                    .clicked()
+                {
+                    remove = Some(i);
+                }
+            });
+            let result = readings
+                .as_ref()
+                .and_then(|r| r.results.iter().find(|g| g.name == grid.name));
+            match result {
+                Some(r) => {
+                    let s = r.statistics();
+                    ui.label(format!(
+                        "Emin {:.1} lx · Eavg {:.1} lx · Emax {:.1} lx",
+                        s.e_min_lx, s.e_avg_lx, s.e_max_lx
+                    ));
+                    ui.label(format!(
+                        "U0 {:.2} · Emin/Emax {:.2}",
+                        s.u0, s.emin_over_emax
+                    ));
+                }
+                None => {
+                    ui.horizontal(|ui| {
+                        ui.spinner();
+                        ui.label("measuring…");
+                    });
+                }
+            }
+        });
+    }
+    if let Some(i) = remove {
+        app.doc.setup.grids.remove(i);
+    }
+    if let Some(r) = &readings
+        && !app.doc.setup.grids.is_empty()
+    {
+        let state = if r.finished { "done" } else { "refining" };
+        ui.label(format!(
+            "{} samples a point ({state}){}",
+            r.samples,
+            if app.doc.setup.maintenance_factor != 1.0 {
+                format!(", maintenance factor {}", app.doc.setup.maintenance_factor)
+            } else {
+                String::new()
+            }
+        ));
+    }
+    ui.horizontal(|ui| {
+        if ui
+            .button("Add work plane")
+            .on_hover_text("0.75 m over the floor, 0.5 m from the walls, EN 12464-1 spacing")
+            .clicked()
+        {
+            add_work_plane(app);
+        }
+        ui.checkbox(&mut app.show_grids, "show on picture");
+    });
+    ui.add_enabled_ui(
+        readings.as_ref().is_some_and(|r| !r.results.is_empty()),
+        |ui| {
+            ui.horizontal(|ui| {
+                if ui.button("Export CSV").clicked()
+                    && let Some(r) = &readings
+                {
+                    export(app, "grids.csv", &csv(&r.results));
+                }
+                if ui.button("Export JSON").clicked()
+                    && let Some(r) = &readings
+                {
+                    let unit = app.doc.setup.unit.symbol();
+                    let text =
+                        json_report(&r.results, unit, app.render.integrator.name(), r.samples);
+                    export(app, "grids.json", &text);
+                }
+            });
+        },
+    );
+}
+
+fn add_work_plane(app: &mut RaygineApp) {
+    let n = (1..)
+        .map(|k| format!("workplane{k}"))
+        .find(|name| app.doc.setup.grids.iter().all(|g| &g.name != name))
+        .unwrap_or_else(|| "workplane".into());
+    // 0.75 m up and 0.5 m in, unless the scene is smaller than that (a model box): then half
+    // its height and a tenth of its shorter side, and say so.
+    let b = app.doc.scene.bounds;
+    let per_m = 1.0 / app.doc.setup.unit.metres_per_unit();
+    let (height, margin) = (0.75 * per_m, 0.5 * per_m);
+    let fit_height = height.min(0.5 * b.extent().y);
+    let fit_margin = margin.min(0.1 * b.extent().x.min(b.extent().z));
+    if fit_height < height || fit_margin < margin {
+        let unit = app.doc.setup.unit.symbol();
+        app.notice = Some(format!(
+            "the scene is small for a 0.75 m work plane 0.5 m from the walls: placed at \
+             {fit_height:.0} {unit}, {fit_margin:.0} {unit} from the walls"
+        ));
+    }
+    let spec = GridSpec {
+        name: n,
+        work_plane: Some(true),
+        height: Some(fit_height),
+        margin: Some(fit_margin),
+        ..GridSpec::default()
+    };
+    let context = GridContext {
+        bounds: b,
+        metres_per_unit: app.doc.setup.unit.metres_per_unit(),
+    };
+    match spec.to_grid(Some(context)) {
+        Ok(Some(grid)) => app.doc.setup.grids.push(grid),
+        Ok(None) => {}
+        Err(e) => app.error = Some(e),
+    }
+}
+
+/// Writes `text` beside the scene as NAME.`suffix` (the current folder for the built-in scene).
+fn export(app: &mut RaygineApp, suffix: &str, text: &str) {
+    let path = match &app.doc.path {
+        Some(p) => p.with_extension(suffix),
+        None => std::path::PathBuf::from(format!("cornell_box.{suffix}")),
+    };
+    match tracer_core::export::write_text(&path, text) {
+        Ok(()) => app.notice = Some(format!("wrote {}", path.display())),
+        Err(e) => app.error = Some(format!("{}: {e}", path.display())),
+    }
+}
