@@ -47,9 +47,17 @@ impl MeasureWorker {
         integrator: IntegratorKind,
         ctx: &egui::Context,
     ) {
+        // Sensors do not depend on the camera: orbiting must not restart the measurement.
+        let mut without_camera = setup.clone();
+        without_camera.camera = tracer_core::scene::Camera {
+            position: [0.0; 3],
+            look_at: [0.0; 3],
+            up: [0.0; 3],
+            fov_deg: 0.0,
+        };
         let key = Key {
             scene: Arc::as_ptr(scene) as usize,
-            setup: setup.clone(),
+            setup: without_camera,
             integrator,
         };
         if self.key.as_ref() == Some(&key) {
