@@ -791,6 +791,12 @@ fn measure_panel_adds_a_work_plane_and_shows_its_statistics() {
     assert_eq!(r.points.len(), grid.point_count());
     assert!(h.query_by_label_contains("Emin ").is_some());
     assert!(h.query_by_label_contains("U0 ").is_some());
+    // The profile along the middle row is plotted, with a row slider.
+    assert!(
+        h.query_all_by_label_contains("profile row j")
+            .next()
+            .is_some()
+    );
     let app = h.state();
     let settings = tracer_core::measure::MeasureSettings {
         integrator: app.render.integrator,

@@ -7,6 +7,7 @@ use tracer_core::scene::{GridContext, GridSpec};
 
 pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let readings = app.measure.readings();
+    let unit = app.doc.setup.unit.symbol();
     let mut remove = None;
     if app.doc.setup.grids.is_empty() {
         ui.label("No calculation grids. Add a work plane, or [[grids]] in the sidecar.");
@@ -37,6 +38,7 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                         "U0 {:.2} · Emin/Emax {:.2}",
                         s.u0, s.emin_over_emax
                     ));
+                    profile_ui(ui, grid, r, unit);
                 }
                 None => {
                     ui.horizontal(|ui| {
@@ -94,6 +96,48 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             });
         },
     );
+}
+
+/// Illuminance along one row of the grid (j chosen with a slider), against the distance along u.
+fn profile_ui(
+    ui: &mut egui::Ui,
+    grid: &tracer_core::measure::Grid,
+    r: &tracer_core::measure::GridResult,
+    unit: &str,
+) {
+    use egui_plot::{Line, Plot, PlotPoints};
+    if grid.nu < 2 {
+        return;
+    }
+    let id = ui.make_persistent_id("profile-row");
+    let mut row: u32 = ui.data_mut(|d| d.get_temp(id).unwrap_or(grid.nv / 2));
+    row = row.min(grid.nv - 1);
+    if grid.nv > 1 {
+        ui.add(egui::Slider::new(&mut row, 0..=grid.nv - 1).text("profile row j"))
+            .on_hover_text("The row of points (along u) whose illuminance is plotted");
+    }
+    ui.data_mut(|d| d.insert_temp(id, row));
+    let length = glam::Vec3::from(grid.u).length();
+    let pts: Vec<[f64; 2]> = r
+        .points
+        .iter()
+        .filter(|p| p.j == row)
+        .map(|p| {
+            let along = (f64::from(p.i) + 0.5) / f64::from(grid.nu) * f64::from(length);
+            [along, p.illuminance_lx]
+        })
+        .collect();
+    Plot::new(ui.make_persistent_id("profile-plot"))
+        .height(120.0)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .include_y(0.0)
+        .x_axis_label(format!("along u ({unit})"))
+        .y_axis_label("E (lx)")
+        .show(ui, |plot| {
+            plot.line(Line::new(format!("row {row} (lx)"), PlotPoints::from(pts)));
+        });
 }
 
 fn add_work_plane(app: &mut RaygineApp) {
