@@ -120,6 +120,10 @@ pub struct RaygineApp {
     pub measure: crate::measure_worker::MeasureWorker,
     /// Whether grid readings are drawn over the picture.
     pub show_grids: bool,
+    /// The luminance meter's rectangle (Ctrl+drag over the picture), film pixels.
+    pub meter: Option<crate::luminance_meter::Meter>,
+    /// Where the current Ctrl+drag started (film position).
+    pub meter_anchor: Option<(f32, f32)>,
     /// Film size of the viewport, pixels.
     pub viewport_px: [u32; 2],
     /// Recent UI frame intervals while rendering (for the p95 in the status bar).
@@ -195,6 +199,8 @@ impl RaygineApp {
             show_help: false,
             measure: crate::measure_worker::MeasureWorker::default(),
             show_grids: true,
+            meter: None,
+            meter_anchor: None,
             viewport_px: [0, 0],
             frame_times: VecDeque::new(),
             frame_work: VecDeque::new(),

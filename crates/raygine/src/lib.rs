@@ -8,6 +8,7 @@ pub mod document;
 pub mod file_ops;
 pub mod history;
 pub mod info_cmd;
+pub mod luminance_meter;
 pub mod measure_cmd;
 pub mod measure_worker;
 pub mod panels;

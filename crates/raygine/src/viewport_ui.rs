@@ -33,6 +33,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             draw_grid_readings(ui, app, b, rect);
         }
     }
+    draw_meter(ui, app, rect);
     draw_axis_triad(ui, app, rect);
     if let Some(fc) = display.false_colour {
         draw_legend(ui, &fc, rect);
@@ -60,9 +61,22 @@ fn film_pixel(app: &RaygineApp, rect: Rect, pos: Pos2) -> Option<(f32, f32)> {
 fn handle_mouse(ui: &egui::Ui, app: &mut RaygineApp, response: &egui::Response, rect: Rect) {
     let handedness = app.doc.setup.handedness;
     let camera = app.doc.setup.camera;
-    let (shift, scroll) = ui.input(|i| (i.modifiers.shift, i.smooth_scroll_delta.y));
+    let (shift, command, scroll) = ui.input(|i| {
+        (
+            i.modifiers.shift,
+            i.modifiers.command,
+            i.smooth_scroll_delta.y,
+        )
+    });
     let delta = response.drag_delta();
-    if delta != Vec2::ZERO {
+    // Ctrl+drag: the luminance meter's rectangle instead of orbiting.
+    let metering = command && response.dragged_by(egui::PointerButton::Primary);
+    if metering {
+        meter_drag(app, response, rect);
+    } else {
+        app.meter_anchor = None;
+    }
+    if delta != Vec2::ZERO && !metering {
         let panning = response.dragged_by(egui::PointerButton::Middle)
             || (response.dragged_by(egui::PointerButton::Primary) && shift);
         let height_px = rect.height();
@@ -87,6 +101,54 @@ fn handle_mouse(ui: &egui::Ui, app: &mut RaygineApp, response: &egui::Response, 
     {
         app.selected_slot = pick_slot(app, fx, fy);
     }
+}
+
+/// Updates the meter's rectangle while Ctrl+dragging.
+fn meter_drag(app: &mut RaygineApp, response: &egui::Response, rect: Rect) {
+    let Some(pos) = response.interact_pointer_pos() else {
+        return;
+    };
+    let Some(here) = film_pixel(app, rect, pos) else {
+        return;
+    };
+    let Some(settings) = app.worker.current().map(|k| k.settings) else {
+        return;
+    };
+    let anchor = match app.meter_anchor {
+        Some(a) => a,
+        None => {
+            let start = pos - response.drag_delta();
+            let a = film_pixel(app, rect, start).unwrap_or(here);
+            app.meter_anchor = Some(a);
+            a
+        }
+    };
+    app.meter = Some(crate::luminance_meter::Meter::from_corners(
+        anchor,
+        here,
+        settings.width,
+        settings.height,
+    ));
+}
+
+/// The meter's rectangle and reading over the picture.
+fn draw_meter(ui: &egui::Ui, app: &RaygineApp, rect: Rect) {
+    let Some(m) = app.meter else {
+        return;
+    };
+    let Some(settings) = app.worker.current().map(|k| k.settings) else {
+        return;
+    };
+    let (w, h) = (settings.width as f32, settings.height as f32);
+    let to_screen = |x: u32, y: u32| {
+        Pos2::new(
+            rect.min.x + x as f32 / w * rect.width(),
+            rect.min.y + y as f32 / h * rect.height(),
+        )
+    };
+    let screen = Rect::from_min_max(to_screen(m.x0, m.y0), to_screen(m.x1, m.y1));
+    let reading = app.worker.with_film(|f| f.and_then(|f| m.read(f)));
+    crate::luminance_meter::draw(&ui.painter_at(rect), screen, reading);
 }
 
 /// The material slot of the surface seen at film position (`fx`, `fy`).

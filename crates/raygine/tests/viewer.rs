@@ -816,3 +816,43 @@ fn measure_panel_adds_a_work_plane_and_shows_its_statistics() {
         "the viewer's readings are the CLI's"
     );
 }
+
+/// Ctrl+drag over the picture draws the luminance meter instead of orbiting; it reads the mean
+/// luminance of the film's pixels in the rectangle.
+#[test]
+fn ctrl_drag_measures_the_mean_luminance_of_a_rectangle() {
+    let (mut h, _mirror) = viewer();
+    let view = h.get_by_label("viewport").rect();
+    let camera = h.state().doc.setup.camera;
+    let from = view.min + view.size() * Vec2::new(0.3, 0.6);
+    h.event(Event::ModifiersChanged(Modifiers::COMMAND));
+    drag(&mut h, from, view.size() * Vec2::new(0.2, 0.15));
+    h.event(Event::ModifiersChanged(Modifiers::NONE));
+    h.step();
+    assert_eq!(
+        h.state().doc.setup.camera,
+        camera,
+        "a Ctrl+drag must not orbit"
+    );
+    let m = h.state().meter.expect("a meter rectangle");
+    assert!(m.x1 > m.x0 + 10 && m.y1 > m.y0 + 10, "{m:?}");
+    settle(&mut h);
+    let app = h.state();
+    let (reading, manual) = app.worker.with_film(|f| {
+        let f = f.unwrap();
+        let mut sum = 0.0;
+        for y in m.y0..m.y1 {
+            for x in m.x0..m.x1 {
+                sum += f.accum.pixels[f.accum.index(x, y)].mean_luminance();
+            }
+        }
+        let n = f64::from((m.x1 - m.x0) * (m.y1 - m.y0));
+        (m.read(f).unwrap(), sum / n)
+    });
+    assert!((reading.mean_cd_m2 - manual).abs() < 1e-9 * manual.max(1.0));
+    assert!(
+        reading.mean_cd_m2 > 1.0,
+        "the floor and blocks are lit: {reading:?}"
+    );
+    assert!(reading.std_error_cd_m2.is_some());
+}
