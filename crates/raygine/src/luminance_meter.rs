@@ -83,11 +83,18 @@ pub fn draw(painter: &egui::Painter, screen: Rect, reading: Option<MeterReading>
         Some(r) => format!("{:.2} cd/m² ({} px)", r.mean_cd_m2, r.pixels),
         None => "…".into(),
     };
-    painter.text(
-        Pos2::new(screen.min.x, screen.max.y + 4.0),
-        egui::Align2::LEFT_TOP,
+    // On a dark plate: the picture under it may be white.
+    let galley = painter.layout_no_wrap(
         text,
         FontId::monospace(13.0),
+        Color32::from_rgb(255, 220, 0),
+    );
+    let at = Pos2::new(screen.min.x, screen.max.y + 4.0);
+    let plate = Rect::from_min_size(at, galley.size() + egui::Vec2::new(8.0, 4.0));
+    painter.rect_filled(plate, 3.0, Color32::from_black_alpha(200));
+    painter.galley(
+        at + egui::Vec2::new(4.0, 2.0),
+        galley,
         Color32::from_rgb(255, 220, 0),
     );
 }
