@@ -12,8 +12,12 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     if app.doc.setup.grids.is_empty() {
         ui.label("No calculation grids. Add a work plane, or [[grids]] in the sidecar.");
     }
+    let mut edited = None;
     for (i, grid) in app.doc.setup.grids.iter().enumerate() {
         ui.push_id(i, |ui| {
+            if let Some(g) = edit_ui(ui, grid, unit) {
+                edited = Some((i, g));
+            }
             ui.horizontal(|ui| {
                 ui.strong(format!("{} ({}x{} points)", grid.name, grid.nu, grid.nv));
                 if ui
@@ -48,6 +52,9 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 }
             }
         });
+    }
+    if let Some((i, g)) = edited {
+        app.doc.setup.grids[i] = g;
     }
     if let Some(i) = remove {
         app.doc.setup.grids.remove(i);
@@ -96,6 +103,52 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             });
         },
     );
+}
+
+/// The grid's numbers as editable fields; returns the edited grid when it changed and is valid.
+fn edit_ui(
+    ui: &mut egui::Ui,
+    grid: &tracer_core::measure::Grid,
+    unit: &str,
+) -> Option<tracer_core::measure::Grid> {
+    let mut g = grid.clone();
+    egui::CollapsingHeader::new(format!("edit {}", grid.name))
+        .default_open(false)
+        .show(ui, |ui| {
+            for (label, v) in [
+                ("origin", &mut g.origin),
+                ("u", &mut g.u),
+                ("v", &mut g.v),
+                ("normal", &mut g.normal),
+            ] {
+                ui.horizontal(|ui| {
+                    let name = ui.label(if label == "normal" {
+                        label.to_owned()
+                    } else {
+                        format!("{label} ({unit})")
+                    });
+                    for (axis, c) in v.iter_mut().enumerate() {
+                        ui.add(
+                            egui::DragValue::new(c)
+                                .speed(1.0)
+                                .prefix(["x ", "y ", "z "][axis]),
+                        )
+                        .labelled_by(name.id);
+                    }
+                });
+            }
+            ui.horizontal(|ui| {
+                let name = ui.label("points nu × nv");
+                ui.add(egui::DragValue::new(&mut g.nu).range(1..=1000))
+                    .labelled_by(name.id);
+                ui.add(egui::DragValue::new(&mut g.nv).range(1..=1000))
+                    .labelled_by(name.id);
+            });
+        });
+    if g == *grid {
+        return None;
+    }
+    tracer_core::measure::Grid::new(&g.name, g.origin, g.u, g.v, g.nu, g.nv, Some(g.normal)).ok()
 }
 
 /// Illuminance along one row of the grid (j chosen with a slider), against the distance along u.
