@@ -856,3 +856,34 @@ fn ctrl_drag_measures_the_mean_luminance_of_a_rectangle() {
     );
     assert!(reading.std_error_cd_m2.is_some());
 }
+
+/// A grid on the clicked floor lies in the floor's plane, just above it, facing up, covering it.
+#[test]
+fn a_grid_on_the_selected_surface_covers_it() {
+    let (mut h, _mirror) = viewer();
+    for group in ["Lights", "Camera", "Materials"] {
+        h.get_by_label(group).click();
+        h.step();
+    }
+    h.get_by_label("Measure").click();
+    h.run_steps(2);
+    let floor = h.state().doc.scene.slots_for_key("floor").unwrap()[0];
+    h.state_mut().selected_slot = Some(floor);
+    h.step();
+    h.get_by_role_and_label(Role::Button, "Add grid on selected surface")
+        .click();
+    h.step();
+    let g = h.state().doc.setup.grids.last().cloned().expect("a grid");
+    assert_eq!(g.name, "floor1");
+    assert!(g.normal[1] > 0.999, "facing up: {:?}", g.normal);
+    let b = h.state().doc.scene.bounds;
+    assert!(
+        g.origin[1] > b.min.y && g.origin[1] < b.min.y + 2.0,
+        "{:?}",
+        g.origin
+    );
+    // The floor of the built-in box is about 556 x 559 mm.
+    let area = glam::Vec3::from(g.u).cross(glam::Vec3::from(g.v)).length();
+    assert!((area / (556.0 * 559.2) - 1.0).abs() < 0.02, "{area}");
+    assert!(g.nu >= 2 && g.nv >= 2);
+}

@@ -83,6 +83,18 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         }
         ui.checkbox(&mut app.show_grids, "show on picture");
     });
+    let selected = app.selected_slot;
+    if ui
+        .add_enabled(
+            selected.is_some(),
+            egui::Button::new("Add grid on selected surface"),
+        )
+        .on_hover_text("A grid over the clicked surface's plane, just in front of it")
+        .clicked()
+        && let Some(slot) = selected
+    {
+        add_surface_grid(app, slot);
+    }
     ui.add_enabled_ui(
         readings.as_ref().is_some_and(|r| !r.results.is_empty()),
         |ui| {
@@ -191,6 +203,80 @@ fn profile_ui(
         .show(ui, |plot| {
             plot.line(Line::new(format!("row {row} (lx)"), PlotPoints::from(pts)));
         });
+}
+
+/// A grid over the plane of material slot `slot`'s largest triangle, covering the slot's
+/// triangles in that plane, 0.1 % of the scene's size in front of it (towards the camera).
+fn add_surface_grid(app: &mut RaygineApp, slot: u32) {
+    use glam::Vec3;
+    let scene = &app.doc.scene;
+    let tris: Vec<usize> = (0..scene.triangles.len())
+        .filter(|&t| scene.triangle_slots[t] == slot)
+        .collect();
+    let area = |t: usize| {
+        let [a, b, c] = scene.triangles[t];
+        (b - a).cross(c - a).length()
+    };
+    let Some(&largest) = tris.iter().max_by(|&&a, &&b| area(a).total_cmp(&area(b))) else {
+        return;
+    };
+    let [a, b, c] = scene.triangles[largest];
+    let Some(mut n) = (b - a).cross(c - a).try_normalize() else {
+        app.error = Some("the selected surface has no area".into());
+        return;
+    };
+    let eye = Vec3::from(app.doc.setup.camera.position);
+    if n.dot(eye - a) < 0.0 {
+        n = -n;
+    }
+    // The slot's triangles in this plane (parallel, and on it within 0.1 % of the scene).
+    let tol = 1e-3 * scene.bounds.radius().max(1e-6);
+    let mut points = Vec::new();
+    for &t in &tris {
+        let [p, q, r] = scene.triangles[t];
+        let m = (q - p).cross(r - p).normalize_or_zero();
+        if m.cross(n).length() < 0.02 && [p, q, r].iter().all(|v| (v - a).dot(n).abs() < tol) {
+            points.extend([p, q, r]);
+        }
+    }
+    let reference = if n.cross(Vec3::X).length() > 0.5 {
+        Vec3::X
+    } else {
+        Vec3::Z
+    };
+    let e1 = (reference - n * n.dot(reference)).normalize();
+    let e2 = n.cross(e1);
+    let (mut lo, mut hi) = (
+        glam::Vec2::splat(f32::INFINITY),
+        glam::Vec2::splat(f32::NEG_INFINITY),
+    );
+    for p in &points {
+        let q = glam::Vec2::new((p - a).dot(e1), (p - a).dot(e2));
+        lo = lo.min(q);
+        hi = hi.max(q);
+    }
+    let size = hi - lo;
+    let origin = a + e1 * lo.x + e2 * lo.y + n * tol;
+    let label = scene.slot_label(slot).replace('/', "-");
+    let name = (1..)
+        .map(|k| format!("{label}{k}"))
+        .find(|name| app.doc.setup.grids.iter().all(|g| &g.name != name))
+        .unwrap_or(label);
+    let mpu = app.doc.setup.unit.metres_per_unit();
+    let p = tracer_core::scene::en12464_spacing_m(size.max_element() * mpu) / mpu;
+    let count = |l: f32| ((l / p).ceil() as u32).clamp(1, 1000);
+    match tracer_core::measure::Grid::new(
+        &name,
+        origin.to_array(),
+        (e1 * size.x).to_array(),
+        (e2 * size.y).to_array(),
+        count(size.x),
+        count(size.y),
+        Some(n.to_array()),
+    ) {
+        Ok(g) => app.doc.setup.grids.push(g),
+        Err(e) => app.error = Some(e.to_string()),
+    }
 }
 
 fn add_work_plane(app: &mut RaygineApp) {
