@@ -6,6 +6,7 @@ pub mod camera_control;
 pub mod cli;
 pub mod document;
 pub mod file_ops;
+pub mod grid_overlay;
 pub mod history;
 pub mod info_cmd;
 pub mod luminance_meter;

@@ -225,44 +225,16 @@ fn draw_light_markers(ui: &egui::Ui, app: &RaygineApp, basis: &CameraBasis, rect
     }
 }
 
-/// Each grid point's illuminance as a false-colour dot (log scale from Emax/1000 to Emax), with
-/// its value in lx when the grid has at most 100 points.
+/// The grids' readings over the picture: false-colour cells, values and isolux lines.
 fn draw_grid_readings(ui: &egui::Ui, app: &RaygineApp, basis: &CameraBasis, rect: Rect) {
-    use tracer_core::display::{FalseColour, FalseColourQuantity, FalseColourScale};
     let Some(readings) = app.measure.readings() else {
         return;
     };
     let painter = ui.painter_at(rect);
+    let project = |p: Vec3| to_screen(rect, basis, p);
     for r in &readings.results {
-        let s = r.statistics();
-        let max = s.e_max_lx.max(1e-6) as f32;
-        let fc = FalseColour {
-            quantity: FalseColourQuantity::Illuminance,
-            scale: FalseColourScale::Log,
-            min: max / 1000.0,
-            max,
-        };
-        let labels = r.points.len() <= 100;
-        for p in &r.points {
-            let Some(pos) = to_screen(rect, basis, p.position) else {
-                continue;
-            };
-            let [cr, cg, cb, _] = fc.colour(p.illuminance_lx as f32);
-            painter.circle(
-                pos,
-                4.0,
-                Color32::from_rgb(cr, cg, cb),
-                Stroke::new(1.0, Color32::BLACK),
-            );
-            if labels {
-                painter.text(
-                    pos + Vec2::new(0.0, -6.0),
-                    Align2::CENTER_BOTTOM,
-                    format!("{:.0}", p.illuminance_lx),
-                    FontId::proportional(10.0),
-                    Color32::WHITE,
-                );
-            }
+        if let Some(grid) = app.doc.setup.grids.iter().find(|g| g.name == r.name) {
+            crate::grid_overlay::draw(&painter, grid, r, &project);
         }
     }
 }

@@ -1,0 +1,155 @@
+//! Grid readings drawn over the picture: each cell filled with the false colour of its point's
+//! illuminance (log scale from Emax/1000 to Emax), its value in lx when there is room, and
+//! isolux lines (marching squares over the cell centres) at round levels.
+
+use egui::{Align2, Color32, FontId, Pos2, Shape, Stroke};
+use glam::Vec3;
+use tracer_core::display::{FalseColour, FalseColourQuantity, FalseColourScale};
+use tracer_core::measure::{Grid, GridResult};
+
+/// Up to five round isolux levels (1, 2, 5 × 10^k lx) strictly between `min` and `max`.
+pub fn isolux_levels(min: f64, max: f64) -> Vec<f64> {
+    if !(max > 0.0 && max.is_finite()) {
+        return Vec::new();
+    }
+    let lo = min.max(max / 1000.0);
+    let mut levels = Vec::new();
+    let mut decade = 10f64.powf(lo.log10().floor());
+    while decade <= max {
+        for m in [1.0, 2.0, 5.0] {
+            let v = m * decade;
+            if v > lo && v < max {
+                levels.push(v);
+            }
+        }
+        decade *= 10.0;
+    }
+    // Keep at most five, spread over the range.
+    if levels.len() > 5 {
+        let step = levels.len() as f64 / 5.0;
+        levels = (0..5).map(|k| levels[(k as f64 * step) as usize]).collect();
+    }
+    levels
+}
+
+/// Line segments (in grid cell-centre coordinates i, j) where the values cross `level`.
+pub fn isolux_segments(values: &[f64], nu: usize, nv: usize, level: f64) -> Vec<[(f64, f64); 2]> {
+    let at = |i: usize, j: usize| values[j * nu + i];
+    let mut out = Vec::new();
+    for j in 0..nv.saturating_sub(1) {
+        for i in 0..nu.saturating_sub(1) {
+            // Corners counter-clockwise: (i, j), (i+1, j), (i+1, j+1), (i, j+1).
+            let c = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+            let mut crossings = Vec::with_capacity(4);
+            for k in 0..4 {
+                let (a, b) = (c[k], c[(k + 1) % 4]);
+                let (va, vb) = (at(a.0, a.1), at(b.0, b.1));
+                if (va < level) != (vb < level) {
+                    let t = (level - va) / (vb - va);
+                    crossings.push((
+                        a.0 as f64 + t * (b.0 as f64 - a.0 as f64),
+                        a.1 as f64 + t * (b.1 as f64 - a.1 as f64),
+                    ));
+                }
+            }
+            if crossings.len() == 2 {
+                out.push([crossings[0], crossings[1]]);
+            } else if crossings.len() == 4 {
+                out.push([crossings[0], crossings[1]]);
+                out.push([crossings[2], crossings[3]]);
+            }
+        }
+    }
+    out
+}
+
+/// Draws one grid's readings; `to_screen` projects scene points (None behind the camera).
+pub fn draw(
+    painter: &egui::Painter,
+    grid: &Grid,
+    r: &GridResult,
+    to_screen: &dyn Fn(Vec3) -> Option<Pos2>,
+) {
+    let s = r.statistics();
+    let max = s.e_max_lx.max(1e-6) as f32;
+    let fc = FalseColour {
+        quantity: FalseColourQuantity::Illuminance,
+        scale: FalseColourScale::Log,
+        min: max / 1000.0,
+        max,
+    };
+    let (o, u, v) = (
+        Vec3::from(grid.origin),
+        Vec3::from(grid.u),
+        Vec3::from(grid.v),
+    );
+    let (nu, nv) = (grid.nu as usize, grid.nv as usize);
+    let corner = |i: f32, j: f32| o + u * (i / nu as f32) + v * (j / nv as f32);
+    let labels = r.points.len() <= 64;
+    for p in &r.points {
+        let (i, j) = (p.i as f32, p.j as f32);
+        let quad: Option<Vec<Pos2>> = [(i, j), (i + 1.0, j), (i + 1.0, j + 1.0), (i, j + 1.0)]
+            .iter()
+            .map(|&(a, b)| to_screen(corner(a, b)))
+            .collect();
+        let Some(quad) = quad else { continue };
+        let [cr, cg, cb, _] = fc.colour(p.illuminance_lx as f32);
+        painter.add(Shape::convex_polygon(
+            quad,
+            Color32::from_rgba_unmultiplied(cr, cg, cb, 110),
+            Stroke::new(0.5, Color32::from_black_alpha(120)),
+        ));
+        if labels && let Some(c) = to_screen(corner(i + 0.5, j + 0.5)) {
+            painter.text(
+                c,
+                Align2::CENTER_CENTER,
+                format!("{:.0}", p.illuminance_lx),
+                FontId::proportional(10.0),
+                Color32::WHITE,
+            );
+        }
+    }
+    if r.points.len() != nu * nv {
+        return;
+    }
+    let mut values = vec![0.0; nu * nv];
+    for p in &r.points {
+        // Readings of an edited grid may not fit its new size until they are measured again.
+        if p.i as usize >= nu || p.j as usize >= nv {
+            return;
+        }
+        values[p.j as usize * nu + p.i as usize] = p.illuminance_lx;
+    }
+    // Cell-centre coordinates to the scene: centre of cell (i, j) is corner(i + ½, j + ½).
+    let centre = |(ci, cj): (f64, f64)| corner(ci as f32 + 0.5, cj as f32 + 0.5);
+    for level in isolux_levels(s.e_min_lx, s.e_max_lx) {
+        for [a, b] in isolux_segments(&values, nu, nv, level) {
+            if let (Some(pa), Some(pb)) = (to_screen(centre(a)), to_screen(centre(b))) {
+                painter.line_segment([pa, pb], Stroke::new(1.5, Color32::WHITE));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_are_round_and_inside_the_range() {
+        assert_eq!(isolux_levels(30.0, 600.0), vec![50.0, 100.0, 200.0, 500.0]);
+        assert!(isolux_levels(0.0, 0.0).is_empty());
+        assert!(isolux_levels(1.0, 1e6).len() <= 5);
+    }
+
+    #[test]
+    fn a_ramp_crosses_its_midpoint_halfway() {
+        // 3 x 2 values rising along i: 0, 10, 20; the 5 lx line sits at i = 0.5 in both rows.
+        let values = [0.0, 10.0, 20.0, 0.0, 10.0, 20.0];
+        let segs = isolux_segments(&values, 3, 2, 5.0);
+        assert_eq!(segs.len(), 1);
+        for (i, _) in segs[0] {
+            assert!((i - 0.5).abs() < 1e-12);
+        }
+    }
+}
