@@ -124,6 +124,10 @@ pub struct RaygineApp {
     pub meter: Option<crate::luminance_meter::Meter>,
     /// Where the current Ctrl+drag started (film position).
     pub meter_anchor: Option<(f32, f32)>,
+    /// The viewport's screen rectangle in the last frame (points), for reports.
+    pub viewport_rect: Option<egui::Rect>,
+    /// A measurement report waiting for its screenshot.
+    pub report: Option<crate::report::ReportStatus>,
     /// Film size of the viewport, pixels.
     pub viewport_px: [u32; 2],
     /// Recent UI frame intervals while rendering (for the p95 in the status bar).
@@ -201,6 +205,8 @@ impl RaygineApp {
             show_grids: true,
             meter: None,
             meter_anchor: None,
+            viewport_rect: None,
+            report: None,
             viewport_px: [0, 0],
             frame_times: VecDeque::new(),
             frame_work: VecDeque::new(),
@@ -623,6 +629,21 @@ impl RaygineApp {
             self.render.integrator,
             &ctx,
         );
+        let report = self
+            .report
+            .as_ref()
+            .and_then(|r| r.lock().ok().and_then(|mut s| s.take()));
+        match report {
+            Some(Ok(message)) => {
+                self.notice = Some(message);
+                self.report = None;
+            }
+            Some(Err(e)) => {
+                self.error = Some(e);
+                self.report = None;
+            }
+            None => {}
+        }
         self.handle_shortcuts(&ctx);
         self.handle_dropped_files(&ctx);
         crate::panels::menu_bar(ui, self);

@@ -131,6 +131,74 @@ pub fn draw(
     }
 }
 
+/// The grids' statistics and their colour legend in the viewport's bottom-right corner.
+pub fn draw_statistics(
+    painter: &egui::Painter,
+    viewport: egui::Rect,
+    results: &[GridResult],
+    samples: u32,
+) {
+    let mut lines = vec![format!("grids, {samples} samples a point")];
+    for r in results {
+        let s = r.statistics();
+        lines.push(format!(
+            "{}: Emin {:.1} · Eavg {:.1} · Emax {:.1} lx · U0 {:.2} · Emin/Emax {:.2}",
+            r.name, s.e_min_lx, s.e_avg_lx, s.e_max_lx, s.u0, s.emin_over_emax
+        ));
+    }
+    let galley = painter.layout(
+        lines.join("\n"),
+        FontId::monospace(11.0),
+        Color32::WHITE,
+        viewport.width() * 0.6,
+    );
+    let size = galley.size() + egui::Vec2::new(12.0, 30.0);
+    // Bottom right: the top of the viewport carries the notices and errors.
+    let plate = egui::Rect::from_min_size(
+        Pos2::new(viewport.max.x - size.x - 8.0, viewport.max.y - size.y - 8.0),
+        size,
+    );
+    painter.rect_filled(plate, 4.0, Color32::from_black_alpha(200));
+    painter.galley(
+        plate.min + egui::Vec2::new(6.0, 4.0),
+        galley,
+        Color32::WHITE,
+    );
+    // The cells' colours: log scale from Emax/1000 to Emax of each grid; one bar, labelled in
+    // fractions of Emax.
+    let bar = egui::Rect::from_min_size(
+        Pos2::new(plate.min.x + 6.0, plate.max.y - 20.0),
+        egui::Vec2::new(plate.width() * 0.5, 8.0),
+    );
+    let fc = FalseColour {
+        quantity: FalseColourQuantity::Illuminance,
+        scale: FalseColourScale::Log,
+        min: 0.001,
+        max: 1.0,
+    };
+    let steps = 32;
+    for k in 0..steps {
+        let t = (k as f32 + 0.5) / steps as f32;
+        let [r, g, b, _] = fc.colour(fc.value_at(t));
+        let x0 = bar.min.x + bar.width() * k as f32 / steps as f32;
+        painter.rect_filled(
+            egui::Rect::from_min_max(
+                Pos2::new(x0, bar.min.y),
+                Pos2::new(x0 + bar.width() / steps as f32 + 0.5, bar.max.y),
+            ),
+            0.0,
+            Color32::from_rgb(r, g, b),
+        );
+    }
+    painter.text(
+        Pos2::new(bar.max.x + 6.0, bar.center().y),
+        Align2::LEFT_CENTER,
+        "Emax/1000 … Emax (log)",
+        FontId::monospace(10.0),
+        Color32::WHITE,
+    );
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

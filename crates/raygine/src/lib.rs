@@ -16,6 +16,7 @@ pub mod panels;
 pub mod prefs;
 pub mod render_cmd;
 pub mod render_worker;
+pub mod report;
 pub mod viewer;
 pub mod viewport_ui;
 

@@ -16,6 +16,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         ((rect.width() * ppp * scale).round() as u32).clamp(1, 8192),
         ((rect.height() * ppp * scale).round() as u32).clamp(1, 8192),
     ];
+    app.viewport_rect = Some(rect);
     let response = ui.allocate_rect(rect, Sense::click_and_drag());
     // A name for screen readers and UI tests.
     response
@@ -237,6 +238,7 @@ fn draw_grid_readings(ui: &egui::Ui, app: &RaygineApp, basis: &CameraBasis, rect
             crate::grid_overlay::draw(&painter, grid, r, &project);
         }
     }
+    crate::grid_overlay::draw_statistics(&painter, rect, &readings.results, readings.samples);
 }
 
 /// X (red), Y (green), Z (blue) in the bottom-left corner, drawn with the camera's basis so the

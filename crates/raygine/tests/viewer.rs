@@ -887,3 +887,30 @@ fn a_grid_on_the_selected_surface_covers_it() {
     assert!((area / (556.0 * 559.2) - 1.0).abs() < 0.02, "{area}");
     assert!(g.nu >= 2 && g.nv >= 2);
 }
+
+/// Save report writes the readings' CSV beside the scene at once and asks the window for the
+/// screenshot that becomes the PNG (written when it arrives; `report::crop` is unit-tested).
+#[test]
+fn save_report_writes_the_csv_and_waits_for_the_picture() {
+    let (mut h, _mirror) = viewer();
+    let dir = scratch_dir("report");
+    h.state_mut().doc.path = Some(dir.join("box.shp"));
+    for group in ["Lights", "Camera", "Materials", "Render"] {
+        h.get_by_label(group).click();
+        h.step();
+    }
+    h.get_by_label("Measure").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Add work plane")
+        .click();
+    h.step();
+    step_until(&mut h, "the first refinement", |app| {
+        app.measure.readings().is_some_and(|r| r.samples >= 16)
+    });
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Save report").click();
+    h.step();
+    let csv = std::fs::read_to_string(dir.join("box.grids.csv")).unwrap();
+    assert!(csv.starts_with("grid,i,j,x,y,z,illuminance_lx,std_error_lx\nworkplane1,"));
+    assert!(h.state().report.is_some() || h.state().notice.is_some());
+}

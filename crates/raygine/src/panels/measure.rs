@@ -113,6 +113,24 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                     export(app, "grids.json", &text);
                 }
             });
+            if ui
+                .button("Save report")
+                .on_hover_text(
+                    "The view with the grids, their statistics and legend as a PNG, and the \
+                     CSV beside it",
+                )
+                .clicked()
+                && let (Some(r), Some(rect)) = (&readings, app.viewport_rect)
+            {
+                let png = report_path(app, "report.png");
+                let csv_path = report_path(app, "grids.csv");
+                app.show_grids = true;
+                // The report shows the picture and the grids, not this session's banners.
+                app.notice = None;
+                app.error = None;
+                let text = csv(&r.results);
+                app.report = Some(crate::report::save(ui.ctx(), rect, png, csv_path, &text));
+            }
         },
     );
 }
@@ -316,12 +334,17 @@ fn add_work_plane(app: &mut RaygineApp) {
     }
 }
 
-/// Writes `text` beside the scene as NAME.`suffix` (the current folder for the built-in scene).
-fn export(app: &mut RaygineApp, suffix: &str, text: &str) {
-    let path = match &app.doc.path {
+/// NAME.`suffix` beside the scene (the current folder for the built-in scene).
+fn report_path(app: &RaygineApp, suffix: &str) -> std::path::PathBuf {
+    match &app.doc.path {
         Some(p) => p.with_extension(suffix),
         None => std::path::PathBuf::from(format!("cornell_box.{suffix}")),
-    };
+    }
+}
+
+/// Writes `text` beside the scene as NAME.`suffix` (the current folder for the built-in scene).
+fn export(app: &mut RaygineApp, suffix: &str, text: &str) {
+    let path = report_path(app, suffix);
     match tracer_core::export::write_text(&path, text) {
         Ok(()) => app.notice = Some(format!("wrote {}", path.display())),
         Err(e) => app.error = Some(format!("{}: {e}", path.display())),
