@@ -275,7 +275,16 @@ fn add_surface_grid(app: &mut RaygineApp, slot: u32) {
     }
     let size = hi - lo;
     let origin = a + e1 * lo.x + e2 * lo.y + n * tol;
-    let label = scene.slot_label(slot).replace('/', "-");
+    // Grid names are A-Z, a-z, 0-9, _ and -: anything else in a brep's name becomes _.
+    let label: String = scene
+        .slot_label(slot)
+        .chars()
+        .map(|c| match c {
+            '/' => '-',
+            c if c.is_ascii_alphanumeric() || c == '_' || c == '-' => c,
+            _ => '_',
+        })
+        .collect();
     let name = (1..)
         .map(|k| format!("{label}{k}"))
         .find(|name| app.doc.setup.grids.iter().all(|g| &g.name != name))
