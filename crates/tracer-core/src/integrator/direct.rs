@@ -71,26 +71,14 @@ fn direct_light(
     let mut e_total = 0.0;
     let mut rays = 0;
     for light in &prep.lights {
-        let to_light = light.position - p;
-        let dist2 = to_light.length_squared();
-        if dist2 <= 0.0 {
+        // E = I cos θ / R², R converted to metres.
+        let Some((wi, e)) = prep.light_at(light, p, n) else {
             continue;
-        }
-        let wi = to_light / dist2.sqrt();
-        let cos_theta = n.dot(wi);
-        if cos_theta <= 0.0 {
-            continue;
-        }
-        let intensity = light.intensity_towards(-wi);
-        if intensity <= 0.0 {
-            continue;
-        }
+        };
         rays += 1;
         if prep.occluded(origin, light.position - origin) {
             continue;
         }
-        // E = I cos θ / R², R converted to metres.
-        let e = intensity * cos_theta / (dist2 * prep.metres_per_unit_sq);
         e_total += e;
         direct += light.tint * e * brdf(wi);
     }

@@ -111,20 +111,12 @@ impl PathTracer<'_, '_> {
         }
         let origin = p + n * prep.epsilon;
         for light in &prep.lights {
-            let to_light = light.position - p;
-            let dist2 = to_light.length_squared();
-            if dist2 <= 0.0 {
+            let Some((_, lx)) = prep.light_at(light, p, n) else {
                 continue;
-            }
-            let wi = to_light / dist2.sqrt();
-            let cos = n.dot(wi);
-            let intensity = light.intensity_towards(-wi);
-            if cos <= 0.0 || intensity <= 0.0 {
-                continue;
-            }
+            };
             *rays += 1;
             if !prep.occluded(origin, light.position - origin) {
-                e += light.tint * (intensity * cos / (dist2 * prep.metres_per_unit_sq));
+                e += light.tint * lx;
             }
         }
         if !prep.emitters.is_empty() {
@@ -258,25 +250,16 @@ impl PathTracer<'_, '_> {
         let prep = self.prep;
         let mut l = Vec3::ZERO;
         for light in &prep.lights {
-            let to_light = light.position - v.point;
-            let dist2 = to_light.length_squared();
-            if dist2 <= 0.0 {
+            let Some((wi, lx)) = prep.light_at(light, v.point, v.n) else {
                 continue;
-            }
-            let wi = to_light / dist2.sqrt();
-            let cos = v.n.dot(wi);
-            let intensity = light.intensity_towards(-wi);
-            if cos <= 0.0 || intensity <= 0.0 {
-                continue;
-            }
+            };
             let f = bsdf.eval(v.n, v.wo, wi);
             if f.max_element() <= 0.0 {
                 continue;
             }
             *rays += 1;
             if !prep.occluded(v.origin, light.position - v.origin) {
-                let e = intensity * cos / (dist2 * prep.metres_per_unit_sq);
-                l += f * light.tint * e;
+                l += f * light.tint * lx;
             }
         }
         if !prep.emitters.is_empty() {

@@ -179,6 +179,31 @@ impl<'a> Prepared<'a> {
         self.closest_visible(&ray).is_some()
     }
 
+    /// Direct light from the point-like `light` at `p` on a surface of unit normal `n`: the unit
+    /// direction to the light and the illuminance it gives there, E = I(ω) cos θ / R² in lx
+    /// (R in metres), before shadowing. None when it gives none (behind the surface, no
+    /// intensity that way, or the light at `p`).
+    pub fn light_at(&self, light: &PreparedLight, p: Vec3, n: Vec3) -> Option<(Vec3, f32)> {
+        let to_light = light.position - p;
+        let dist2 = to_light.length_squared();
+        if dist2 <= 0.0 {
+            return None;
+        }
+        let wi = to_light / dist2.sqrt();
+        let cos_theta = n.dot(wi);
+        if cos_theta <= 0.0 {
+            return None;
+        }
+        let intensity = light.intensity_towards(-wi);
+        if intensity <= 0.0 {
+            return None;
+        }
+        Some((
+            wi,
+            intensity * cos_theta / (dist2 * self.metres_per_unit_sq),
+        ))
+    }
+
     /// The unit front normal of triangle `prim` (see `front_sign`).
     pub fn front_normal(&self, prim: u32) -> Vec3 {
         self.scene.normals[prim as usize] * self.front_sign
