@@ -754,18 +754,28 @@ fn adding_a_luminaire_from_a_typed_path() {
     assert!(h.query_by_label_contains("flux 628 lm").is_some());
 }
 
-/// The Measure panel adds a work plane over the Cornell box's floor, measures it in the
-/// background and shows its statistics; the readings equal `measure_grids` at the same samples.
-#[test]
-fn measure_panel_adds_a_work_plane_and_shows_its_statistics() {
-    let (mut h, _mirror) = viewer();
-    // Fold the groups above it so the Measure group is on screen.
-    for group in ["Lights", "Camera", "Materials"] {
+/// Folds the groups above the Measure group (and Render below it when `fold_render`) so its
+/// widgets are on screen in the test window, then opens it.
+fn open_measure(h: &mut Viewer, fold_render: bool) {
+    let groups: &[&str] = if fold_render {
+        &["Lights", "Camera", "Materials", "Render"]
+    } else {
+        &["Lights", "Camera", "Materials"]
+    };
+    for group in groups {
         h.get_by_label(group).click();
         h.step();
     }
     h.get_by_label("Measure").click();
     h.run_steps(2);
+}
+
+/// The Measure panel adds a work plane over the Cornell box's floor, measures it in the
+/// background and shows its statistics; the readings equal `measure_grids` at the same samples.
+#[test]
+fn measure_panel_adds_a_work_plane_and_shows_its_statistics() {
+    let (mut h, _mirror) = viewer();
+    open_measure(&mut h, false);
     h.get_by_role_and_label(Role::Button, "Add work plane")
         .click();
     h.step();
@@ -861,12 +871,7 @@ fn ctrl_drag_measures_the_mean_luminance_of_a_rectangle() {
 #[test]
 fn a_grid_on_the_selected_surface_covers_it() {
     let (mut h, _mirror) = viewer();
-    for group in ["Lights", "Camera", "Materials"] {
-        h.get_by_label(group).click();
-        h.step();
-    }
-    h.get_by_label("Measure").click();
-    h.run_steps(2);
+    open_measure(&mut h, false);
     let floor = h.state().doc.scene.slots_for_key("floor").unwrap()[0];
     h.state_mut().selected_slot = Some(floor);
     h.step();
@@ -895,12 +900,7 @@ fn save_report_writes_the_csv_and_waits_for_the_picture() {
     let (mut h, _mirror) = viewer();
     let dir = scratch_dir("report");
     h.state_mut().doc.path = Some(dir.join("box.shp"));
-    for group in ["Lights", "Camera", "Materials", "Render"] {
-        h.get_by_label(group).click();
-        h.step();
-    }
-    h.get_by_label("Measure").click();
-    h.run_steps(2);
+    open_measure(&mut h, true);
     h.get_by_role_and_label(Role::Button, "Add work plane")
         .click();
     h.step();

@@ -9,32 +9,10 @@ use tracer_core::integrator::trace_direct;
 use tracer_core::sampling::SampleRng;
 use tracer_core::scene::{Camera, Handedness, LengthUnit, Light, Material, Scene, Setup};
 use tracer_core::shading::Prepared;
-use tracer_core::shp::{BrepDef, ShpDescription};
+use tracer_core::shp::BrepDef;
 
-/// A brep of quads (each 4 corners, counter-clockwise) split into triangles.
-fn brep(name: &str, quads: &[[[f64; 3]; 4]]) -> BrepDef {
-    let mut b = BrepDef {
-        name: name.into(),
-        part_count: 1,
-        ..BrepDef::default()
-    };
-    for q in quads {
-        let base = b.vertices.len() as u32;
-        b.vertices.extend_from_slice(q);
-        b.triangles.push([base, base + 1, base + 2]);
-        b.triangles.push([base, base + 2, base + 3]);
-    }
-    b.parts = vec![0; b.triangles.len()];
-    b
-}
-
-fn scene(breps: Vec<BrepDef>) -> Scene {
-    let desc = ShpDescription {
-        breps,
-        ..ShpDescription::default()
-    };
-    Scene::build(&desc, "test").unwrap()
-}
+mod gi_support;
+use gi_support::{brep, scene};
 
 /// A floor at y = 0, 200 x 200 units centred on the origin, scaled by `s`.
 fn floor(s: f64) -> BrepDef {

@@ -161,20 +161,12 @@ fn luminaire_ui(ui: &mut egui::Ui, light: &mut Light) {
             .text("multiplier"),
     )
     .on_hover_text("Factor on the file's intensities (1: as measured)");
-    ui.horizontal(|ui| {
-        ui.label("aim (nadir)");
-        for (axis, name) in ["x", "y", "z"].iter().enumerate() {
-            ui.add(
-                egui::DragValue::new(&mut light.aim[axis])
-                    .speed(0.01)
-                    .prefix(format!("{name} ")),
-            )
-            .on_hover_text("Direction of the photometric nadir, γ = 0 (any length)");
-        }
-    });
-    if glam::Vec3::from(light.aim).length_squared() <= 0.0 {
-        light.aim = [0.0, -1.0, 0.0];
-    }
+    aim_ui(
+        ui,
+        &mut light.aim,
+        "aim (nadir)",
+        "Direction of the photometric nadir, γ = 0 (any length)",
+    );
     ui.add(egui::Slider::new(&mut light.rotation_deg, -180.0..=180.0).text("rotation (°)"))
         .on_hover_text("Turn of the C planes about the aim");
     if let Some(l) = &light.luminaire {
@@ -216,25 +208,35 @@ fn polar_ui(ui: &mut egui::Ui, p: &tracer_core::light::Photometry, multiplier: f
 
 /// The spot's axis and angles (degrees at this edge).
 fn spot_ui(ui: &mut egui::Ui, light: &mut Light) {
-    ui.horizontal(|ui| {
-        ui.label("aim");
-        for (axis, name) in ["x", "y", "z"].iter().enumerate() {
-            ui.add(
-                egui::DragValue::new(&mut light.aim[axis])
-                    .speed(0.01)
-                    .prefix(format!("{name} ")),
-            )
-            .on_hover_text("Direction of the spot's axis (any length)");
-        }
-    });
-    if glam::Vec3::from(light.aim).length_squared() <= 0.0 {
-        light.aim = [0.0, -1.0, 0.0];
-    }
+    aim_ui(
+        ui,
+        &mut light.aim,
+        "aim",
+        "Direction of the spot's axis (any length)",
+    );
     ui.add(egui::Slider::new(&mut light.cone_deg, 0.0..=180.0).text("cone (°)"))
         .on_hover_text("Half-angle of full intensity, degrees");
     ui.add(egui::Slider::new(&mut light.falloff_deg, 0.0..=180.0).text("falloff (°)"))
         .on_hover_text("Half-angle where the intensity reaches zero (smoothstep from the cone)");
     if light.falloff_deg < light.cone_deg {
         light.falloff_deg = light.cone_deg;
+    }
+}
+
+/// A light's aim as three numbers; a zero aim falls back to straight down.
+fn aim_ui(ui: &mut egui::Ui, aim: &mut [f32; 3], label: &str, hover: &str) {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        for (axis, name) in ["x", "y", "z"].iter().enumerate() {
+            ui.add(
+                egui::DragValue::new(&mut aim[axis])
+                    .speed(0.01)
+                    .prefix(format!("{name} ")),
+            )
+            .on_hover_text(hover);
+        }
+    });
+    if glam::Vec3::from(*aim).length_squared() <= 0.0 {
+        *aim = [0.0, -1.0, 0.0];
     }
 }
