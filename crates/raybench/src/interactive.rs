@@ -37,6 +37,7 @@ fn settings(integrator: IntegratorKind) -> RenderSettings {
         max_depth: 5,
         integrator,
         max_bounces: None,
+        pixel_illuminance: true,
     }
 }
 

@@ -226,9 +226,10 @@ impl RaygineApp {
         Ok(app)
     }
 
-    /// The light transport a new user starts with: global illumination.
+    /// The light transport a new user starts with: global illumination, bidirectional (lamps
+    /// close to surfaces converge in seconds, as in the built-in Cornell box).
     pub fn default_integrator() -> IntegratorKind {
-        IntegratorKind::Path
+        IntegratorKind::Bidirectional
     }
 
     /// Starts loading a scene in the background; the current scene stays until it succeeds.
@@ -254,6 +255,7 @@ impl RaygineApp {
             max_depth: self.render.max_depth,
             integrator: self.render.integrator,
             max_bounces: None,
+            pixel_illuminance: true,
         }
     }
 
@@ -492,6 +494,7 @@ impl RaygineApp {
                 max_depth: self.render.max_depth,
                 integrator: self.render.integrator,
                 max_bounces: None,
+                pixel_illuminance: true,
             },
             time_limit: None,
         });

@@ -71,7 +71,7 @@ pub struct SceneArgs {
     pub threads: Option<u32>,
     /// Light transport: direct (the coursework's model: direct light and mirrors) or path
     /// (global illumination). Also spelled --gi.
-    #[arg(long, visible_alias = "gi", value_name = "direct|path", default_value = "direct", value_parser = parse_integrator)]
+    #[arg(long, visible_alias = "gi", value_name = "direct|path|bdpt", default_value = "direct", value_parser = parse_integrator)]
     pub integrator: IntegratorKind,
     /// Path mode: at most N diffuse or glossy bounces (1: direct light only; mirrors do not
     /// count). Default: no limit.
@@ -165,7 +165,8 @@ pub struct RenderArgs {
 }
 
 fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
-    IntegratorKind::from_name(s).ok_or_else(|| format!("unknown integrator `{s}` (direct, path)"))
+    IntegratorKind::from_name(s)
+        .ok_or_else(|| format!("unknown integrator `{s}` (direct, path, bdpt)"))
 }
 
 fn parse_seconds(s: &str) -> Result<f64, String> {
@@ -180,7 +181,7 @@ impl SceneArgs {
     pub fn samples_or(&self, fallback: u32) -> u32 {
         self.samples.unwrap_or(match self.integrator {
             IntegratorKind::Direct => fallback,
-            IntegratorKind::Path => PATH_DEFAULT_SAMPLES,
+            IntegratorKind::Path | IntegratorKind::Bidirectional => PATH_DEFAULT_SAMPLES,
         })
     }
 }

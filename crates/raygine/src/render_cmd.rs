@@ -128,6 +128,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         width: args.width,
         height: args.height,
         max_depth: args.depth,
+        // The PNG and the EXR show luminance only.
+        pixel_illuminance: false,
         ..sampling_settings(&args.scene, direct_samples)
     };
     let display = DisplaySettings {
@@ -172,9 +174,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let scene = &loaded.scene;
     let transport = match settings.integrator {
         IntegratorKind::Direct => format!("direct, mirror depth {}", settings.max_depth),
-        IntegratorKind::Path => match settings.max_bounces {
-            Some(n) => format!("path, at most {n} bounces"),
-            None => "path, unlimited bounces".to_owned(),
+        IntegratorKind::Path | IntegratorKind::Bidirectional => match settings.max_bounces {
+            Some(n) => format!("{}, at most {n} bounces", settings.integrator),
+            None => format!("{}, unlimited bounces", settings.integrator),
         },
     };
     println!(

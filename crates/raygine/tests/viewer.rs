@@ -128,10 +128,10 @@ fn starts_in_global_illumination() {
     let direct = mean(&h);
     assert_eq!(
         RaygineApp::default_integrator(),
-        IntegratorKind::Path,
-        "a new user gets global illumination"
+        IntegratorKind::Bidirectional,
+        "a new user gets global illumination (bidirectional)"
     );
-    h.state_mut().render.integrator = IntegratorKind::Path;
+    h.state_mut().render.integrator = IntegratorKind::Bidirectional;
     h.state_mut().render.target_spp = 1;
     settle(&mut h);
     let gi = mean(&h);
@@ -698,6 +698,7 @@ fn render_image_job_writes_the_chosen_size() {
         max_depth: app.render.max_depth,
         integrator: app.render.integrator,
         max_bounces: None,
+        pixel_illuminance: true,
     };
     let (film, _) = tracer_core::render::render(&app.doc.scene, &app.doc.setup, &settings);
     let expected = app.effective_display().map_film(&film);

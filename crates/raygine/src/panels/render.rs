@@ -16,8 +16,10 @@ pub fn render_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         })
         .response
         .on_hover_text(
-            "Global illumination: all light, reflected any number of times (unbiased path \
-             tracing). Direct: the coursework's model, direct light and mirrors only.",
+            "Global illumination: all light, reflected any number of times, unbiased. \
+             Bidirectional traces paths from the lights too (best for lamps close to \
+             surfaces, glass and caustics); path traces from the camera only. Direct: the \
+             coursework's model, direct light and mirrors only.",
         );
     ui.add_enabled(
         r.integrator == IntegratorKind::Direct,

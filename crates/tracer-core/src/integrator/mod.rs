@@ -4,15 +4,23 @@
 //!
 //! - [`IntegratorKind::Direct`]: the coursework's model (direct light, mirrors to a depth).
 //! - [`IntegratorKind::Path`]: global illumination by unbiased path tracing.
+//! - [`IntegratorKind::Bidirectional`]: global illumination by bidirectional path tracing
+//!   (light subpaths too, splatted to the film), for lamps close to surfaces and caustics.
 
+mod bdpt;
 mod direct;
 mod path;
+
+pub use bdpt::{
+    BDPT_RR_THRESHOLD, Bidirectional, Eye, LightPicker, MAX_SUBPATH, Splat, Strategies,
+};
 
 pub use direct::trace as trace_direct;
 pub use path::{MAX_VERTICES, PathTracer, RR_THRESHOLD};
 
 use crate::geometry::Ray;
 use crate::sampling::SampleRng;
+use crate::scene::CameraBasis;
 use crate::shading::Prepared;
 use glam::Vec3;
 
@@ -36,16 +44,23 @@ pub enum IntegratorKind {
     Direct,
     /// Global illumination (path tracing).
     Path,
+    /// Global illumination (bidirectional path tracing).
+    Bidirectional,
 }
 
 impl IntegratorKind {
-    pub const ALL: [IntegratorKind; 2] = [IntegratorKind::Direct, IntegratorKind::Path];
+    pub const ALL: [IntegratorKind; 3] = [
+        IntegratorKind::Direct,
+        IntegratorKind::Path,
+        IntegratorKind::Bidirectional,
+    ];
 
     /// The command line's name.
     pub fn name(self) -> &'static str {
         match self {
             IntegratorKind::Direct => "direct",
             IntegratorKind::Path => "path",
+            IntegratorKind::Bidirectional => "bdpt",
         }
     }
 
@@ -53,14 +68,16 @@ impl IntegratorKind {
     pub fn label(self) -> &'static str {
         match self {
             IntegratorKind::Direct => "Direct (coursework)",
-            IntegratorKind::Path => "Global illumination",
+            IntegratorKind::Path => "Global illumination (path)",
+            IntegratorKind::Bidirectional => "Global illumination (bidirectional)",
         }
     }
 
     pub fn from_name(s: &str) -> Option<Self> {
         match s {
             "direct" => Some(IntegratorKind::Direct),
-            "path" | "gi" => Some(IntegratorKind::Path),
+            "path" => Some(IntegratorKind::Path),
+            "bdpt" | "bidirectional" | "gi" => Some(IntegratorKind::Bidirectional),
             _ => None,
         }
     }
@@ -79,14 +96,71 @@ pub struct Integrator<'a> {
     pub prep: Prepared<'a>,
     /// Path mode: non-delta bounces allowed (None: unlimited).
     pub max_bounces: Option<u32>,
+    /// Bidirectional mode: lights by flux.
+    lights: LightPicker,
+    /// Bidirectional mode: which strategies combine.
+    pub strategies: Strategies,
+    /// Bidirectional mode: whether camera samples also measure the first surface's illuminance.
+    pub pixel_illuminance: bool,
 }
 
 impl<'a> Integrator<'a> {
     pub fn new(kind: IntegratorKind, prep: Prepared<'a>, max_bounces: Option<u32>) -> Self {
+        let lights = if kind == IntegratorKind::Bidirectional {
+            LightPicker::new(&prep)
+        } else {
+            LightPicker::default()
+        };
         Self {
             kind,
             prep,
             max_bounces,
+            lights,
+            strategies: Strategies::All,
+            pixel_illuminance: true,
+        }
+    }
+
+    fn bidirectional(&self, eye: Eye, rr_threshold: f32) -> Bidirectional<'_, 'a> {
+        Bidirectional {
+            prep: &self.prep,
+            lights: &self.lights,
+            eye,
+            max_bounces: self.max_bounces.unwrap_or(u32::MAX),
+            rr_threshold,
+            strategies: self.strategies,
+        }
+    }
+
+    /// Camera sample number `sample_index` along `ray` (unit direction) of the camera `basis`;
+    /// contributions to other pixels (bidirectional mode) are pushed to `splats`.
+    pub fn sample_camera(
+        &self,
+        basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        sample_index: u32,
+        splats: &mut Vec<Splat>,
+    ) -> Sample {
+        if self.kind != IntegratorKind::Bidirectional {
+            return self.sample(ray, rng, sample_index);
+        }
+        let camera = self.bidirectional(Eye::Camera(*basis), BDPT_RR_THRESHOLD);
+        let mut rays = 0;
+        let light_path = camera.light_subpath(&mut bdpt::light_stream(rng), &mut rays);
+        let (estimate, first) = camera.camera_sample(ray, rng, &light_path, splats);
+        rays += estimate.rays;
+        let mut illuminance_lx = 0.0;
+        if let Some((p, n)) = first.filter(|_| self.pixel_illuminance) {
+            let sensor = self.bidirectional(Eye::Sensor, BDPT_RR_THRESHOLD);
+            let e = sensor.sensor_sample(p, n, &mut bdpt::sensor_stream(rng), &light_path);
+            rays += e.rays;
+            illuminance_lx = crate::light::luminance(e.value);
+        }
+        Sample {
+            rgb: estimate.value,
+            illuminance_lx,
+            rays,
         }
     }
 
@@ -103,7 +177,8 @@ impl<'a> Integrator<'a> {
     pub fn sample(&self, ray: &Ray, rng: &mut SampleRng, sample_index: u32) -> Sample {
         match self.kind {
             IntegratorKind::Direct => direct::trace(&self.prep, ray, rng),
-            IntegratorKind::Path => {
+            // Without a film to splat to (previews) the bidirectional mode path-traces.
+            IntegratorKind::Path | IntegratorKind::Bidirectional => {
                 let rr = if sample_index == 0 { 1.0 } else { RR_THRESHOLD };
                 self.path(rr).trace(ray, rng)
             }
@@ -121,6 +196,12 @@ impl<'a> Integrator<'a> {
                 rr_threshold: RR_THRESHOLD,
             },
             IntegratorKind::Path => self.path(RR_THRESHOLD),
+            IntegratorKind::Bidirectional => {
+                let sensor = self.bidirectional(Eye::Sensor, BDPT_RR_THRESHOLD);
+                let light_path = sensor.light_subpath(&mut bdpt::light_stream(rng), &mut rays);
+                let e = sensor.sensor_sample(p, n, rng, &light_path);
+                return (crate::light::luminance(e.value), rays + e.rays);
+            }
         };
         let e = tracer.irradiance(p, n, rng, &mut rays);
         (crate::light::luminance(e), rays)

@@ -21,7 +21,7 @@ use super::Sample;
 use crate::geometry::Ray;
 use crate::light::luminance;
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
-use crate::shading::{Bsdf, Prepared, facing_normal};
+use crate::shading::{Bsdf, Prepared, bsdf_at, facing_normal};
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -86,7 +86,7 @@ impl PathTracer<'_, '_> {
             return sample;
         }
         let p = v.point;
-        if mat.ks.max_element() <= 0.0 {
+        if mat.ks.max_element() <= 0.0 && mat.kt.max_element() <= 0.0 {
             let e = self.irradiance(p, v.n, rng, &mut rays);
             sample.rgb = le + mat.kd_over_pi * e;
             sample.illuminance_lx = luminance(e);
@@ -202,7 +202,7 @@ impl PathTracer<'_, '_> {
         let mut v = v;
         let mut bounces = bounces;
         for _ in 0..MAX_VERTICES {
-            let bsdf = Bsdf::new(prep.material_of(v.prim));
+            let bsdf = bsdf_at(prep, v.prim, v.wo);
             if bsdf.is_black() {
                 break;
             }
@@ -236,7 +236,13 @@ impl PathTracer<'_, '_> {
             } else {
                 Came::Pdf(s.pdf)
             };
-            let Some((next, le)) = self.arrive(&Ray::new(v.origin, s.wi), came, rays) else {
+            // Refracted rays leave from behind the surface.
+            let origin = if v.n.dot(s.wi) >= 0.0 {
+                v.origin
+            } else {
+                v.point - v.n * prep.epsilon
+            };
+            let Some((next, le)) = self.arrive(&Ray::new(origin, s.wi), came, rays) else {
                 break;
             };
             l += beta * le;

@@ -63,6 +63,18 @@ pub struct EmitterSample {
     pub pdf_solid_angle: f32,
 }
 
+/// A point on an emitter, from [`EmitterTable::sample_point`].
+#[derive(Clone, Copy, Debug)]
+pub struct EmitterPoint {
+    pub triangle: u32,
+    pub point: Vec3,
+    /// Unit front normal.
+    pub front: Vec3,
+    pub sides: EmissionSides,
+    /// Density per unit area (scene units) of picking this point.
+    pub pdf_area: f32,
+}
+
 /// Every emissive triangle with a flux-proportional selection table.
 #[derive(Clone, Debug, Default)]
 pub struct EmitterTable {
@@ -195,6 +207,45 @@ impl EmitterTable {
             radiance,
             pdf_solid_angle: pdf,
         })
+    }
+
+    /// A point on the emitting triangles, the triangle picked in proportion to its flux and the
+    /// point uniform on it (for light paths).
+    pub fn sample_point(&self, u_pick: f32, u: f32, v: f32) -> Option<EmitterPoint> {
+        let last = *self.cdf.last()?;
+        let target = f64::from(u_pick) * last;
+        let i = self
+            .cdf
+            .partition_point(|&c| c <= target)
+            .min(self.emitters.len() - 1);
+        let e = &self.emitters[i];
+        let (b1, b2) = uniform_triangle_barycentric(u, v);
+        Some(EmitterPoint {
+            triangle: e.triangle,
+            point: e.v0 + e.e1 * b1 + e.e2 * b2,
+            front: e.front,
+            sides: e.sides,
+            pdf_area: self.pdf_area_of(e),
+        })
+    }
+
+    /// Density per unit area (scene units) with which [`EmitterTable::sample_point`] picks a
+    /// point of `triangle` (0 for triangles that do not emit).
+    pub fn pdf_area(&self, triangle: u32) -> f32 {
+        self.get(triangle).map_or(0.0, |e| self.pdf_area_of(e))
+    }
+
+    fn pdf_area_of(&self, e: &Emitter) -> f32 {
+        if self.total <= 0.0 {
+            return 0.0;
+        }
+        let power = f64::from(super::luminance(e.radiance) * e.area * e.sides.count());
+        (power / self.total) as f32 / e.area
+    }
+
+    /// The unit front normal and the emitting sides of `triangle`.
+    pub fn orientation(&self, triangle: u32) -> Option<(Vec3, EmissionSides)> {
+        self.get(triangle).map(|e| (e.front, e.sides))
     }
 
     /// Density (1/sr) with which [`EmitterTable::sample`] from some point picks the direction

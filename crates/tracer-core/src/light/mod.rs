@@ -10,7 +10,7 @@ mod emitters;
 mod goniometric;
 mod spot;
 
-pub use emitters::{EmissionSides, EmissiveTriangle, EmitterSample, EmitterTable};
+pub use emitters::{EmissionSides, EmissiveTriangle, EmitterPoint, EmitterSample, EmitterTable};
 pub use goniometric::{Photometry, PhotometryError, Plane, cosine_flux};
 pub use spot::SpotProfile;
 

@@ -42,6 +42,9 @@ pub struct PixelSum {
     pub illuminance: i128,
     /// Σ (Rec. 709 luminance)², units of 2⁻¹⁶ (cd/m²)².
     pub luminance_sq: i128,
+    /// Σ luminance per channel that light subpaths of every pixel's samples splatted here
+    /// (bidirectional mode), units of 2⁻³² cd/m²; divided by this pixel's count like its own.
+    pub splat_rgb: [i128; 3],
     /// Samples added.
     pub count: u32,
     /// Samples refused (not finite, or beyond the fixed-point range).
@@ -67,8 +70,28 @@ impl PixelSum {
             rgb: [r, g, b],
             illuminance: e,
             luminance_sq: q,
+            splat_rgb: [0; 3],
             count: 1,
             rejected: 0,
+        };
+        self.merge(&sum)
+    }
+
+    /// Adds a splat (luminance per channel); false (and counted as rejected) when it cannot be
+    /// represented.
+    pub fn add_splat(&mut self, rgb: Vec3) -> bool {
+        let fixed = (
+            to_fixed(f64::from(rgb.x), VALUE_SCALE),
+            to_fixed(f64::from(rgb.y), VALUE_SCALE),
+            to_fixed(f64::from(rgb.z), VALUE_SCALE),
+        );
+        let (Some(r), Some(g), Some(b)) = fixed else {
+            self.rejected += 1;
+            return false;
+        };
+        let sum = PixelSum {
+            splat_rgb: [r, g, b],
+            ..PixelSum::default()
         };
         self.merge(&sum)
     }
@@ -85,6 +108,11 @@ impl PixelSum {
                 ],
                 illuminance: self.illuminance.checked_add(other.illuminance)?,
                 luminance_sq: self.luminance_sq.checked_add(other.luminance_sq)?,
+                splat_rgb: [
+                    self.splat_rgb[0].checked_add(other.splat_rgb[0])?,
+                    self.splat_rgb[1].checked_add(other.splat_rgb[1])?,
+                    self.splat_rgb[2].checked_add(other.splat_rgb[2])?,
+                ],
                 count: self.count.checked_add(other.count)?,
                 rejected: self.rejected.saturating_add(other.rejected),
             })
@@ -110,11 +138,10 @@ impl PixelSum {
             return Vec3::ZERO;
         }
         let n = f64::from(self.count);
-        Vec3::new(
-            (from_fixed(self.rgb[0], VALUE_SCALE) / n) as f32,
-            (from_fixed(self.rgb[1], VALUE_SCALE) / n) as f32,
-            (from_fixed(self.rgb[2], VALUE_SCALE) / n) as f32,
-        )
+        let channel = |c: usize| {
+            (from_fixed(self.rgb[c].saturating_add(self.splat_rgb[c]), VALUE_SCALE) / n) as f32
+        };
+        Vec3::new(channel(0), channel(1), channel(2))
     }
 
     /// Mean illuminance (lx).
@@ -125,8 +152,19 @@ impl PixelSum {
         (from_fixed(self.illuminance, VALUE_SCALE) / f64::from(self.count)) as f32
     }
 
-    /// Mean Rec. 709 luminance (cd/m²), in f64.
+    /// Mean Rec. 709 luminance (cd/m²), splats included, in f64.
     pub fn mean_luminance(&self) -> f64 {
+        if self.count == 0 {
+            return 0.0;
+        }
+        let w = LUMINANCE_WEIGHTS.as_dvec3();
+        let total =
+            |c: usize| from_fixed(self.rgb[c].saturating_add(self.splat_rgb[c]), VALUE_SCALE);
+        (w.x * total(0) + w.y * total(1) + w.z * total(2)) / f64::from(self.count)
+    }
+
+    /// Mean Rec. 709 luminance of the pixel's own samples (without splats), in f64.
+    fn own_mean_luminance(&self) -> f64 {
         if self.count == 0 {
             return 0.0;
         }
@@ -138,13 +176,14 @@ impl PixelSum {
     }
 
     /// Standard error of the mean luminance (cd/m²) from the summed squares; None with fewer
-    /// than two samples.
+    /// than two samples. Splats are not in the squares: this is the error of the pixel's own
+    /// samples.
     pub fn luminance_std_error(&self) -> Option<f64> {
         if self.count < 2 {
             return None;
         }
         let n = f64::from(self.count);
-        let mean = self.mean_luminance();
+        let mean = self.own_mean_luminance();
         let mean_sq = from_fixed(self.luminance_sq, SQUARE_SCALE) / n;
         let var = (mean_sq - mean * mean).max(0.0) * n / (n - 1.0);
         Some((var / n).sqrt())
@@ -186,6 +225,17 @@ impl Film {
         for ((x, y), s) in tile.pixels().zip(sums) {
             let i = self.index(x, y);
             self.pixels[i].merge(s);
+        }
+    }
+
+    /// Adds light-subpath splats (bidirectional mode). Exact and order-independent like
+    /// samples.
+    pub fn add_splats(&mut self, splats: &[crate::integrator::Splat]) {
+        for s in splats {
+            if s.x < self.width && s.y < self.height {
+                let i = self.index(s.x, s.y);
+                self.pixels[i].add_splat(s.rgb);
+            }
         }
     }
 

@@ -34,10 +34,15 @@ pub struct RenderSettings {
     pub samples_per_pixel: u32,
     /// Maximum mirror reflections after the camera ray (direct mode).
     pub max_depth: u32,
-    /// Light transport: direct (the coursework's model) or path (global illumination).
+    /// Light transport: direct (the coursework's model), path or bidirectional (global
+    /// illumination).
     pub integrator: IntegratorKind,
     /// Path mode: non-delta bounces allowed (None: unlimited, the unbiased answer).
     pub max_bounces: Option<u32>,
+    /// Whether to estimate each pixel's illuminance (lx) too. The bidirectional integrator
+    /// measures it with a second (sensor) subpath, which costs about as much as the luminance;
+    /// images that only show luminance can switch it off (the pixels then read 0 lx).
+    pub pixel_illuminance: bool,
 }
 
 impl Default for RenderSettings {
@@ -49,6 +54,7 @@ impl Default for RenderSettings {
             max_depth: DEFAULT_MAX_DEPTH,
             integrator: IntegratorKind::Direct,
             max_bounces: None,
+            pixel_illuminance: true,
         }
     }
 }
@@ -135,7 +141,7 @@ pub fn render_samples(
     let mut film = Film::new(settings.width, settings.height);
     let width = settings.width as usize;
     let band_len = width * BAND_ROWS as usize;
-    let rays: u64 = film
+    let (rays, splats): (u64, Vec<Vec<crate::integrator::Splat>>) = film
         .pixels
         .par_chunks_mut(band_len.max(1))
         .enumerate()
@@ -143,19 +149,39 @@ pub fn render_samples(
             let y0 = band as u32 * BAND_ROWS;
             let rows = (pixels.len() / width.max(1)) as u32;
             let mut band_rays = 0u64;
+            let mut splats = Vec::new();
             for x0 in (0..settings.width).step_by(TILE_SIZE as usize) {
                 let x1 = (x0 + TILE_SIZE).min(settings.width);
                 for y in y0..y0 + rows {
                     let row = (y - y0) as usize * width;
                     for x in x0..x1 {
                         let sum = &mut pixels[row + x as usize];
-                        band_rays += frame.add_samples(x, y, samples.clone(), sum);
+                        band_rays += frame.add_samples(x, y, samples.clone(), sum, &mut splats);
                     }
                 }
             }
-            band_rays
+            (band_rays, splats)
         })
-        .sum();
+        .fold(
+            || (0u64, Vec::new()),
+            |(r, mut all), (band_rays, splats)| {
+                if !splats.is_empty() {
+                    all.push(splats);
+                }
+                (r + band_rays, all)
+            },
+        )
+        .reduce(
+            || (0u64, Vec::new()),
+            |(r1, mut a), (r2, b)| {
+                a.extend(b);
+                (r1 + r2, a)
+            },
+        );
+    // Integer sums: the order splats arrive in does not matter.
+    for band in &splats {
+        film.add_splats(band);
+    }
     let stats = RenderStats {
         rays,
         elapsed_secs: started.elapsed().as_secs_f64(),

@@ -6,7 +6,7 @@
 use super::RenderSettings;
 use super::film::PixelSum;
 use super::sampler::pixel_sample_offset;
-use crate::integrator::{Integrator, Sample};
+use crate::integrator::{Integrator, Sample, Splat};
 use crate::sampling::SampleRng;
 use crate::scene::{CameraBasis, Scene, Setup};
 use crate::shading::Prepared;
@@ -25,29 +25,41 @@ pub struct FrameSampler<'a> {
 impl<'a> FrameSampler<'a> {
     pub fn new(scene: &'a Scene, setup: &Setup, settings: &RenderSettings) -> Self {
         let prep = Prepared::new(scene, setup, settings.max_depth);
+        let mut integrator = Integrator::new(settings.integrator, prep, settings.max_bounces);
+        integrator.pixel_illuminance = settings.pixel_illuminance;
         Self {
-            integrator: Integrator::new(settings.integrator, prep, settings.max_bounces),
+            integrator,
             basis: setup
                 .camera
                 .basis(setup.handedness, settings.width, settings.height),
         }
     }
 
-    /// Sample `s` of pixel (`x`, `y`).
-    pub fn sample(&self, x: u32, y: u32, s: u32) -> Sample {
+    /// Sample `s` of pixel (`x`, `y`); contributions it makes to other pixels (bidirectional
+    /// mode) go to `splats`.
+    pub fn sample(&self, x: u32, y: u32, s: u32, splats: &mut Vec<Splat>) -> Sample {
         let width = self.basis.width;
         let (dx, dy) = pixel_sample_offset(x, y, width, s);
         let ray = self.basis.ray(x as f32 + dx, y as f32 + dy);
         let key = u64::from(y) * u64::from(width) + u64::from(x);
         let mut rng = SampleRng::new(key, s);
-        self.integrator.sample(&ray, &mut rng, s)
+        self.integrator
+            .sample_camera(&self.basis, &ray, &mut rng, s, splats)
     }
 
-    /// Adds samples `samples` of pixel (`x`, `y`) to `sum`; returns the rays traced.
-    pub fn add_samples(&self, x: u32, y: u32, samples: Range<u32>, sum: &mut PixelSum) -> u64 {
+    /// Adds samples `samples` of pixel (`x`, `y`) to `sum` (and their splats to `splats`);
+    /// returns the rays traced.
+    pub fn add_samples(
+        &self,
+        x: u32,
+        y: u32,
+        samples: Range<u32>,
+        sum: &mut PixelSum,
+        splats: &mut Vec<Splat>,
+    ) -> u64 {
         let mut rays = 0;
         for s in samples {
-            let sample = self.sample(x, y, s);
+            let sample = self.sample(x, y, s, splats);
             rays += u64::from(sample.rays);
             sum.add(&sample);
         }

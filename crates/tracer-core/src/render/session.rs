@@ -488,6 +488,7 @@ impl PassContext<'_> {
 
     fn full_tile(&self, tile: &Tile, index: u32) {
         let mut sums = Vec::with_capacity(tile.pixel_count());
+        let mut splats = Vec::new();
         let mut rays = 0u64;
         for y in tile.y0..tile.y1 {
             if !self.shared.is_current(self.generation) {
@@ -495,12 +496,28 @@ impl PassContext<'_> {
             }
             for x in tile.x0..tile.x1 {
                 let mut sum = PixelSum::default();
-                rays += self.frame.add_samples(x, y, index..index + 1, &mut sum);
+                rays += self
+                    .frame
+                    .add_samples(x, y, index..index + 1, &mut sum, &mut splats);
                 sums.push(sum);
             }
         }
         self.rays.fetch_add(rays, Ordering::Relaxed);
-        self.commit(tile, |film| film.add_tile(tile, &sums));
+        let dirty = if splats.is_empty() {
+            *tile
+        } else {
+            // Light subpaths land anywhere in the picture.
+            Tile {
+                x0: 0,
+                y0: 0,
+                x1: self.frame.basis.width,
+                y1: self.frame.basis.height,
+            }
+        };
+        self.commit(&dirty, |film| {
+            film.add_tile(tile, &sums);
+            film.accum.add_splats(&splats);
+        });
     }
 
     /// Applies a finished tile to this generation's film unless the generation is stale. Until

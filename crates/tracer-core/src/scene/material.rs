@@ -1,4 +1,5 @@
-//! Surface materials: Lambertian diffuse plus a mirror with a normalised Blinn-Phong highlight.
+//! Surface materials: Lambertian diffuse plus a mirror with a normalised Blinn-Phong highlight,
+//! and a smooth dielectric (glass) interface.
 
 use crate::light::EmissionSides;
 use glam::Vec3;
@@ -10,6 +11,11 @@ use serde::{Deserialize, Serialize};
 /// `f = Kd / π + Ks · (g + 8) / (8π) · (n·h)^g` (the highlight only when `glossiness > 0`),
 /// and the mirror term `Ks · L_reflected` traced recursively. `Kd + Ks <= 1` per channel keeps
 /// the surface from creating energy; [`Material::clamped`] enforces it.
+///
+/// Glass: `kt` weights a smooth dielectric interface of refractive index `ior` (inside behind
+/// the front face, outside 1): Fresnel reflection R(θ) and refraction 1 − R by Snell's law, with
+/// total internal reflection, both times `kt`. `Kd + Ks + Kt <= 1` per channel. The direct
+/// (coursework) integrator does not trace glass: there `kt` is absorbed.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
@@ -21,6 +27,12 @@ pub struct Material {
     /// Blinn-Phong exponent g of the highlight of point lights (0: no highlight, mirror only).
     #[serde(default)]
     pub glossiness: f32,
+    /// Weight Kt of the smooth dielectric interface (glass) per channel.
+    #[serde(default, skip_serializing_if = "is_black")]
+    pub kt: [f32; 3],
+    /// Refractive index of the inside (behind the front face) when `kt` > 0.
+    #[serde(default = "glass_ior", skip_serializing_if = "is_glass_ior")]
+    pub ior: f32,
     /// Luminance the surface emits as a Lambertian emitter, cd/m² (0: not a light).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub emission_cd_m2: f32,
@@ -34,6 +46,21 @@ pub struct Material {
 
 fn is_zero(x: &f32) -> bool {
     *x == 0.0
+}
+
+fn is_black(c: &[f32; 3]) -> bool {
+    *c == [0.0; 3]
+}
+
+/// Default refractive index: crown glass.
+pub const GLASS_IOR: f32 = 1.5;
+
+fn glass_ior() -> f32 {
+    GLASS_IOR
+}
+
+fn is_glass_ior(x: &f32) -> bool {
+    *x == GLASS_IOR
 }
 
 fn white() -> [f32; 3] {
@@ -55,6 +82,8 @@ impl Default for Material {
             kd: [0.7; 3],
             ks: [0.0; 3],
             glossiness: 0.0,
+            kt: [0.0; 3],
+            ior: GLASS_IOR,
             emission_cd_m2: 0.0,
             emission_color: [1.0; 3],
             emission_sides: EmissionSides::Both,
@@ -71,6 +100,10 @@ impl Material {
         Vec3::from(self.ks)
     }
 
+    pub fn kt(&self) -> Vec3 {
+        Vec3::from(self.kt)
+    }
+
     /// Emitted luminance per channel (cd/m²): `emission_cd_m2` times the unit-luminance tint.
     pub fn emission(&self) -> Vec3 {
         if self.emission_cd_m2 > 0.0 && self.emission_cd_m2.is_finite() {
@@ -80,8 +113,8 @@ impl Material {
         }
     }
 
-    /// Clamps every value into its physical range (0..=1 reflectances, Kd + Ks <= 1 per channel
-    /// by scaling both down, glossiness >= 0). Returns the clamped material and whether anything
+    /// Clamps every value into its physical range (0..=1 reflectances, Kd + Ks + Kt <= 1 per
+    /// channel by scaling all down, glossiness >= 0, ior in 1..=4). Returns the clamped material and whether anything
     /// changed, so callers can warn.
     pub fn clamped(&self) -> (Material, bool) {
         let fix = |x: f32| {
@@ -93,13 +126,20 @@ impl Material {
         };
         let mut kd = self.kd.map(fix);
         let mut ks = self.ks.map(fix);
+        let mut kt = self.kt.map(fix);
         for c in 0..3 {
-            let sum = kd[c] + ks[c];
+            let sum = kd[c] + ks[c] + kt[c];
             if sum > 1.0 {
                 kd[c] /= sum;
                 ks[c] /= sum;
+                kt[c] /= sum;
             }
         }
+        let ior = if self.ior.is_finite() {
+            self.ior.clamp(1.0, 4.0)
+        } else {
+            GLASS_IOR
+        };
         let glossiness = if self.glossiness.is_finite() {
             self.glossiness.clamp(0.0, 1.0e5)
         } else {
@@ -117,6 +157,8 @@ impl Material {
             kd,
             ks,
             glossiness,
+            kt,
+            ior,
             emission_cd_m2,
             emission_color,
             emission_sides: self.emission_sides,

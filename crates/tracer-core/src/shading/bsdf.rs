@@ -1,12 +1,18 @@
-//! The scattering model of path mode, per material: a Lambertian lobe (Kd), and either a glossy
-//! normalised Blinn-Phong lobe (Ks with glossiness g > 0) or a perfect mirror (Ks with g = 0).
+//! The scattering model of the path and bidirectional integrators, per material: a Lambertian
+//! lobe (Kd), either a glossy normalised Blinn-Phong lobe (Ks with glossiness g > 0) or a perfect
+//! mirror (Ks with g = 0), and a smooth dielectric interface (Kt, see [`super::dielectric`]).
 //!
 //! `f(wo, wi) = Kd / π + Ks (g + 8)/(8π) (n·h)^g` for the non-delta part, the same lobe the
-//! direct mode uses for highlights; the mirror is a delta lobe of weight Ks. One lobe is chosen
-//! per sample in proportion to the luminance of Kd and Ks; non-delta samples are weighted by
+//! direct mode uses for highlights; the mirror and the glass are delta lobes. One lobe is chosen
+//! per sample in proportion to the luminance of Kd, Ks and Kt; non-delta samples are weighted by
 //! `f cos / pdf` with the mixture's full density (one-sample MIS over the lobes), so the estimate
 //! stays unbiased whichever lobe was picked.
+//!
+//! The non-delta part is symmetric in (wo, wi), so light paths use the same `eval` and `pdf`.
+//! Refraction is not symmetric: camera paths (radiance) scale a refracted sample by
+//! (η_wo / η_wi)², light paths (importance, [`Bsdf::for_light_paths`]) do not.
 
+use super::dielectric::{fresnel, refract};
 use super::prepared::PreparedMaterial;
 use crate::light::luminance;
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
@@ -16,13 +22,13 @@ use std::f32::consts::PI;
 /// A sampled incident direction.
 #[derive(Clone, Copy, Debug)]
 pub struct BsdfSample {
-    /// Unit direction towards where the light comes from.
+    /// Unit direction towards where the light comes from (for light paths: where it goes).
     pub wi: Vec3,
-    /// `f cos θ / pdf` per channel (for a delta lobe: its reflectance over its probability).
+    /// `f cos θ / pdf` per channel (for a delta lobe: its weight over its probability).
     pub weight: Vec3,
     /// Density in solid angle of the non-delta mixture at `wi` (0 for a delta sample).
     pub pdf: f32,
-    /// Whether the mirror lobe was sampled (no light sampling can reach this direction).
+    /// Whether a delta lobe (mirror, glass) was sampled: no light sampling can reach `wi`.
     pub delta: bool,
 }
 
@@ -31,32 +37,59 @@ pub struct BsdfSample {
 pub struct Bsdf {
     kd: Vec3,
     ks: Vec3,
+    kt: Vec3,
     glossiness: f32,
     highlight_norm: f32,
-    /// Probability of sampling the Lambertian lobe (else the Ks lobe).
+    /// Probability of picking the diffuse lobe, and the diffuse or the Ks lobe.
     p_diffuse: f32,
+    p_reflective: f32,
+    /// Refractive index behind the surface over the one in front (the side of `wo`).
+    eta: f32,
+    /// Light paths (importance): no (η_wo / η_wi)² on refraction.
+    importance: bool,
 }
 
 impl Bsdf {
+    /// The scattering of `m` seen from outside (from the front face, or `m` has no glass).
     pub fn new(m: &PreparedMaterial) -> Self {
         let kd = m.kd_over_pi * PI;
-        let (yd, ys) = (luminance(kd), luminance(m.ks));
-        let p_diffuse = if yd + ys > 0.0 { yd / (yd + ys) } else { 1.0 };
+        let (yd, ys, yt) = (luminance(kd), luminance(m.ks), luminance(m.kt));
+        let total = yd + ys + yt;
+        let (p_diffuse, p_reflective) = if total > 0.0 {
+            (yd / total, (yd + ys) / total)
+        } else {
+            (1.0, 1.0)
+        };
         Self {
             kd,
             ks: m.ks,
+            kt: m.kt,
             glossiness: m.glossiness,
             highlight_norm: m.highlight_norm,
             p_diffuse,
+            p_reflective,
+            eta: m.ior,
+            importance: false,
         }
     }
 
-    /// Whether the surface reflects nothing.
-    pub fn is_black(&self) -> bool {
-        self.kd.max_element() <= 0.0 && self.ks.max_element() <= 0.0
+    /// The same surface seen from inside its glass (from behind the front face).
+    pub fn from_inside(mut self) -> Self {
+        self.eta = 1.0 / self.eta;
+        self
     }
 
-    /// Whether light sampling can find any light this surface reflects (it has a non-delta lobe).
+    /// For light paths (importance transport).
+    pub fn for_light_paths(mut self) -> Self {
+        self.importance = true;
+        self
+    }
+
+    pub fn is_black(&self) -> bool {
+        self.kd.max_element() <= 0.0 && self.ks.max_element() <= 0.0 && self.kt.max_element() <= 0.0
+    }
+
+    /// Whether any lobe is not a delta (light sampling pays off).
     pub fn has_smooth_lobe(&self) -> bool {
         self.kd.max_element() > 0.0 || (self.glossiness > 0.0 && self.ks.max_element() > 0.0)
     }
@@ -65,7 +98,7 @@ impl Bsdf {
         self.glossiness <= 0.0
     }
 
-    /// The non-delta part of f (1/sr) for unit `wo`, `wi` on the side of the unit normal `n`.
+    /// The non-delta BRDF value for unit `wo`, `wi` (both on the side of unit normal `n`).
     pub fn eval(&self, n: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
         if n.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
             return Vec3::ZERO;
@@ -79,38 +112,42 @@ impl Bsdf {
         f
     }
 
-    /// Density (1/sr) with which [`Bsdf::sample`] returns the non-delta direction `wi`.
+    /// Density (per steradian) with which [`Bsdf::sample`] picks `wi` through a non-delta lobe.
     pub fn pdf(&self, n: Vec3, wo: Vec3, wi: Vec3) -> f32 {
         let cos_i = n.dot(wi);
         if cos_i <= 0.0 || n.dot(wo) <= 0.0 {
             return 0.0;
         }
         let mut pdf = self.p_diffuse * cos_i / PI;
-        if !self.is_mirror() && self.p_diffuse < 1.0 {
+        let p_glossy = self.p_reflective - self.p_diffuse;
+        if !self.is_mirror() && p_glossy > 0.0 {
             let h = (wi + wo).normalize_or_zero();
             let n_dot_h = n.dot(h).max(0.0);
             let o_dot_h = wo.dot(h);
             if o_dot_h > 0.0 {
                 let pdf_h = (self.glossiness + 1.0) / (2.0 * PI) * n_dot_h.powf(self.glossiness);
-                pdf += (1.0 - self.p_diffuse) * pdf_h / (4.0 * o_dot_h);
+                pdf += p_glossy * pdf_h / (4.0 * o_dot_h);
             }
         }
         pdf
     }
 
-    /// Samples an incident direction for outgoing `wo` (both unit, `n` facing `wo`). None when
-    /// the sample carries no light (below the surface, or a black surface).
+    /// Samples an incident direction for the outgoing unit `wo`, with `n` facing `wo`.
     pub fn sample(&self, n: Vec3, wo: Vec3, rng: &mut SampleRng) -> Option<BsdfSample> {
         if self.is_black() {
             return None;
         }
         let pick = rng.next_f32();
         let (u, v) = rng.next_2d();
+        if pick >= self.p_reflective {
+            return self.sample_glass(n, wo, u);
+        }
+        let p_ks = self.p_reflective - self.p_diffuse;
         if pick >= self.p_diffuse && self.is_mirror() {
             let wi = n * (2.0 * n.dot(wo)) - wo;
             return Some(BsdfSample {
                 wi,
-                weight: self.ks / (1.0 - self.p_diffuse),
+                weight: self.ks / p_ks,
                 pdf: 0.0,
                 delta: true,
             });
@@ -118,7 +155,6 @@ impl Bsdf {
         let wi = if pick < self.p_diffuse {
             to_world(cosine_hemisphere(u, v), n)
         } else {
-            // Half vector with density (g + 1)/(2π) (n·h)^g, reflected about it.
             let cos_h = u.powf(1.0 / (self.glossiness + 1.0));
             let sin_h = (1.0 - cos_h * cos_h).max(0.0).sqrt();
             let phi = 2.0 * PI * v;
@@ -133,8 +169,8 @@ impl Bsdf {
         if pdf.is_nan() || pdf <= 0.0 {
             return None;
         }
+        // With a mirror Ks the only non-delta lobe is the diffuse one.
         let f = if self.is_mirror() {
-            // The mirror is not part of the smooth lobe; with a mirror the smooth part is Kd only.
             self.kd / PI
         } else {
             self.eval(n, wo, wi)
@@ -144,6 +180,37 @@ impl Bsdf {
             weight: f * (cos_i / pdf),
             pdf,
             delta: false,
+        })
+    }
+
+    /// The glass lobe: reflection with probability R(θ), else refraction.
+    fn sample_glass(&self, n: Vec3, wo: Vec3, u: f32) -> Option<BsdfSample> {
+        let p_glass = 1.0 - self.p_reflective;
+        if p_glass <= 0.0 {
+            return None;
+        }
+        let cos_o = n.dot(wo);
+        let r = fresnel(cos_o, self.eta);
+        let weight = self.kt / p_glass;
+        if u < r {
+            return Some(BsdfSample {
+                wi: n * (2.0 * cos_o) - wo,
+                weight,
+                pdf: 0.0,
+                delta: true,
+            });
+        }
+        let wi = refract(wo, n, self.eta)?;
+        let scale = if self.importance {
+            1.0
+        } else {
+            1.0 / (self.eta * self.eta)
+        };
+        Some(BsdfSample {
+            wi,
+            weight: weight * scale,
+            pdf: 0.0,
+            delta: true,
         })
     }
 }
@@ -159,6 +226,8 @@ mod tests {
             ks: Vec3::splat(ks),
             glossiness: g,
             highlight_norm: (g + 8.0) / (8.0 * PI),
+            kt: Vec3::ZERO,
+            ior: 1.5,
             emission: Vec3::ZERO,
         }
     }

@@ -3,9 +3,11 @@
 //! The integrators in [`crate::integrator`] combine them with the lights.
 
 mod bsdf;
+mod dielectric;
 mod prepared;
 
 pub use bsdf::{Bsdf, BsdfSample};
+pub use dielectric::{fresnel, refract};
 pub use prepared::{Prepared, PreparedLight, PreparedMaterial, Profile};
 
 use crate::bvh::Hit;
@@ -15,4 +17,15 @@ use glam::Vec3;
 pub fn facing_normal(prep: &Prepared<'_>, hit: &Hit, dir: Vec3) -> Vec3 {
     let n = prep.scene.normals[hit.prim as usize];
     if n.dot(dir) > 0.0 { -n } else { n }
+}
+
+/// The scattering at triangle `prim` for light leaving along unit `wo` (glass knows whether
+/// `wo` is outside, in front of the front face, or inside).
+pub fn bsdf_at(prep: &Prepared<'_>, prim: u32, wo: Vec3) -> Bsdf {
+    let bsdf = Bsdf::new(prep.material_of(prim));
+    if prep.front_normal(prim).dot(wo) >= 0.0 {
+        bsdf
+    } else {
+        bsdf.from_inside()
+    }
 }

@@ -50,6 +50,9 @@ pub struct PreparedMaterial {
     pub glossiness: f32,
     /// (g + 8) / (8π), the normalisation of the Blinn-Phong lobe.
     pub highlight_norm: f32,
+    /// Weight of the glass interface per channel, and the refractive index behind the front.
+    pub kt: Vec3,
+    pub ior: f32,
     /// Emitted luminance per channel, cd/m² (zero for surfaces that are not lights).
     pub emission: Vec3,
 }
@@ -123,6 +126,8 @@ impl<'a> Prepared<'a> {
                 ks: m.ks(),
                 glossiness: m.glossiness,
                 highlight_norm: (m.glossiness + 8.0) / (8.0 * std::f32::consts::PI),
+                kt: m.kt(),
+                ior: m.ior,
                 emission: m.emission(),
             })
             .collect();

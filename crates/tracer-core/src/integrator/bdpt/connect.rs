@@ -1,0 +1,289 @@
+//! Connecting eye and light subpaths, and the multiple importance sampling weight of each
+//! strategy (s light vertices, t eye vertices).
+
+use super::emit::LightRef;
+use super::vertex::{Kind, Vertex};
+use super::{Bidirectional, Eye, Splat};
+use crate::sampling::SampleRng;
+use glam::Vec3;
+
+/// Zero densities (delta vertices) count as 1 in ratios.
+fn remap0(x: f32) -> f32 {
+    if x != 0.0 { x } else { 1.0 }
+}
+
+impl Bidirectional<'_, '_> {
+    /// Sum over every allowed strategy of the weighted contribution to this eye sample; splats
+    /// for the camera's t = 1 strategies.
+    pub(super) fn connect_all(
+        &self,
+        eye: &[Vertex],
+        light: &[Vertex],
+        rng: &mut SampleRng,
+        splats: &mut Vec<Splat>,
+        rays: &mut u32,
+    ) -> Vec3 {
+        let mut total = Vec3::ZERO;
+        for t in 1..=eye.len() {
+            for s in 0..=light.len() {
+                if s + t < 2 || !self.strategies.allowed(s, t) {
+                    continue;
+                }
+                if self.max_bounces != u32::MAX && self.bounces(eye, light, s, t) > self.max_bounces
+                {
+                    continue;
+                }
+                if t == 1 {
+                    if let Some(splat) = self.connect_to_eye(eye, light, s, rays) {
+                        match self.eye {
+                            Eye::Camera(_) => splats.push(splat),
+                            Eye::Sensor => total += splat.rgb,
+                        }
+                    }
+                    continue;
+                }
+                total += match s {
+                    0 => self.hit_light(eye, t),
+                    1 => self.connect_to_light(eye, light, t, rng, rays),
+                    _ => self.connect_inner(eye, light, s, t, rays),
+                };
+            }
+        }
+        total
+    }
+
+    /// Non-delta scattering vertices of the path of strategy (s, t).
+    fn bounces(&self, eye: &[Vertex], light: &[Vertex], s: usize, t: usize) -> u32 {
+        let count = |vs: &[Vertex]| {
+            vs.iter()
+                .filter(|v| matches!(v.kind, Kind::Surface(_)) && v.connectible())
+                .count() as u32
+        };
+        let eye_part = if s == 0 {
+            // The last eye vertex is the glowing surface itself.
+            count(&eye[1..t.saturating_sub(1).max(1)])
+        } else {
+            count(&eye[1..t])
+        };
+        eye_part + count(&light[1.min(s)..s])
+    }
+
+    /// s = 0: the eye subpath found a glowing surface.
+    fn hit_light(&self, eye: &[Vertex], t: usize) -> Vec3 {
+        let pt = eye[t - 1];
+        let le = pt.emission(self);
+        if le.max_element() <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let c = pt.beta * le;
+        c * self.mis_weight(eye, &[], None, 0, t)
+    }
+
+    /// Whether the segment between two vertices is clear.
+    fn visible(&self, a: &Vertex, b: &Vertex, rays: &mut u32) -> bool {
+        let d = b.p - a.p;
+        let lift = |v: &Vertex, towards: Vec3| match v.kind {
+            Kind::Surface(_) | Kind::Light(LightRef::Area(_)) => {
+                v.p + v.facing(towards) * self.prep.epsilon
+            }
+            Kind::Eye if v.n != Vec3::ZERO && matches!(self.eye, Eye::Sensor) => {
+                v.p + v.n * self.prep.epsilon
+            }
+            _ => v.p,
+        };
+        let on_a = lift(a, d);
+        let on_b = lift(b, -d);
+        *rays += 1;
+        // From the eye side towards the light side, like next-event estimation: a point light
+        // on a surface (a lamp on the ceiling) does not shadow itself, since the ray stops
+        // short of its end.
+        !self.prep.occluded(on_b, on_a - on_b)
+    }
+
+    /// The unweighted contribution of joining light-side `a` to eye-side `b` (without
+    /// visibility): a.β f_a G f_b b.β.
+    fn join(&self, a: &Vertex, b: &Vertex) -> Vec3 {
+        let d = b.p - a.p;
+        let dist2 = d.length_squared();
+        if dist2 <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let w = d / dist2.sqrt();
+        let g = a.cosine(w) * b.cosine(-w) / dist2;
+        if g <= 0.0 {
+            return Vec3::ZERO;
+        }
+        a.beta * a.f(self, w) * b.f(self, -w) * b.beta * g
+    }
+
+    /// t = 1: light vertex s − 1 seen by the eye (a splat for the camera).
+    fn connect_to_eye(
+        &self,
+        eye: &[Vertex],
+        light: &[Vertex],
+        s: usize,
+        rays: &mut u32,
+    ) -> Option<Splat> {
+        let qs = light[s - 1];
+        if !qs.connectible() {
+            return None;
+        }
+        let e = eye[0];
+        if matches!(self.eye, Eye::Camera(_)) && qs.is_delta_light() {
+            return None;
+        }
+        let mut pixel = (0, 0);
+        if let Eye::Camera(b) = self.eye {
+            let (x, y, _) = self.film_position((qs.p - e.p).normalize_or_zero())?;
+            pixel = (
+                (x as u32).min(b.width.saturating_sub(1)),
+                (y as u32).min(b.height.saturating_sub(1)),
+            );
+        }
+        let c = self.join(&qs, &e);
+        if c.max_element() <= 0.0 || !self.visible(&qs, &e, rays) {
+            return None;
+        }
+        let w = self.mis_weight(eye, light, None, s, 1);
+        Some(Splat {
+            x: pixel.0,
+            y: pixel.1,
+            rgb: c * w,
+        })
+    }
+
+    /// s = 1: a light sampled anew for eye vertex t − 1.
+    fn connect_to_light(
+        &self,
+        eye: &[Vertex],
+        light: &[Vertex],
+        t: usize,
+        rng: &mut SampleRng,
+        rays: &mut u32,
+    ) -> Vec3 {
+        let pt = eye[t - 1];
+        if !pt.connectible() {
+            return Vec3::ZERO;
+        }
+        let Some(start) = self.lights.sample(self.prep, rng) else {
+            return Vec3::ZERO;
+        };
+        if start.pdf_origin <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let sampled = Vertex::new(
+            Kind::Light(start.light),
+            start.p,
+            start.n,
+            Vec3::splat(1.0 / start.pdf_origin),
+            start.pdf_origin,
+        );
+        let c = self.join(&sampled, &pt);
+        if c.max_element() <= 0.0 || !self.visible(&sampled, &pt, rays) {
+            return Vec3::ZERO;
+        }
+        c * self.mis_weight(eye, light, Some(sampled), 1, t)
+    }
+
+    /// s, t ≥ 2: light vertex s − 1 joined to eye vertex t − 1.
+    fn connect_inner(
+        &self,
+        eye: &[Vertex],
+        light: &[Vertex],
+        s: usize,
+        t: usize,
+        rays: &mut u32,
+    ) -> Vec3 {
+        let (qs, pt) = (light[s - 1], eye[t - 1]);
+        if !qs.connectible() || !pt.connectible() {
+            return Vec3::ZERO;
+        }
+        let c = self.join(&qs, &pt);
+        if c.max_element() <= 0.0 || !self.visible(&qs, &pt, rays) {
+            return Vec3::ZERO;
+        }
+        c * self.mis_weight(eye, light, None, s, t)
+    }
+
+    /// The power-heuristic weight of strategy (s, t) among the allowed strategies for the same
+    /// path. `sampled` stands in for light vertex 0 when s = 1. Nothing is written: the four
+    /// densities the connection changes are passed to the ratio loops as overrides.
+    fn mis_weight(
+        &self,
+        eye: &[Vertex],
+        light: &[Vertex],
+        sampled: Option<Vertex>,
+        s: usize,
+        t: usize,
+    ) -> f32 {
+        let light_at = |i: usize| -> Vertex {
+            match (i, sampled) {
+                (0, Some(v)) => v,
+                _ => light[i],
+            }
+        };
+        let pt = eye[t - 1];
+        let pt_minus = (t >= 2).then(|| eye[t - 2]);
+        let qs = (s >= 1).then(|| light_at(s - 1));
+        let qs_minus = (s >= 2).then(|| light_at(s - 2));
+        // Reverse densities of the vertices next to the connection.
+        let pt_rev = match &qs {
+            Some(q) => q.pdf(self, qs_minus.as_ref(), &pt),
+            None => pt.pdf_light_origin(self),
+        };
+        let pt_minus_rev = pt_minus.map(|pm| match &qs {
+            Some(q) => pt.pdf(self, Some(q), &pm),
+            None => pt.pdf_light(self, &pm),
+        });
+        let qs_rev = qs.map(|q| pt.pdf(self, pt_minus.as_ref(), &q));
+        let qs_minus_rev = match (&qs, &qs_minus) {
+            (Some(q), Some(qm)) => Some(q.pdf(self, Some(&pt), qm)),
+            _ => None,
+        };
+        let eye_rev = |i: usize| {
+            if i + 1 == t {
+                pt_rev
+            } else if i + 2 == t {
+                pt_minus_rev.unwrap_or(eye[i].pdf_rev)
+            } else {
+                eye[i].pdf_rev
+            }
+        };
+        // The connection vertices count as non-delta whatever lobe their walk sampled.
+        let eye_delta = |i: usize| i + 1 != t && eye[i].delta;
+        let light_rev = |i: usize| {
+            if i + 1 == s {
+                qs_rev.unwrap_or(0.0)
+            } else if i + 2 == s {
+                qs_minus_rev.unwrap_or(0.0)
+            } else {
+                light[i].pdf_rev
+            }
+        };
+        let light_delta = |i: usize| i + 1 != s && light_at(i).delta;
+        let mut sum = 0.0f32;
+        let mut ri = 1.0f32;
+        for i in (1..t).rev() {
+            ri *= remap0(eye_rev(i)) / remap0(eye[i].pdf_fwd);
+            if !eye_delta(i) && !eye_delta(i - 1) && self.strategies.allowed(s + t - i, i) {
+                sum += ri * ri;
+            }
+        }
+        ri = 1.0;
+        for i in (0..s).rev() {
+            ri *= remap0(light_rev(i)) / remap0(light_at(i).pdf_fwd);
+            let before_delta = if i > 0 {
+                light_delta(i - 1)
+            } else {
+                light_at(0).is_delta_light()
+            };
+            if !light_delta(i) && !before_delta && self.strategies.allowed(i, s + t - i) {
+                sum += ri * ri;
+            }
+        }
+        if !sum.is_finite() {
+            return 0.0;
+        }
+        1.0 / (1.0 + sum)
+    }
+}

@@ -1,0 +1,247 @@
+//! Bidirectional path tracing (Veach's thesis, ch. 10): a subpath from the eye (the camera, or a
+//! sensor point measuring illuminance) and one from a light, every pair of their vertices
+//! connected, and each strategy weighted by the power heuristic over all strategies that could
+//! have produced the same path.
+//!
+//! - Light subpaths start at points, spots, luminaires and glowing triangles in proportion to
+//!   their flux ([`emit`]), so a lamp 0.1 mm under a ceiling lights the ceiling's hot spot, and
+//!   that spot lights the room, in every light subpath.
+//! - t = 1: a light vertex connected to the camera lands in some pixel: a splat. A sensor is a
+//!   point with cosine importance, so light vertices connect to it in the same way.
+//! - Unbiased, no clamping: Russian roulette on each subpath's throughput relative to its start.
+//! - Deterministic: the light subpath draws from the sample's own stream (split off by purpose),
+//!   which is keyed by (pixel or sensor point, sample index).
+//! - Densities follow pbrt-v3's bookkeeping (`pdf_fwd`, `pdf_rev` per vertex, delta vertices
+//!   remapped to 1 in ratios), written anew here.
+
+mod connect;
+mod emit;
+mod vertex;
+mod walk;
+
+pub use emit::LightPicker;
+
+use crate::geometry::Ray;
+use crate::sampling::SampleRng;
+use crate::scene::CameraBasis;
+use crate::shading::Prepared;
+use glam::Vec3;
+use vertex::Vertex;
+
+/// Stream purpose of the light subpath of a sample.
+const LIGHT_STREAM: u64 = 0x004C_4947_4854;
+/// Stream purpose of the sensor subpath measuring a pixel's illuminance.
+const SENSOR_STREAM: u64 = 0x5345_4E53;
+/// Stream purpose of the light samples of connections with s = 1.
+const CONNECT_STREAM: u64 = 0x434F_4E4E;
+
+/// Relative throughput below which a subpath plays Russian roulette: 1, so every bounce
+/// survives with probability equal to its throughput (at most 1). Measured on the Cornell box
+/// (BENCHMARK.md G1, 5 s): 0.05 gave 7.4 % relative RMSE, 0.3 gave 8.9 % at lower sample
+/// counts, 1 gave 6.5 %: shorter subpaths mean fewer connections per sample, and the light
+/// subpaths carry the room's indirect light in any case.
+pub const BDPT_RR_THRESHOLD: f32 = 1.0;
+
+/// Most vertices of one subpath. With roulette a path of reflectance 0.9 gets this long with
+/// probability below 1e-11; the limit only ends lossless enclosures.
+pub const MAX_SUBPATH: usize = 256;
+
+/// A light-subpath contribution that lands in another pixel (t = 1 to the camera).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Splat {
+    pub x: u32,
+    pub y: u32,
+    /// Luminance per channel to add to that pixel's sum, cd/m² (divided by its sample count
+    /// like any sample).
+    pub rgb: Vec3,
+}
+
+/// Which strategies combine.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategies {
+    /// Every (s, t).
+    All,
+    /// Path tracing (s ≤ 1) and light tracing (t = 1) only.
+    PathAndLightTracing,
+}
+
+impl Strategies {
+    fn allowed(self, s: usize, t: usize) -> bool {
+        match self {
+            Strategies::All => true,
+            Strategies::PathAndLightTracing => s <= 1 || t == 1,
+        }
+    }
+}
+
+/// The first vertex of an eye subpath.
+#[derive(Clone, Copy, Debug)]
+pub enum Eye {
+    /// A pinhole camera: importance 1 / (A cos⁴ θ) over its film of area A at unit distance.
+    Camera(CameraBasis),
+    /// A point measuring illuminance: importance 1 over the hemisphere of its normal.
+    Sensor,
+}
+
+/// Bidirectional transport over a prepared scene, for one eye.
+#[derive(Clone, Copy, Debug)]
+pub struct Bidirectional<'p, 'a> {
+    pub prep: &'p Prepared<'a>,
+    pub lights: &'p LightPicker,
+    pub eye: Eye,
+    /// Non-delta bounces allowed (u32::MAX: unlimited).
+    pub max_bounces: u32,
+    /// Relative throughput below which roulette starts.
+    pub rr_threshold: f32,
+    pub strategies: Strategies,
+}
+
+/// What one camera sample of the bidirectional integrator gives.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct EyeEstimate {
+    /// Luminance per channel (camera) or irradiance per channel (sensor).
+    pub value: Vec3,
+    pub rays: u32,
+}
+
+impl Bidirectional<'_, '_> {
+    /// Film area at unit distance of the camera (0 for a sensor).
+    fn film_area(&self) -> f32 {
+        match self.eye {
+            Eye::Camera(b) => 4.0 * b.half_width * b.half_height,
+            Eye::Sensor => 0.0,
+        }
+    }
+
+    /// For the camera: the film position of unit direction `w` from the eye, if on the film.
+    fn film_position(&self, w: Vec3) -> Option<(f32, f32, f32)> {
+        let Eye::Camera(b) = self.eye else {
+            return None;
+        };
+        let cos = b.forward.dot(w);
+        if cos <= 0.0 {
+            return None;
+        }
+        let sx = b.right.dot(w) / cos / b.half_width;
+        let sy = b.up.dot(w) / cos / b.half_height;
+        if !(-1.0..=1.0).contains(&sx) || !(-1.0..=1.0).contains(&sy) {
+            return None;
+        }
+        let x = (sx + 1.0) * 0.5 * b.width as f32;
+        let y = (1.0 - sy) * 0.5 * b.height as f32;
+        Some((x, y, cos))
+    }
+
+    /// Importance of the eye vertex `eye` towards unit `w`.
+    fn eye_importance(&self, eye: &Vertex, w: Vec3) -> f32 {
+        match self.eye {
+            Eye::Camera(_) => match self.film_position(w) {
+                Some((_, _, cos)) => 1.0 / (self.film_area() * cos.powi(4)),
+                None => 0.0,
+            },
+            Eye::Sensor => {
+                if eye.n.dot(w) > 0.0 {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
+    /// Density per sr with which the eye sends its subpath along unit `w`.
+    fn eye_direction_pdf(&self, eye: &Vertex, w: Vec3) -> f32 {
+        match self.eye {
+            Eye::Camera(_) => match self.film_position(w) {
+                Some((_, _, cos)) => 1.0 / (self.film_area() * cos.powi(3)),
+                None => 0.0,
+            },
+            Eye::Sensor => vertex::cosine_pdf(eye.n, w),
+        }
+    }
+
+    /// Luminance along the camera ray `ray` (unit direction) by every strategy; light-tracing
+    /// contributions to other pixels go to `splats`. Also returns the first surface vertex.
+    pub fn camera_sample(
+        &self,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        light_path: &[Vertex],
+        splats: &mut Vec<Splat>,
+    ) -> (EyeEstimate, Option<(Vec3, Vec3)>) {
+        let mut rays = 0;
+        let mut eye = Vertex::new(
+            vertex::Kind::Eye,
+            ray.origin,
+            self.forward(),
+            Vec3::ONE,
+            1.0,
+        );
+        eye.pdf_fwd = 1.0;
+        let mut camera = vec![eye];
+        let pdf_dir = self.eye_direction_pdf(&eye, ray.dir);
+        self.walk(*ray, Vec3::ONE, pdf_dir, false, rng, &mut camera, &mut rays);
+        let first = camera.get(1).map(|v| (v.p, v.facing(v.wo)));
+        let mut connect_rng = rng.split(CONNECT_STREAM);
+        let value = self.connect_all(&camera, light_path, &mut connect_rng, splats, &mut rays);
+        (EyeEstimate { value, rays }, first)
+    }
+
+    /// Irradiance per channel at `p` from the side of unit `n` (a sensor), by every strategy,
+    /// with the given light subpath.
+    pub fn sensor_sample(
+        &self,
+        p: Vec3,
+        n: Vec3,
+        rng: &mut SampleRng,
+        light_path: &[Vertex],
+    ) -> EyeEstimate {
+        let mut rays = 0;
+        let eye = Vertex::new(vertex::Kind::Eye, p, n, Vec3::ONE, 1.0);
+        let mut sensor = vec![eye];
+        let (u, v) = rng.next_2d();
+        let wi = crate::sampling::to_world(crate::sampling::cosine_hemisphere(u, v), n);
+        let pdf = vertex::cosine_pdf(n, wi);
+        if pdf > 0.0 {
+            let origin = p + n * self.prep.epsilon;
+            // W cos θ / pdf = π for cosine sampling.
+            let beta = Vec3::splat(std::f32::consts::PI);
+            self.walk(
+                Ray::new(origin, wi),
+                beta,
+                pdf,
+                false,
+                rng,
+                &mut sensor,
+                &mut rays,
+            );
+        }
+        let mut connect_rng = rng.split(CONNECT_STREAM);
+        let mut no_splats = Vec::new();
+        let value = self.connect_all(
+            &sensor,
+            light_path,
+            &mut connect_rng,
+            &mut no_splats,
+            &mut rays,
+        );
+        EyeEstimate { value, rays }
+    }
+
+    fn forward(&self) -> Vec3 {
+        match self.eye {
+            Eye::Camera(b) => b.forward,
+            Eye::Sensor => Vec3::ZERO,
+        }
+    }
+}
+
+/// Light subpaths and the sample's streams, for the integrator front end.
+pub fn light_stream(rng: &SampleRng) -> SampleRng {
+    rng.split(LIGHT_STREAM)
+}
+
+/// The stream of the sensor subpath that measures a camera sample's illuminance.
+pub fn sensor_stream(rng: &SampleRng) -> SampleRng {
+    rng.split(SENSOR_STREAM)
+}

@@ -1,0 +1,179 @@
+//! Path vertices of bidirectional transport and the densities between them.
+//!
+//! Densities are per unit area (scene units) at the vertex they lead to, as in Veach's thesis
+//! (ch. 10): `pdf_fwd` is the density with which the subpath that owns the vertex reached it,
+//! `pdf_rev` the density with which the other direction would have.
+
+use super::Bidirectional;
+use super::emit::{LightRef, direction_pdf, emission_cosine, emitted};
+use crate::shading::Bsdf;
+use glam::Vec3;
+use std::f32::consts::PI;
+
+/// What a vertex is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Kind {
+    /// The first vertex of a camera or sensor subpath.
+    Eye,
+    /// The first vertex of a light subpath (or a light sampled for a connection).
+    Light(LightRef),
+    /// A surface point a subpath reached.
+    Surface(u32),
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Vertex {
+    pub kind: Kind,
+    pub p: Vec3,
+    /// Unit geometric normal (surfaces, glowing triangles, the eye's axis); zero for point
+    /// lights.
+    pub n: Vec3,
+    /// Unit direction towards the previous vertex of the subpath (zero for the first).
+    pub wo: Vec3,
+    /// Throughput of the subpath up to here (camera: 1 at the eye; light: per its start).
+    pub beta: Vec3,
+    pub pdf_fwd: f32,
+    pub pdf_rev: f32,
+    /// A delta lobe scattered the subpath here (mirror, glass): no connection can use it.
+    pub delta: bool,
+    /// The scattering at a surface vertex (its non-delta part does not depend on the side).
+    pub bsdf: Option<Bsdf>,
+}
+
+impl Vertex {
+    pub fn new(kind: Kind, p: Vec3, n: Vec3, beta: Vec3, pdf_fwd: f32) -> Self {
+        Self {
+            kind,
+            p,
+            n,
+            wo: Vec3::ZERO,
+            beta,
+            pdf_fwd,
+            pdf_rev: 0.0,
+            delta: false,
+            bsdf: None,
+        }
+    }
+
+    /// Whether a density arriving here is measured per area of a surface (with its cosine).
+    fn on_surface(&self) -> bool {
+        matches!(self.kind, Kind::Surface(_) | Kind::Light(LightRef::Area(_)))
+    }
+
+    /// A density per sr at `self` towards `next` as a density per unit area at `next`.
+    pub fn area_density(&self, pdf_dir: f32, next: &Vertex) -> f32 {
+        let d = next.p - self.p;
+        let dist2 = d.length_squared();
+        if dist2 <= 0.0 {
+            return 0.0;
+        }
+        let mut pdf = pdf_dir / dist2;
+        if next.on_surface() {
+            pdf *= next.n.dot(d / dist2.sqrt()).abs();
+        }
+        pdf
+    }
+
+    /// Whether paths may be connected here (a light, the eye, or a surface with a non-delta
+    /// lobe).
+    pub fn connectible(&self) -> bool {
+        match self.kind {
+            Kind::Surface(_) => self.bsdf.is_some_and(|b| b.has_smooth_lobe()),
+            _ => true,
+        }
+    }
+
+    /// The unit normal of a surface vertex turned towards `w`.
+    pub fn facing(&self, w: Vec3) -> Vec3 {
+        if self.n.dot(w) >= 0.0 {
+            self.n
+        } else {
+            -self.n
+        }
+    }
+
+    /// The scattering (or emission) factor at this vertex from `wo` towards unit `w`, without
+    /// the cosine: the BSDF at surfaces, the emitted intensity or luminance at lights, the
+    /// importance at the eye.
+    pub fn f(&self, bd: &Bidirectional<'_, '_>, w: Vec3) -> Vec3 {
+        match self.kind {
+            Kind::Surface(_) => match &self.bsdf {
+                Some(bsdf) => bsdf.eval(self.facing(self.wo), self.wo, w),
+                None => Vec3::ZERO,
+            },
+            Kind::Light(light) => emitted(bd.prep, light, w),
+            Kind::Eye => Vec3::splat(bd.eye_importance(self, w)),
+        }
+    }
+
+    /// The cosine at this vertex towards unit `w` that a connection's geometry term carries.
+    pub fn cosine(&self, w: Vec3) -> f32 {
+        match self.kind {
+            Kind::Surface(_) => self.n.dot(w).abs(),
+            Kind::Light(light) => emission_cosine(light, self.n, w),
+            Kind::Eye => bd_eye_cosine(self.n, w),
+        }
+    }
+
+    /// Density per unit area at `next` with which this vertex's subpath would continue there,
+    /// having come from `prev`.
+    pub fn pdf(&self, bd: &Bidirectional<'_, '_>, prev: Option<&Vertex>, next: &Vertex) -> f32 {
+        let to_next = (next.p - self.p).normalize_or_zero();
+        let pdf_dir = match self.kind {
+            Kind::Surface(_) => {
+                let (Some(prev), Some(bsdf)) = (prev, &self.bsdf) else {
+                    return 0.0;
+                };
+                let wp = (prev.p - self.p).normalize_or_zero();
+                bsdf.pdf(self.facing(wp), wp, to_next)
+            }
+            Kind::Light(light) => direction_pdf(bd.prep, light, self.n, to_next),
+            Kind::Eye => bd.eye_direction_pdf(self, to_next),
+        };
+        self.area_density(pdf_dir, next)
+    }
+
+    /// Density per unit area with which a light subpath starts at this vertex (a glowing
+    /// surface point hit by the camera path, or a light vertex).
+    pub fn pdf_light_origin(&self, bd: &Bidirectional<'_, '_>) -> f32 {
+        match self.kind {
+            Kind::Light(light) => bd.lights.pdf_origin(bd.prep, light),
+            Kind::Surface(prim) => bd.lights.pdf_origin(bd.prep, LightRef::Area(prim)),
+            Kind::Eye => 0.0,
+        }
+    }
+
+    /// Density per unit area at `next` of a light subpath leaving this glowing point for it.
+    pub fn pdf_light(&self, bd: &Bidirectional<'_, '_>, next: &Vertex) -> f32 {
+        let light = match self.kind {
+            Kind::Light(light) => light,
+            Kind::Surface(prim) => LightRef::Area(prim),
+            Kind::Eye => return 0.0,
+        };
+        let dir = (next.p - self.p).normalize_or_zero();
+        self.area_density(direction_pdf(bd.prep, light, self.n, dir), next)
+    }
+
+    /// Whether this is a light with a delta position (point, spot, luminaire).
+    pub fn is_delta_light(&self) -> bool {
+        matches!(self.kind, Kind::Light(LightRef::Point(_)))
+    }
+
+    /// Luminance this surface vertex emits towards the previous vertex (0 for non-emitters).
+    pub fn emission(&self, bd: &Bidirectional<'_, '_>) -> Vec3 {
+        match self.kind {
+            Kind::Surface(prim) => bd.prep.emitters.radiance(prim, self.wo),
+            _ => Vec3::ZERO,
+        }
+    }
+}
+
+/// The cosine at the eye: its axis against the direction (0 behind).
+fn bd_eye_cosine(axis: Vec3, w: Vec3) -> f32 {
+    axis.dot(w).max(0.0)
+}
+
+/// Cosine-weighted hemisphere density per sr (the sensor's direction sampling).
+pub fn cosine_pdf(n: Vec3, w: Vec3) -> f32 {
+    n.dot(w).max(0.0) / PI
+}

@@ -1,0 +1,130 @@
+//! Random walks: the eye and light subpaths.
+
+use super::emit::{emission_cosine, emitted, sample_direction};
+use super::vertex::{Kind, Vertex};
+use super::{Bidirectional, MAX_SUBPATH};
+use crate::geometry::Ray;
+use crate::sampling::SampleRng;
+use crate::shading::bsdf_at;
+use glam::Vec3;
+
+impl Bidirectional<'_, '_> {
+    /// A light subpath: a light picked by flux, a direction, then a walk. Empty without lights.
+    pub fn light_subpath(&self, rng: &mut SampleRng, rays: &mut u32) -> Vec<Vertex> {
+        let mut path = Vec::new();
+        let Some(start) = self.lights.sample(self.prep, rng) else {
+            return path;
+        };
+        if start.pdf_origin <= 0.0 {
+            return path;
+        }
+        let beta0 = Vec3::splat(1.0 / start.pdf_origin);
+        path.push(Vertex::new(
+            Kind::Light(start.light),
+            start.p,
+            start.n,
+            beta0,
+            start.pdf_origin,
+        ));
+        let Some((dir, pdf_dir)) = sample_direction(self.prep, &start, rng) else {
+            return path;
+        };
+        if pdf_dir <= 0.0 {
+            return path;
+        }
+        let le = emitted(self.prep, start.light, dir);
+        let beta = beta0 * le * (emission_cosine(start.light, start.n, dir) / pdf_dir);
+        if beta.max_element() <= 0.0 {
+            return path;
+        }
+        let origin = if start.n == Vec3::ZERO {
+            // A lamp mounted on a surface must not hit that surface at distance 0.
+            start.p + dir * self.prep.epsilon
+        } else {
+            start.p + start.n * (self.prep.epsilon * start.n.dot(dir).signum())
+        };
+        self.walk(
+            Ray::new(origin, dir),
+            beta,
+            pdf_dir,
+            true,
+            rng,
+            &mut path,
+            rays,
+        );
+        path
+    }
+
+    /// Extends `path` from its last vertex along `ray` (unit direction), sampled with density
+    /// `pdf_dir` per sr, carrying throughput `beta`. `importance`: a light subpath.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn walk(
+        &self,
+        mut ray: Ray,
+        mut beta: Vec3,
+        mut pdf_dir: f32,
+        importance: bool,
+        rng: &mut SampleRng,
+        path: &mut Vec<Vertex>,
+        rays: &mut u32,
+    ) {
+        let prep = self.prep;
+        let mut relative = Vec3::ONE;
+        while path.len() < MAX_SUBPATH {
+            *rays += 1;
+            let Some(hit) = prep.closest_visible(&ray) else {
+                break;
+            };
+            let prim = hit.prim;
+            let p = ray.at(hit.t);
+            let n = prep.scene.normals[prim as usize];
+            let mut v = Vertex::new(Kind::Surface(prim), p, n, beta, 0.0);
+            v.wo = -ray.dir;
+            let mut bsdf = bsdf_at(prep, prim, v.wo);
+            if importance {
+                bsdf = bsdf.for_light_paths();
+            }
+            v.bsdf = Some(bsdf);
+            let Some(prev) = path.last() else {
+                break;
+            };
+            v.pdf_fwd = prev.area_density(pdf_dir, &v);
+            path.push(v);
+            if path.len() >= MAX_SUBPATH {
+                break;
+            }
+            let nf = v.facing(v.wo);
+            let Some(s) = bsdf.sample(nf, v.wo, rng) else {
+                break;
+            };
+            let k = path.len() - 1;
+            let pdf_rev_dir = if s.delta {
+                path[k].delta = true;
+                pdf_dir = 0.0;
+                0.0
+            } else {
+                pdf_dir = s.pdf;
+                bsdf.pdf(nf, s.wi, v.wo)
+            };
+            let here = path[k];
+            path[k - 1].pdf_rev = here.area_density(pdf_rev_dir, &path[k - 1]);
+            beta *= s.weight;
+            relative *= s.weight;
+            let m = relative.max_element();
+            if m.is_nan() || m <= 0.0 || !m.is_finite() {
+                break;
+            }
+            // No roulette at mirrors and glass: refraction's (η_o / η_i)² is not a loss.
+            if !s.delta && m < self.rr_threshold {
+                let survive = m / self.rr_threshold;
+                if rng.next_f32() >= survive {
+                    break;
+                }
+                beta /= survive;
+                relative /= survive;
+            }
+            let side = if nf.dot(s.wi) >= 0.0 { 1.0 } else { -1.0 };
+            ray = Ray::new(p + nf * (prep.epsilon * side), s.wi);
+        }
+    }
+}
