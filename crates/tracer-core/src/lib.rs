@@ -32,6 +32,7 @@ pub mod render;
 pub mod sampling;
 pub mod scene;
 pub mod shading;
+pub mod shard;
 pub mod shp;
 
 pub use geometry::{Aabb, Ray};
