@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Everything CI checks, in order: formatting, clippy (warnings are errors), every test of the
-# workspace, then the viewer smoke run under Xvfb. Run from anywhere: scripts/check.sh
+# workspace, the viewer smoke run under Xvfb, then a sharded render through a local Slurm cluster
+# (root only; skipped with the reason otherwise). Run from anywhere: scripts/check.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -29,4 +30,6 @@ if [ -x scripts/smoke_viewer.sh ]; then
 else
     echo "check.sh: skipped: scripts/smoke_viewer.sh is missing"
 fi
+echo "== sharded render on a local one-node Slurm cluster"
+scripts/slurm/test-local.sh
 echo "== check.sh: all checks passed"

@@ -34,6 +34,10 @@ pub enum Command {
     Measure(MeasureArgs),
     /// Say what a scene holds: unit, bounds, triangles, materials, lights, camera.
     Info(InfoArgs),
+    /// Add the part files of sharded renders (or measurements) into the image (or readings).
+    Merge(crate::cli_shards::MergeArgs),
+    /// Render (and measure) variants of a scene, each a patch of its sidecar.
+    Sweep(crate::cli_shards::SweepArgs),
 }
 
 #[derive(Debug, Args)]
@@ -100,6 +104,8 @@ pub struct MeasureArgs {
     /// grid), after at least 64 samples; --samples caps it (default 65536).
     #[arg(long, value_name = "PCT", value_parser = parse_percent)]
     pub target_error: Option<f64>,
+    #[command(flatten)]
+    pub shard: crate::cli_shards::ShardArgs,
 }
 
 fn parse_percent(s: &str) -> Result<f64, String> {
@@ -137,6 +143,26 @@ pub struct RenderArgs {
     /// Maximum mirror reflection depth (direct mode).
     #[arg(long, default_value_t = tracer_core::render::DEFAULT_MAX_DEPTH, value_parser = clap::value_parser!(u32).range(0..=64))]
     pub depth: u32,
+    #[command(flatten)]
+    pub display: DisplayArgs,
+    /// Point the camera looks at, `x,y,z` (default: the scene's, or -Z from a camera placed by
+    /// the positional arguments).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub look_at: Option<[f32; 3]>,
+    /// Also write the linear image (cd/m² per channel) as OpenEXR.
+    #[arg(long, value_name = "PATH")]
+    pub exr: Option<PathBuf>,
+    /// Light position, camera position and vertical field of view (degrees):
+    /// `lx ly lz cx cy cz cf`, or any prefix of them.
+    #[arg(value_name = "LX LY LZ CX CY CZ CF", num_args = 0..=7)]
+    pub positional: Vec<f32>,
+    #[command(flatten)]
+    pub shard: crate::cli_shards::ShardArgs,
+}
+
+/// How the linear image becomes display pixels (PNG): shared by render, merge and sweep.
+#[derive(Debug, Args)]
+pub struct DisplayArgs {
     /// Exposure in stops (0: 100 cd/m² is display white). Default 0.
     #[arg(
         long,
@@ -151,17 +177,6 @@ pub struct RenderArgs {
     /// Tone curve: clamp, reinhard or filmic.
     #[arg(long, default_value = "filmic", value_parser = parse_tone_map)]
     pub tone_map: ToneMap,
-    /// Point the camera looks at, `x,y,z` (default: the scene's, or -Z from a camera placed by
-    /// the positional arguments).
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub look_at: Option<[f32; 3]>,
-    /// Also write the linear image (cd/m² per channel) as OpenEXR.
-    #[arg(long, value_name = "PATH")]
-    pub exr: Option<PathBuf>,
-    /// Light position, camera position and vertical field of view (degrees):
-    /// `lx ly lz cx cy cz cf`, or any prefix of them.
-    #[arg(value_name = "LX LY LZ CX CY CZ CF", num_args = 0..=7)]
-    pub positional: Vec<f32>,
 }
 
 fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
@@ -186,7 +201,7 @@ impl SceneArgs {
     }
 }
 
-fn parse_tone_map(s: &str) -> Result<ToneMap, String> {
+pub fn parse_tone_map(s: &str) -> Result<ToneMap, String> {
     ToneMap::from_name(s).ok_or_else(|| format!("unknown tone map `{s}` (clamp, reinhard, filmic)"))
 }
 

@@ -4,6 +4,7 @@
 pub mod app;
 pub mod camera_control;
 pub mod cli;
+pub mod cli_shards;
 pub mod document;
 pub mod file_ops;
 pub mod grid_overlay;
@@ -12,11 +13,15 @@ pub mod info_cmd;
 pub mod luminance_meter;
 pub mod measure_cmd;
 pub mod measure_worker;
+pub mod merge_cmd;
 pub mod panels;
 pub mod prefs;
 pub mod render_cmd;
 pub mod render_worker;
 pub mod report;
+pub mod shard_cmd;
+pub mod sweep_cmd;
+pub mod sweep_variants;
 pub mod viewer;
 pub mod viewport_ui;
 
@@ -31,6 +36,8 @@ pub fn run() -> ExitCode {
         Some(cli::Command::Render(render)) => render_cmd::run(&render),
         Some(cli::Command::Measure(measure)) => measure_cmd::run(&measure),
         Some(cli::Command::Info(info)) => info_cmd::run(&info),
+        Some(cli::Command::Merge(merge)) => merge_cmd::run(&merge),
+        Some(cli::Command::Sweep(sweep)) => sweep_cmd::run(&sweep),
         None => viewer::run_viewer(app::AppOptions {
             scene: args.scene.clone(),
             threads: args.threads.unwrap_or(0) as usize,

@@ -18,7 +18,7 @@ pub const TARGET_ERROR_CAP: u32 = 65_536;
 
 pub fn run(args: &MeasureArgs) -> Result<()> {
     let started = Instant::now();
-    if args.csv.is_none() && args.json.is_none() {
+    if args.shard.partial.is_none() && args.csv.is_none() && args.json.is_none() {
         bail!("say where the readings go: --csv PATH and/or --json PATH");
     }
     let loaded = load_scene(&args.scene)?;
@@ -43,6 +43,9 @@ pub fn run(args: &MeasureArgs) -> Result<()> {
         time_limit: args.scene.time_limit.map(Duration::from_secs_f64),
         target_error: args.target_error.map(|pct| pct / 100.0),
     };
+    if args.shard.partial.is_some() {
+        return crate::shard_cmd::measure_part(args, &loaded, &settings);
+    }
     let pool = thread_pool(&args.scene)?;
     let bar = progress_bar(samples);
     let measured_at = Instant::now();
@@ -61,15 +64,14 @@ pub fn run(args: &MeasureArgs) -> Result<()> {
     let results: Vec<GridResult> = results.into_iter().map(|r| r.scaled(mf)).collect();
     let unit = loaded.setup.unit.symbol();
     let done = results.first().map_or(0, |r| r.samples);
-    if let Some(path) = &args.csv {
-        tracer_core::export::write_text(path, &csv(&results))
-            .with_context(|| format!("{}: cannot write the CSV", path.display()))?;
-    }
-    if let Some(path) = &args.json {
-        let text = json_report(&results, unit, settings.integrator.name(), done);
-        tracer_core::export::write_text(path, &text)
-            .with_context(|| format!("{}: cannot write the JSON", path.display()))?;
-    }
+    write_readings(
+        &results,
+        unit,
+        settings.integrator.name(),
+        done,
+        args.csv.as_deref(),
+        args.json.as_deref(),
+    )?;
     if mf != 1.0 {
         println!("maintenance factor {mf}: maintained illuminance");
     }
@@ -88,6 +90,27 @@ pub fn run(args: &MeasureArgs) -> Result<()> {
         println!("wrote {}", path.display());
     }
     println!("{:.1} s in all", started.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// Writes the readings (maintained values) as CSV and JSON, where asked.
+pub fn write_readings(
+    results: &[GridResult],
+    unit: &str,
+    integrator: &str,
+    samples: u32,
+    csv_path: Option<&std::path::Path>,
+    json_path: Option<&std::path::Path>,
+) -> Result<()> {
+    if let Some(path) = csv_path {
+        tracer_core::export::write_text(path, &csv(results))
+            .with_context(|| format!("{}: cannot write the CSV", path.display()))?;
+    }
+    if let Some(path) = json_path {
+        let text = json_report(results, unit, integrator, samples);
+        tracer_core::export::write_text(path, &text)
+            .with_context(|| format!("{}: cannot write the JSON", path.display()))?;
+    }
     Ok(())
 }
 

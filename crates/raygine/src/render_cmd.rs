@@ -1,6 +1,6 @@
 //! `raygine render`: load a scene, apply the command line's overrides, render, write the image.
 
-use crate::cli::{RenderArgs, SceneArgs};
+use crate::cli::{DisplayArgs, RenderArgs, SceneArgs};
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -132,15 +132,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         pixel_illuminance: false,
         ..sampling_settings(&args.scene, direct_samples)
     };
-    let display = DisplaySettings {
-        exposure_stops: args.exposure.unwrap_or(0.0),
-        auto_exposure: args.auto_exposure,
-        tone_map: args.tone_map,
-        false_colour: None,
-    };
-    if !display.exposure_stops.is_finite() {
-        bail!("exposure must be a finite number of stops");
+    if args.shard.partial.is_some() {
+        return crate::shard_cmd::render_part(args, &loaded, &settings);
     }
+    let display = display_settings(&args.display)?;
     let png_path = args
         .render_path
         .clone()
@@ -165,12 +160,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         );
     }
     let rendered_at = Instant::now();
-    let exposure = display.effective_exposure(&film);
-    let image = pool.install(|| map_film_rgb(&film, &display, exposure));
-    tracer_core::export::write_png_rgb(&png_path, &image.rgb, film.width, film.height)?;
-    if let Some(exr) = &args.exr {
-        tracer_core::export::write_exr(exr, &film)?;
-    }
+    let (image, exposure) = write_images(&film, &display, &png_path, args.exr.as_deref(), &pool)?;
     let scene = &loaded.scene;
     let transport = match settings.integrator {
         IntegratorKind::Direct => format!("direct, mirror depth {}", settings.max_depth),
@@ -218,9 +208,41 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
+/// The display settings the options give.
+pub fn display_settings(args: &DisplayArgs) -> Result<DisplaySettings> {
+    let display = DisplaySettings {
+        exposure_stops: args.exposure.unwrap_or(0.0),
+        auto_exposure: args.auto_exposure,
+        tone_map: args.tone_map,
+        false_colour: None,
+    };
+    if !display.exposure_stops.is_finite() {
+        bail!("exposure must be a finite number of stops");
+    }
+    Ok(display)
+}
+
+/// Writes the film as the displayed PNG (and the linear EXR); returns the image and the
+/// exposure used. The same film gives the same bytes, whoever rendered it.
+pub fn write_images(
+    film: &Film,
+    display: &DisplaySettings,
+    png: &Path,
+    exr: Option<&Path>,
+    pool: &rayon::ThreadPool,
+) -> Result<(MappedImage, f32)> {
+    let exposure = display.effective_exposure(film);
+    let image = pool.install(|| map_film_rgb(film, display, exposure));
+    tracer_core::export::write_png_rgb(png, &image.rgb, film.width, film.height)?;
+    if let Some(exr) = exr {
+        tracer_core::export::write_exr(exr, film)?;
+    }
+    Ok((image, exposure))
+}
+
 /// Fails before rendering when an output path cannot be written (a folder, or a folder that does
 /// not exist), so a long render is not wasted. Writing itself stays atomic in `export`.
-fn check_output_path(path: &Path) -> Result<()> {
+pub fn check_output_path(path: &Path) -> Result<()> {
     if path.is_dir() {
         bail!("{}: is a directory", path.display());
     }

@@ -72,6 +72,11 @@ pub fn write_exr(path: &Path, film: &Film) -> Result<(), ExportError> {
     })
 }
 
+/// Writes bytes (a part file) atomically.
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), ExportError> {
+    write_atomically(path, |w| w.write_all(bytes).map_err(|e| e.to_string()))
+}
+
 /// Writes text (a sidecar) atomically.
 pub fn write_text(path: &Path, text: &str) -> Result<(), ExportError> {
     write_atomically(path, |w| {

@@ -16,6 +16,9 @@
 //!                                    PNG / EXR
 //! ```
 //!
+//! Across machines: [`shard`] splits the sample range into M contiguous shards whose films (or
+//! grid sums) are written as part files and added exactly, bit-identical to one machine's.
+//!
 //! Units: lengths in the scene unit (mm, cm or m, see [`scene::LengthUnit`]); light is photometric
 //! SI: intensity in candela, illuminance in lux, luminance in cd/m². Angles are radians inside.
 //! This crate knows nothing of egui, dialogs or UI threads.
@@ -32,6 +35,7 @@ pub mod render;
 pub mod sampling;
 pub mod scene;
 pub mod shading;
+pub mod shard;
 pub mod shp;
 
 pub use geometry::{Aabb, Ray};

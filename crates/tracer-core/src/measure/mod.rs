@@ -3,10 +3,11 @@
 //! estimator, sampled with streams keyed by (grid, point, sample index).
 
 mod grid;
+pub mod partial;
 mod sensors;
 
 pub use grid::{Grid, GridError, SensorPoint};
 pub use sensors::{
     GridResult, GridStatistics, MeasureProgress, MeasureSettings, PointResult, TARGET_MIN_SAMPLES,
-    measure_grids, measure_grids_with_progress,
+    grid_results, measure_grids, measure_grids_with_progress, measure_samples,
 };

@@ -2,7 +2,7 @@
 //! integrator's irradiance estimator, summed exactly (fixed point) with their squares for the
 //! standard error.
 
-use super::grid::Grid;
+use super::grid::{Grid, SensorPoint};
 use crate::integrator::{Integrator, IntegratorKind, Sample};
 use crate::render::PixelSum;
 use crate::sampling::SampleRng;
@@ -10,6 +10,7 @@ use crate::scene::{Scene, Setup};
 use crate::shading::Prepared;
 use glam::Vec3;
 use rayon::prelude::*;
+use std::ops::Range;
 use std::time::{Duration, Instant};
 
 /// How to measure.
@@ -76,6 +77,69 @@ pub fn measure_grids(scene: &Scene, setup: &Setup, settings: &MeasureSettings) -
     measure_grids_with_progress(scene, setup, settings, &mut |_| true)
 }
 
+type Points = Vec<(usize, usize, SensorPoint)>;
+
+/// Every point of every grid in measuring order: (grid, point index, point).
+fn sensor_points(grids: &[Grid]) -> Points {
+    grids
+        .iter()
+        .enumerate()
+        .flat_map(|(g, grid)| grid.points().enumerate().map(move |(k, p)| (g, k, p)))
+        .collect()
+}
+
+fn integrator_for<'a>(
+    scene: &'a Scene,
+    setup: &Setup,
+    settings: &MeasureSettings,
+) -> Integrator<'a> {
+    let prep = Prepared::new(scene, setup, crate::render::DEFAULT_MAX_DEPTH);
+    Integrator::new(settings.integrator, prep, settings.max_bounces)
+}
+
+/// Adds sample indices `samples` of every point to its sum; returns the rays traced.
+fn add_samples(
+    integrator: &Integrator<'_>,
+    points: &Points,
+    sums: &mut [PixelSum],
+    samples: Range<u32>,
+) -> u64 {
+    sums.par_iter_mut()
+        .zip(points)
+        .map(|(sum, (g, k, p))| {
+            let mut rays = 0u64;
+            for s in samples.clone() {
+                let mut rng = SampleRng::new(sensor_key(*g, *k), s);
+                let (e, r) = integrator.illuminance(p.position, p.normal, &mut rng);
+                rays += u64::from(r);
+                // The luminance of a grey triple is its value: the squared sums are E².
+                sum.add(&Sample {
+                    rgb: Vec3::splat(e),
+                    illuminance_lx: e,
+                    rays: r,
+                });
+            }
+            rays
+        })
+        .sum::<u64>()
+}
+
+/// Measures sample indices `samples` of every point of every grid of `setup` (one shard of a
+/// measurement): the exact sums, one per point in grid order, and the rays traced. Sums of
+/// disjoint ranges added point by point equal the sums of their union, bit for bit.
+pub fn measure_samples(
+    scene: &Scene,
+    setup: &Setup,
+    settings: &MeasureSettings,
+    samples: Range<u32>,
+) -> (Vec<PixelSum>, u64) {
+    let integrator = integrator_for(scene, setup, settings);
+    let points = sensor_points(&setup.grids);
+    let mut sums = vec![PixelSum::default(); points.len()];
+    let rays = add_samples(&integrator, &points, &mut sums, samples);
+    (sums, rays)
+}
+
 /// [`measure_grids`], calling `progress` after every round of samples; when it returns false
 /// the measurement stops there (the results hold the samples done so far).
 pub fn measure_grids_with_progress(
@@ -85,39 +149,15 @@ pub fn measure_grids_with_progress(
     progress: &mut dyn FnMut(MeasureProgress) -> bool,
 ) -> Vec<GridResult> {
     let started = Instant::now();
-    let prep = Prepared::new(scene, setup, crate::render::DEFAULT_MAX_DEPTH);
-    let integrator = Integrator::new(settings.integrator, prep, settings.max_bounces);
-    let points: Vec<(usize, usize, super::SensorPoint)> = setup
-        .grids
-        .iter()
-        .enumerate()
-        .flat_map(|(g, grid)| grid.points().enumerate().map(move |(k, p)| (g, k, p)))
-        .collect();
+    let integrator = integrator_for(scene, setup, settings);
+    let points = sensor_points(&setup.grids);
     let mut sums = vec![PixelSum::default(); points.len()];
     let mut rays_total = 0u64;
     let cap = settings.samples.max(1);
     let mut done = 0u32;
     while done < cap {
         let end = (done + ROUND).min(cap);
-        rays_total += sums
-            .par_iter_mut()
-            .zip(&points)
-            .map(|(sum, (g, k, p))| {
-                let mut rays = 0u64;
-                for s in done..end {
-                    let mut rng = SampleRng::new(sensor_key(*g, *k), s);
-                    let (e, r) = integrator.illuminance(p.position, p.normal, &mut rng);
-                    rays += u64::from(r);
-                    // The luminance of a grey triple is its value: the squared sums are E².
-                    sum.add(&Sample {
-                        rgb: Vec3::splat(e),
-                        illuminance_lx: e,
-                        rays: r,
-                    });
-                }
-                rays
-            })
-            .sum::<u64>();
+        rays_total += add_samples(&integrator, &points, &mut sums, done..end);
         done = end;
         let worst = settings
             .target_error
@@ -141,18 +181,24 @@ pub fn measure_grids_with_progress(
             break;
         }
     }
-    let mut results: Vec<GridResult> = setup
-        .grids
+    grid_results(&setup.grids, &sums, done, rays_total)
+}
+
+/// The readings of `grids` from their points' exact sums (in the order [`measure_samples`]
+/// returns them) after `samples` samples a point; `rays` is shared out by point count.
+pub fn grid_results(grids: &[Grid], sums: &[PixelSum], samples: u32, rays: u64) -> Vec<GridResult> {
+    let points = sensor_points(grids);
+    let mut results: Vec<GridResult> = grids
         .iter()
         .map(|g: &Grid| GridResult {
             name: g.name.clone(),
             normal: Vec3::from(g.normal),
             points: Vec::with_capacity(g.point_count()),
-            samples: done,
+            samples,
             rays: 0,
         })
         .collect();
-    for ((g, _, p), sum) in points.iter().zip(&sums) {
+    for ((g, _, p), sum) in points.iter().zip(sums) {
         results[*g].points.push(PointResult {
             i: p.i,
             j: p.j,
@@ -163,17 +209,13 @@ pub fn measure_grids_with_progress(
     }
     let total_points = points.len().max(1) as u64;
     for r in &mut results {
-        r.rays = rays_total * r.points.len() as u64 / total_points;
+        r.rays = rays * r.points.len() as u64 / total_points;
     }
     results
 }
 
 /// The largest standard error over max(E_i, 0.1 × Eavg of its grid), over all points.
-fn worst_relative_error(
-    sums: &[PixelSum],
-    points: &[(usize, usize, super::SensorPoint)],
-    grids: usize,
-) -> f64 {
+fn worst_relative_error(sums: &[PixelSum], points: &Points, grids: usize) -> f64 {
     let mut total = vec![(0.0f64, 0usize); grids];
     for ((g, _, _), s) in points.iter().zip(sums) {
         total[*g].0 += s.mean_luminance();

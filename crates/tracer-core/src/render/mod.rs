@@ -2,6 +2,7 @@
 //! the progressive session of the viewer builds on the same film, sampler and tile order.
 
 mod film;
+pub mod partial;
 mod passes;
 mod pixel;
 mod progressive_film;

@@ -1,0 +1,125 @@
+//! A film as the payload of a part file (see `crate::shard`): the image size, then every pixel's
+//! exact sums, row-major, top row first. [`pixel_fields`] is the one list of what a pixel holds;
+//! a field added to the film is added there (and to [`pixel_from_fields`]), with
+//! `shard::PART_FORMAT` raised so older parts are refused rather than misread.
+
+use super::RenderSettings;
+use super::film::{Film, PixelSum};
+use crate::shard::varint::{Decoder, Encoder};
+
+/// Integers a pixel holds in a part.
+pub const PIXEL_FIELDS: usize = 7;
+
+/// A pixel's sums in file order.
+pub fn pixel_fields(p: &PixelSum) -> [i128; PIXEL_FIELDS] {
+    [
+        p.rgb[0],
+        p.rgb[1],
+        p.rgb[2],
+        p.illuminance,
+        p.luminance_sq,
+        i128::from(p.count),
+        i128::from(p.rejected),
+    ]
+}
+
+/// The pixel [`pixel_fields`] wrote; None when a count is out of range.
+pub fn pixel_from_fields(f: &[i128; PIXEL_FIELDS]) -> Option<PixelSum> {
+    Some(PixelSum {
+        rgb: [f[0], f[1], f[2]],
+        illuminance: f[3],
+        luminance_sq: f[4],
+        count: u32::try_from(f[5]).ok()?,
+        rejected: u32::try_from(f[6]).ok()?,
+    })
+}
+
+/// Appends one pixel's sums.
+pub fn encode_pixel(e: &mut Encoder, p: &PixelSum) {
+    for v in pixel_fields(p) {
+        e.i128(v);
+    }
+}
+
+/// Reads one pixel's sums.
+pub fn decode_pixel(d: &mut Decoder<'_>) -> Option<PixelSum> {
+    let mut f = [0i128; PIXEL_FIELDS];
+    for v in &mut f {
+        *v = d.i128()?;
+    }
+    pixel_from_fields(&f)
+}
+
+/// The payload of a film.
+pub fn encode_film(film: &Film) -> Vec<u8> {
+    let mut e = Encoder::default();
+    e.u32(film.width);
+    e.u32(film.height);
+    for p in &film.pixels {
+        encode_pixel(&mut e, p);
+    }
+    e.bytes
+}
+
+/// The film of a payload, or what is wrong with it.
+pub fn decode_film(payload: &[u8]) -> Result<Film, String> {
+    let mut d = Decoder::new(payload);
+    let (Some(width), Some(height)) = (d.u32(), d.u32()) else {
+        return Err("no image size".to_owned());
+    };
+    if u64::from(width) * u64::from(height) > payload.len() as u64 {
+        return Err(format!("{width}x{height} pixels do not fit in the payload"));
+    }
+    let mut film = Film::new(width, height);
+    for (i, p) in film.pixels.iter_mut().enumerate() {
+        *p = decode_pixel(&mut d).ok_or_else(|| format!("pixel {i} is unreadable"))?;
+    }
+    if !d.is_at_end() {
+        return Err("bytes after the last pixel".to_owned());
+    }
+    Ok(film)
+}
+
+/// What a film's sums depend on besides the scene, setup and sample range: compared verbatim
+/// between parts.
+pub fn settings_line(s: &RenderSettings) -> String {
+    let bounces = s
+        .max_bounces
+        .map_or_else(|| "none".to_owned(), |n| n.to_string());
+    format!(
+        "{}x{} {} max_depth={} max_bounces={bounces}",
+        s.width,
+        s.height,
+        s.integrator.name(),
+        s.max_depth
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    use super::*;
+    use crate::integrator::Sample;
+    use glam::Vec3;
+
+    #[test]
+    fn a_film_survives_the_payload_bit_for_bit() {
+        let mut film = Film::new(3, 2);
+        for (i, p) in film.pixels.iter_mut().enumerate() {
+            for s in 0..i {
+                p.add(&Sample {
+                    rgb: Vec3::new(s as f32 * 1e6, -0.25, 3.5e-9),
+                    illuminance_lx: 1e9,
+                    rays: 1,
+                });
+            }
+        }
+        film.pixels[5].rejected = 3;
+        let payload = encode_film(&film);
+        assert_eq!(decode_film(&payload).unwrap(), film);
+        assert!(decode_film(&payload[..payload.len() - 1]).is_err());
+        let mut longer = payload.clone();
+        longer.push(0);
+        assert!(decode_film(&longer).is_err());
+    }
+}
