@@ -33,10 +33,10 @@ fn merge(dir: &Path, parts: &[&Path], png: &str) -> Run {
 }
 
 #[test]
-fn merged_shards_equal_one_render_bit_for_bit_for_both_integrators() {
+fn merged_shards_equal_one_render_bit_for_bit_for_every_integrator() {
     let dir = temp_dir();
     let d = dir.path();
-    for (integrator, samples) in [("direct", "5"), ("path", "7")] {
+    for (integrator, samples) in [("direct", "5"), ("path", "7"), ("bdpt", "6")] {
         let opts = ["--gi", integrator, "--samples", samples, "--auto-exposure"];
         let parts: Vec<PathBuf> = (0..3)
             .map(|k| shard(d, &opts[..4], k, 3, &format!("{integrator}-{k}.part")))

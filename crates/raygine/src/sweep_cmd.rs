@@ -47,6 +47,8 @@ pub fn run(args: &SweepArgs) -> Result<()> {
         width: args.width,
         height: args.height,
         max_depth: args.depth,
+        // The images show luminance only; --measure measures grids separately.
+        pixel_illuminance: false,
         ..sampling_settings(&args.scene, 1)
     };
     let time_limit = args.scene.time_limit.map(Duration::from_secs_f64);

@@ -8,7 +8,7 @@ use super::film::{Film, PixelSum};
 use crate::shard::varint::{Decoder, Encoder};
 
 /// Integers a pixel holds in a part.
-pub const PIXEL_FIELDS: usize = 7;
+pub const PIXEL_FIELDS: usize = 10;
 
 /// A pixel's sums in file order.
 pub fn pixel_fields(p: &PixelSum) -> [i128; PIXEL_FIELDS] {
@@ -18,6 +18,9 @@ pub fn pixel_fields(p: &PixelSum) -> [i128; PIXEL_FIELDS] {
         p.rgb[2],
         p.illuminance,
         p.luminance_sq,
+        p.splat_rgb[0],
+        p.splat_rgb[1],
+        p.splat_rgb[2],
         i128::from(p.count),
         i128::from(p.rejected),
     ]
@@ -29,8 +32,9 @@ pub fn pixel_from_fields(f: &[i128; PIXEL_FIELDS]) -> Option<PixelSum> {
         rgb: [f[0], f[1], f[2]],
         illuminance: f[3],
         luminance_sq: f[4],
-        count: u32::try_from(f[5]).ok()?,
-        rejected: u32::try_from(f[6]).ok()?,
+        splat_rgb: [f[5], f[6], f[7]],
+        count: u32::try_from(f[8]).ok()?,
+        rejected: u32::try_from(f[9]).ok()?,
     })
 }
 
