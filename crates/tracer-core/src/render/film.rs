@@ -144,6 +144,22 @@ impl PixelSum {
         Vec3::new(channel(0), channel(1), channel(2))
     }
 
+    /// Mean luminance per channel (cd/m²) with the splats divided by `light_paths_per_pixel`
+    /// instead of this pixel's own count: while a progressive pass is under way, splats from
+    /// the whole picture's finished samples have arrived, whatever this pixel's own count.
+    pub fn mean_rgb_splats_over(&self, light_paths_per_pixel: f64) -> Vec3 {
+        if self.count == 0 {
+            return Vec3::ZERO;
+        }
+        let n = f64::from(self.count);
+        let m = light_paths_per_pixel.max(1e-9);
+        let channel = |c: usize| {
+            (from_fixed(self.rgb[c], VALUE_SCALE) / n
+                + from_fixed(self.splat_rgb[c], VALUE_SCALE) / m) as f32
+        };
+        Vec3::new(channel(0), channel(1), channel(2))
+    }
+
     /// Mean illuminance (lx).
     pub fn mean_illuminance(&self) -> f32 {
         if self.count == 0 {

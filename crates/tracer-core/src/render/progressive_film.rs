@@ -16,6 +16,9 @@ pub struct ProgressiveFilm {
     preview_lx: Vec<f32>,
     /// Whether any preview value has been written (else the film shows nothing yet).
     pub has_preview: bool,
+    /// Full-resolution samples added over all pixels (each traced one light subpath in
+    /// bidirectional mode): splats are divided by this over the pixel count.
+    samples_added: u64,
 }
 
 impl ProgressiveFilm {
@@ -27,6 +30,7 @@ impl ProgressiveFilm {
             preview_rgb: vec![Vec3::ZERO; n],
             preview_lx: vec![0.0; n],
             has_preview: false,
+            samples_added: 0,
         }
     }
 
@@ -37,6 +41,7 @@ impl ProgressiveFilm {
         self.preview_rgb.fill(Vec3::ZERO);
         self.preview_lx.fill(0.0);
         self.has_preview = false;
+        self.samples_added = 0;
     }
 
     pub fn width(&self) -> u32 {
@@ -59,12 +64,19 @@ impl ProgressiveFilm {
 
     pub fn add_tile(&mut self, tile: &Tile, sums: &[PixelSum]) {
         self.accum.add_tile(tile, sums);
+        self.samples_added += sums.iter().map(|s| u64::from(s.count)).sum::<u64>();
+    }
+
+    /// Adds light-subpath splats (bidirectional mode).
+    pub fn add_splats(&mut self, splats: &[crate::integrator::Splat]) {
+        self.accum.add_splats(splats);
     }
 
     /// What pixel `i` shows: the mean of its full samples, else the preview.
     pub fn shown_rgb(&self, i: usize) -> Vec3 {
         if self.accum.pixels[i].count > 0 {
-            self.accum.mean_rgb(i)
+            let per_pixel = self.samples_added as f64 / self.accum.pixels.len().max(1) as f64;
+            self.accum.pixels[i].mean_rgb_splats_over(per_pixel)
         } else {
             self.preview_rgb[i]
         }
@@ -85,5 +97,44 @@ impl ProgressiveFilm {
         let rgb: Vec<Vec3> = (0..n).map(|i| self.shown_rgb(i)).collect();
         let lx: Vec<f32> = (0..n).map(|i| self.shown_illuminance(i)).collect();
         Film::from_values(self.width(), self.height(), &rgb, &lx)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::{Sample, Splat};
+
+    /// Mid-pass, splats are divided by the light subpaths traced so far, not by a pixel's own
+    /// count: a pixel reads the same before and after the rest of the pass arrives.
+    #[test]
+    fn splats_are_normalised_by_the_light_paths_traced() {
+        let mut film = ProgressiveFilm::new(1, 2, 1);
+        let own = |film: &mut ProgressiveFilm, x: u32| {
+            let mut sum = PixelSum::default();
+            assert!(sum.add(&Sample::default()));
+            let tile = Tile {
+                x0: x,
+                y0: 0,
+                x1: x + 1,
+                y1: 1,
+            };
+            film.add_tile(&tile, &[sum]);
+        };
+        let splat = Splat {
+            x: 0,
+            y: 0,
+            rgb: Vec3::splat(1.0),
+        };
+        // Pixel 0's sample and its light subpath (splatting 1 cd/m² onto pixel 0).
+        own(&mut film, 0);
+        film.add_splats(&[splat]);
+        let half = film.shown_rgb(0);
+        // Pixel 1's sample and its light subpath, splatting onto pixel 0 as well.
+        own(&mut film, 1);
+        film.add_splats(&[splat]);
+        let full = film.shown_rgb(0);
+        assert_eq!(half, Vec3::splat(2.0));
+        assert_eq!(full, Vec3::splat(2.0));
     }
 }

@@ -64,6 +64,9 @@ impl SessionStats {
     }
 }
 
+/// Least time between whole-frame refreshes for splats (bidirectional mode), seconds.
+const SPLAT_REFRESH_SECS: f64 = 0.5;
+
 /// Callback that wakes the consumer (for a viewer: `request_repaint`).
 pub type Notify = Arc<dyn Fn() + Send + Sync>;
 
@@ -76,6 +79,8 @@ struct State {
     /// A film no longer shown, kept for reuse so restarts do not allocate.
     spare: Option<ProgressiveFilm>,
     dirty: Vec<Tile>,
+    /// When the whole frame was last marked changed for splats.
+    last_full_refresh: Option<std::time::Instant>,
     stats: SessionStats,
     paused: bool,
     shutdown: bool,
@@ -131,6 +136,7 @@ impl RenderSession {
                 pending: None,
                 spare: None,
                 dirty: Vec::new(),
+                last_full_refresh: None,
                 stats: SessionStats {
                     threads,
                     ..SessionStats::default()
@@ -362,6 +368,10 @@ fn run_generation(
             }
             Pass::Full { index } => {
                 st.stats.samples_per_pixel = index + 1;
+                if s.integrator == crate::integrator::IntegratorKind::Bidirectional {
+                    // The pass's last splats landed all over the picture.
+                    st.dirty.push(full_frame(s));
+                }
                 if index > 0 {
                     st.stats.relative_noise = st
                         .film
@@ -503,21 +513,39 @@ impl PassContext<'_> {
             }
         }
         self.rays.fetch_add(rays, Ordering::Relaxed);
-        let dirty = if splats.is_empty() {
-            *tile
-        } else {
-            // Light subpaths land anywhere in the picture.
-            Tile {
+        self.commit(tile, |film| {
+            film.add_tile(tile, &sums);
+            film.add_splats(&splats);
+        });
+        if !splats.is_empty() {
+            self.refresh_everywhere_now_and_then();
+        }
+    }
+
+    /// Light subpaths land anywhere in the picture: mark the whole frame changed, at most every
+    /// [`SPLAT_REFRESH_SECS`] (and at the end of every pass), so the display keeps up without
+    /// remapping the whole picture for every tile.
+    fn refresh_everywhere_now_and_then(&self) {
+        let mut st = self.shared.lock();
+        let due = st
+            .last_full_refresh
+            .is_none_or(|t| t.elapsed().as_secs_f64() >= SPLAT_REFRESH_SECS);
+        let shown = st
+            .film
+            .as_ref()
+            .is_some_and(|f| f.generation == self.generation);
+        if due && shown && self.shared.is_current(self.generation) {
+            st.last_full_refresh = Some(std::time::Instant::now());
+            let (w, h) = (self.frame.basis.width, self.frame.basis.height);
+            st.dirty.push(Tile {
                 x0: 0,
                 y0: 0,
-                x1: self.frame.basis.width,
-                y1: self.frame.basis.height,
-            }
-        };
-        self.commit(&dirty, |film| {
-            film.add_tile(tile, &sums);
-            film.accum.add_splats(&splats);
-        });
+                x1: w,
+                y1: h,
+            });
+            drop(st);
+            (self.shared.notify)();
+        }
     }
 
     /// Applies a finished tile to this generation's film unless the generation is stale. Until
