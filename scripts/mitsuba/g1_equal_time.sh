@@ -20,7 +20,7 @@ cargo build --release -q -p raygine
 BIN=target/release/raygine
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
-rmse() { "$PY" scripts/mitsuba/g1_rmse.py "$REF" "$1" | head -1 | sed -n 's/.*rmse_rel=\([0-9.]*\).*/\1/p'; }
+rmse() { "$PY" scripts/mitsuba/g1_rmse.py "$REF" "$1" | sed -n '1s/.*rmse_rel=\([0-9.]*\).*/\1/p'; }
 secs_list=("$@")
 [ ${#secs_list[@]} -gt 0 ] || secs_list=(5 20 60)
 for secs in "${secs_list[@]}"; do
@@ -30,7 +30,7 @@ for secs in "${secs_list[@]}"; do
             case "$lib" in
             raygine-*)
                 spp=$("$BIN" render --integrator "${lib#raygine-}" --time-limit "$secs" \
-                    --samples 100000000 --threads "$THREADS" -W 160 -H 120 \
+                    --samples 1048576 --threads "$THREADS" -W 160 -H 120 \
                     -R "$OUT/x.png" --exr "$img" | sed -n 's/.* \([0-9]*\) spp.*/\1/p' | head -1) ;;
             mitsuba-*)
                 spp=$("$PY" scripts/mitsuba/cornell_scene.py --integrator "${lib#mitsuba-}" \
