@@ -6,7 +6,6 @@ use crate::file_ops::{DialogPurpose, PendingDialog, PendingLoad, PendingWrite};
 use crate::history::History;
 use crate::prefs::{PREFS_KEY, Prefs};
 use crate::render_worker::{RenderKey, RenderWorker, map_rect};
-use egui::{Key, KeyboardShortcut, Modifiers};
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -17,13 +16,9 @@ use tracer_core::integrator::IntegratorKind;
 use tracer_core::render::RenderSettings;
 use tracer_core::scene::{Setup, Sidecar, framing_camera, sidecar_path};
 
-pub const SHORTCUT_OPEN: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::O);
-pub const SHORTCUT_SAVE: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::S);
-pub const SHORTCUT_EXPORT: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::E);
-pub const SHORTCUT_UNDO: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Z);
-pub const SHORTCUT_QUIT: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::Q);
-pub const SHORTCUT_REDO: KeyboardShortcut =
-    KeyboardShortcut::new(Modifiers::COMMAND.plus(Modifiers::SHIFT), Key::Z);
+pub use crate::shortcuts::{
+    SHORTCUT_EXPORT, SHORTCUT_OPEN, SHORTCUT_QUIT, SHORTCUT_REDO, SHORTCUT_SAVE, SHORTCUT_UNDO,
+};
 
 /// How the viewer starts.
 #[derive(Clone, Debug, Default)]
@@ -83,6 +78,8 @@ pub struct PathPrompt {
     pub text: String,
     /// Set when the file exists and the user must confirm overwriting it.
     pub confirm_overwrite: bool,
+    /// The path field takes keyboard focus on the next frame (set when the window opens).
+    pub focus_field: bool,
 }
 
 /// What the mouse points at in the viewport.
@@ -107,6 +104,8 @@ pub struct RaygineApp {
     pub selected_slot: Option<u32>,
     pub error: Option<String>,
     pub notice: Option<String>,
+    /// When the error and the notice appeared; they expire or are dismissed.
+    pub banners: crate::banners::Banners,
     pub loading: Option<PendingLoad>,
     pub dialog: Option<PendingDialog>,
     pub writes: Vec<PendingWrite>,
@@ -130,6 +129,8 @@ pub struct RaygineApp {
     pub report: Option<crate::report::ReportStatus>,
     /// Film size of the viewport, pixels.
     pub viewport_px: [u32; 2],
+    /// Whether the last frame drew a picture (only ever one of the scene open).
+    pub picture_drawn: bool,
     /// Recent UI frame intervals while rendering (for the p95 in the status bar).
     pub frame_times: VecDeque<f32>,
     /// Time the app itself spent in recent frames while rendering (the rest is egui's
@@ -192,6 +193,7 @@ impl RaygineApp {
             selected_slot: None,
             error: None,
             notice: None,
+            banners: crate::banners::Banners::default(),
             loading: None,
             dialog: None,
             writes: Vec::new(),
@@ -208,6 +210,7 @@ impl RaygineApp {
             viewport_rect: None,
             report: None,
             viewport_px: [0, 0],
+            picture_drawn: false,
             frame_times: VecDeque::new(),
             frame_work: VecDeque::new(),
             last_frame: None,
@@ -235,6 +238,19 @@ impl RaygineApp {
     /// Starts loading a scene in the background; the current scene stays until it succeeds.
     pub fn open_path(&mut self, path: &Path) {
         self.loading = Some(PendingLoad::start(path, &self.ctx));
+    }
+
+    /// Shows another scene: fresh history, no selection, and rendering resumed, so the new scene
+    /// gets a picture (the old scene's picture is never shown for it).
+    pub fn replace_document(&mut self, doc: Document) {
+        self.history = History::new(&doc.setup);
+        self.doc = doc;
+        self.selected_slot = None;
+        self.meter = None;
+        if self.paused {
+            self.paused = false;
+            self.worker.set_paused(false);
+        }
     }
 
     /// Waits for a pending load (tests and scripts only; the UI never calls this).
@@ -303,10 +319,8 @@ impl RaygineApp {
             match result {
                 Ok(loaded) => {
                     let doc = Document::from_loaded(loaded, path.clone());
-                    self.history = History::new(&doc.setup);
                     self.notice = (!doc.warnings.is_empty()).then(|| doc.warnings.join("; "));
-                    self.doc = doc;
-                    self.selected_slot = None;
+                    self.replace_document(doc);
                     self.error = None;
                     if let Some(p) = path {
                         self.prefs.add_recent(&p);
@@ -326,6 +340,7 @@ impl RaygineApp {
                             purpose,
                             text: path.display().to_string(),
                             confirm_overwrite: false,
+                            focus_field: true,
                         });
                     }
                 }
@@ -406,6 +421,7 @@ impl RaygineApp {
             purpose,
             text,
             confirm_overwrite: false,
+            focus_field: true,
         });
     }
 
@@ -508,24 +524,19 @@ impl RaygineApp {
     }
 
     fn handle_shortcuts(&mut self, ctx: &egui::Context) {
-        let typing = ctx.text_edit_focused();
-        if ctx.input_mut(|i| i.consume_shortcut(&SHORTCUT_QUIT)) {
+        let crate::shortcuts::Pressed {
+            open,
+            save,
+            export,
+            quit,
+            undo,
+            redo,
+            frame_scene: frame,
+            toggle_pause: pause,
+        } = crate::shortcuts::Pressed::read(ctx);
+        if quit {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
-        let (open, save, export, undo, redo, frame, pause) = ctx.input_mut(|i| {
-            // Redo first: Ctrl+Shift+Z also matches Ctrl+Z's modifiers loosely.
-            let redo = i.consume_shortcut(&SHORTCUT_REDO)
-                || i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Y));
-            (
-                i.consume_shortcut(&SHORTCUT_OPEN),
-                i.consume_shortcut(&SHORTCUT_SAVE),
-                i.consume_shortcut(&SHORTCUT_EXPORT),
-                i.consume_shortcut(&SHORTCUT_UNDO),
-                redo,
-                !typing && i.consume_key(Modifiers::NONE, Key::F),
-                !typing && i.consume_key(Modifiers::NONE, Key::P),
-            )
-        });
         if open {
             self.prompt_path(DialogPurpose::Open);
         }
@@ -664,6 +675,12 @@ impl RaygineApp {
         // Commit a finished interaction as one undo step.
         if !ctx.input(|i| i.pointer.any_down()) {
             self.history.commit(&self.doc.setup);
+        }
+        if let Some(wait) = self
+            .banners
+            .expire(&mut self.error, &mut self.notice, Instant::now())
+        {
+            ctx.request_repaint_after(wait);
         }
         self.sync_render();
         if self.worker.busy() {

@@ -2,6 +2,7 @@
 //! Both are thin shells that turn user intent into `tracer-core` calls.
 
 pub mod app;
+pub mod banners;
 pub mod camera_control;
 pub mod cli;
 pub mod cli_shards;
@@ -20,6 +21,7 @@ pub mod render_cmd;
 pub mod render_worker;
 pub mod report;
 pub mod shard_cmd;
+pub mod shortcuts;
 pub mod sweep_cmd;
 pub mod sweep_variants;
 pub mod viewer;

@@ -45,6 +45,9 @@ pub struct RenderWorker {
     started_at: Option<Instant>,
     /// Seconds from the last restart to the first texture upload of the new generation.
     pub last_change_to_pixels: Option<f64>,
+    /// The first generation of the current scene: older films show another scene and are never
+    /// drawn (a scene opened while paused, or before its first preview lands).
+    scene_first_generation: u64,
 }
 
 impl std::fmt::Debug for RenderWorker {
@@ -75,6 +78,7 @@ impl RenderWorker {
             lut: None,
             started_at: None,
             last_change_to_pixels: None,
+            scene_first_generation: 0,
         })
     }
 
@@ -84,12 +88,19 @@ impl RenderWorker {
             return false;
         }
         self.session.set_threads(key.threads);
-        self.session.start(Snapshot {
+        let new_scene = self
+            .current
+            .as_ref()
+            .is_none_or(|k| !Arc::ptr_eq(&k.scene, &key.scene));
+        let generation = self.session.start(Snapshot {
             scene: Arc::clone(&key.scene),
             setup: key.setup.clone(),
             settings: key.settings,
             time_limit: None,
         });
+        if new_scene {
+            self.scene_first_generation = generation;
+        }
         self.current = Some(key);
         self.started_at = Some(Instant::now());
         true
@@ -102,6 +113,16 @@ impl RenderWorker {
     /// The generation the texture shows.
     pub fn shown_generation(&self) -> u64 {
         self.shown_generation
+    }
+
+    /// The first generation of the scene being rendered.
+    pub fn scene_first_generation(&self) -> u64 {
+        self.scene_first_generation
+    }
+
+    /// Whether the texture shows the current scene (a film of it has been uploaded).
+    pub fn shows_current_scene(&self) -> bool {
+        self.texture.is_some() && self.shown_generation >= self.scene_first_generation
     }
 
     pub fn stats(&self) -> SessionStats {
@@ -131,17 +152,32 @@ impl RenderWorker {
     }
 
     /// Brings the texture up to date: changed tiles only, or everything after a new generation
-    /// or a change of the display mapping. Returns the texture to draw, if any.
+    /// or a change of the display mapping. Returns the texture to draw, if any: never one of
+    /// another scene.
     pub fn update_texture(
         &mut self,
         ctx: &egui::Context,
         display: &DisplaySettings,
+        scene: &Arc<Scene>,
     ) -> Option<&TextureHandle> {
+        self.refresh_texture(ctx, display);
+        let renders_scene = self
+            .current
+            .as_ref()
+            .is_some_and(|k| Arc::ptr_eq(&k.scene, scene));
+        if renders_scene && self.shows_current_scene() {
+            self.texture.as_ref()
+        } else {
+            None
+        }
+    }
+
+    fn refresh_texture(&mut self, ctx: &egui::Context, display: &DisplaySettings) {
         let dirty = self.session.take_dirty();
         let stats = self.session.stats();
         let generation = self.session.with_film(|f| f.map(|f| f.generation));
         let Some(generation) = generation else {
-            return self.texture.as_ref();
+            return;
         };
         let new_generation = generation != self.shown_generation;
         // Auto exposure follows the image as it refines: re-check it after each pass.
@@ -175,7 +211,7 @@ impl RenderWorker {
                 .session
                 .with_film(|f| f.map(|f| map_rect(f, display, exposure, None)));
             let Some(image) = image else {
-                return self.texture.as_ref();
+                return;
             };
             match &mut self.texture {
                 Some(t) if t.size() == image.size => t.set(image, TextureOptions::NEAREST),
@@ -205,7 +241,6 @@ impl RenderWorker {
                 }
             }
         }
-        self.texture.as_ref()
     }
 
     /// True while the engine still has work to do for the current generation.

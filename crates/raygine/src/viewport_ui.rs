@@ -22,9 +22,14 @@ pub fn viewport_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     response
         .widget_info(|| egui::WidgetInfo::labeled(egui::accesskit::Role::Image, true, "viewport"));
     let display = app.effective_display();
-    if let Some(texture) = app.worker.update_texture(ui.ctx(), &display) {
+    app.picture_drawn = false;
+    if let Some(texture) = app
+        .worker
+        .update_texture(ui.ctx(), &display, &app.doc.scene)
+    {
         let uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
         ui.painter().image(texture.id(), rect, uv, Color32::WHITE);
+        app.picture_drawn = true;
     }
     handle_mouse(ui, app, &response, rect);
     let basis = app.worker.basis();
@@ -312,7 +317,7 @@ pub fn format_value(v: f32) -> String {
     format!("{v:.digits$}")
 }
 
-fn draw_overlays(ui: &egui::Ui, app: &RaygineApp, rect: Rect) {
+fn draw_overlays(ui: &mut egui::Ui, app: &mut RaygineApp, rect: Rect) {
     let painter = ui.painter_at(rect);
     let mut y = rect.min.y + 8.0;
     let mut line = |text: String, colour: Color32| {
@@ -340,11 +345,19 @@ fn draw_overlays(ui: &egui::Ui, app: &RaygineApp, rect: Rect) {
             Color32::LIGHT_BLUE,
         );
     }
-    if let Some(e) = &app.error {
-        line(format!("Error: {e}"), Color32::from_rgb(255, 120, 110));
-    }
-    if let Some(n) = &app.notice {
-        line(n.clone(), Color32::LIGHT_GREEN);
+    let top = Rect::from_min_max(
+        Pos2::new(rect.min.x + 8.0, y),
+        Pos2::new(rect.max.x - 8.0, rect.max.y),
+    );
+    let dismissed = ui
+        .scope_builder(egui::UiBuilder::new().max_rect(top), |ui| {
+            crate::banners::banners_ui(ui, app.error.as_deref(), app.notice.as_deref())
+        })
+        .inner;
+    match dismissed {
+        Some(crate::banners::BannerKind::Error) => app.error = None,
+        Some(crate::banners::BannerKind::Notice) => app.notice = None,
+        None => {}
     }
     if let Some(h) = &app.hover {
         let text = format!(

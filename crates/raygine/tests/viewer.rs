@@ -915,3 +915,141 @@ fn save_report_writes_the_csv_and_waits_for_the_picture() {
     assert!(csv.starts_with("grid,i,j,x,y,z,illuminance_lx,std_error_lx\nworkplane1,"));
     assert!(h.state().report.is_some() || h.state().notice.is_some());
 }
+
+// ---------------------------------------------------------------------------------------------
+// Issue 19: the rough edges a new user hits
+// ---------------------------------------------------------------------------------------------
+
+/// Types `text` as a keyboard does: each character's key press (when it has a key) and its text.
+fn type_keys(h: &mut Viewer, text: &str) {
+    for c in text.chars() {
+        if let Some(key) = Key::from_name(&c.to_ascii_uppercase().to_string()) {
+            h.event(Event::Key {
+                key,
+                physical_key: None,
+                pressed: true,
+                repeat: false,
+                modifiers: Modifiers::NONE,
+            });
+        }
+        h.event(Event::Text(c.to_string()));
+        if let Some(key) = Key::from_name(&c.to_ascii_uppercase().to_string()) {
+            h.event(Event::Key {
+                key,
+                physical_key: None,
+                pressed: false,
+                repeat: false,
+                modifiers: Modifiers::NONE,
+            });
+        }
+    }
+    h.step();
+}
+
+/// Ctrl+O puts the keyboard in the path field: typed letters go into it (P does not pause, F
+/// does not frame, Ctrl+Z does not undo the scene), and Enter opens the scene.
+#[test]
+fn ctrl_o_focuses_the_path_field_and_enter_opens() {
+    let (mut h, _mirror) = viewer();
+    let path = scratch_dir("ctrl-o-pf").join("pf_scene.shp");
+    std::fs::write(&path, two_brep_scene("0 2 3")).unwrap();
+    let x0 = light_x(h.state());
+    h.get_by_role_and_label(Role::Slider, LIGHT_X)
+        .set_value_accesskit(f64::from(x0) + 50.0);
+    h.run_steps(2);
+    // Orbit, so F would visibly change the camera.
+    let view = h.get_by_label("viewport").rect();
+    drag(&mut h, view.center(), Vec2::new(80.0, 20.0));
+    let camera = h.state().doc.setup.camera;
+
+    h.key_press_modifiers(Modifiers::COMMAND, Key::O);
+    h.run_steps(2);
+    type_keys(&mut h, "pf");
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    let app = h.state();
+    assert!(!app.paused, "typing p paused rendering");
+    assert_eq!(app.doc.setup.camera, camera, "typing f framed the scene");
+    assert_eq!(
+        light_x(app),
+        x0 + 50.0,
+        "Ctrl+Z in the field undid a scene edit"
+    );
+    assert_eq!(app.prompt.as_ref().map(|p| p.text.as_str()), Some(""));
+
+    type_keys(&mut h, &path.display().to_string());
+    assert_eq!(
+        h.state().prompt.as_ref().map(|p| p.text.clone()),
+        Some(path.display().to_string())
+    );
+    h.key_press(Key::Enter);
+    h.step();
+    step_until(&mut h, "the scene to load", |app| app.loading.is_none());
+    let app = h.state();
+    assert!(app.error.is_none(), "{:?}", app.error);
+    assert!(app.prompt.is_none(), "Enter did not close the path window");
+    assert_eq!(app.doc.path.as_deref(), Some(path.as_path()));
+    assert!(!app.paused);
+}
+
+/// A scene opened while rendering is paused resumes rendering, and no frame draws the previous
+/// scene's picture for it.
+#[test]
+fn a_scene_opened_while_paused_never_shows_the_old_picture() {
+    let (mut h, _mirror) = viewer();
+    h.key_press(Key::P);
+    h.step();
+    assert!(h.state().paused);
+    assert!(h.state().picture_drawn);
+    let old_generation = h.state().worker.generation();
+    let path = scratch_dir("paused-open").join("two_breps.shp");
+    std::fs::write(&path, two_brep_scene("0 2 3")).unwrap();
+    h.state_mut().open_path(&path);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    assert!(h.state().loading.is_none());
+    let deadline = Instant::now() + TIMEOUT;
+    loop {
+        h.step();
+        let app = h.state();
+        let first = app.worker.scene_first_generation();
+        if app.picture_drawn {
+            assert!(first > old_generation, "the new scene was never started");
+            assert!(
+                app.worker.shown_generation() >= first,
+                "a frame drew the old scene's picture (generation {} < {first})",
+                app.worker.shown_generation()
+            );
+        }
+        if app.picture_drawn && render_done(app) {
+            break;
+        }
+        assert!(Instant::now() < deadline, "the new scene never rendered");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert!(!h.state().paused, "opening a scene resumes rendering");
+}
+
+/// Banners have a dismiss button, and they expire on their own.
+#[test]
+fn banners_can_be_dismissed_and_expire() {
+    let (mut h, _mirror) = viewer();
+    h.state_mut().error = Some("something failed".to_owned());
+    h.state_mut().notice = Some("something saved".to_owned());
+    h.step();
+    assert!(h.query_by_label_contains("something failed").is_some());
+    h.get_by_role_and_label(Role::Button, "Dismiss error")
+        .click();
+    h.step();
+    assert_eq!(h.state().error, None, "the error was not dismissed");
+    assert!(
+        h.state().notice.is_some(),
+        "dismissing the error hid the notice"
+    );
+    h.step();
+    assert!(h.query_by_label_contains("something failed").is_none());
+
+    h.state_mut().banners.notice_ttl = Duration::from_millis(50);
+    std::thread::sleep(Duration::from_millis(60));
+    h.run_steps(2);
+    assert_eq!(h.state().notice, None, "the notice did not expire");
+}

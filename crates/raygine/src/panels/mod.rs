@@ -123,10 +123,9 @@ fn file_menu_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         }
     });
     if ui.button("Open built-in Cornell box").clicked() {
-        if let Ok(doc) = crate::document::Document::builtin() {
-            app.history = crate::history::History::new(&doc.setup);
-            app.doc = doc;
-            app.selected_slot = None;
+        match crate::document::Document::builtin() {
+            Ok(doc) => app.replace_document(doc),
+            Err(e) => app.error = Some(format!("cannot build the Cornell box: {e:#}")),
         }
         ui.close();
     }

@@ -27,17 +27,34 @@ fn path_prompt_ui(ctx: &egui::Context, app: &mut RaygineApp) {
     };
     let mut open = true;
     let mut confirmed: Option<PathBuf> = None;
+    let mut closed_by_key = false;
     egui::Window::new(title(prompt.purpose))
         .collapsible(false)
         .open(&mut open)
         .show(ctx, |ui| {
+            let mut submitted = false;
             ui.horizontal(|ui| {
                 let label = ui.label("Path:");
                 let edit = ui
                     .add(egui::TextEdit::singleline(&mut prompt.text).desired_width(360.0))
                     .labelled_by(label.id);
+                if std::mem::take(&mut prompt.focus_field) {
+                    edit.request_focus();
+                }
                 if edit.changed() {
                     prompt.confirm_overwrite = false;
+                }
+                if edit.lost_focus() {
+                    let (enter, escape) = ui.input(|i| {
+                        (
+                            i.key_pressed(egui::Key::Enter),
+                            i.key_pressed(egui::Key::Escape),
+                        )
+                    });
+                    submitted = enter;
+                    if escape {
+                        closed_by_key = true;
+                    }
                 }
                 if ui
                     .button("Browse…")
@@ -61,14 +78,20 @@ fn path_prompt_ui(ctx: &egui::Context, app: &mut RaygineApp) {
                 (_, true) => "Replace",
                 _ => "Save",
             };
-            if ui.button(label).clicked() && !prompt.text.trim().is_empty() {
+            submitted |= ui.button(label).clicked();
+            if submitted && !prompt.text.trim().is_empty() {
                 if writes && path.exists() && !prompt.confirm_overwrite {
                     prompt.confirm_overwrite = true;
+                    // Enter again (or the button) replaces the file.
+                    prompt.focus_field = true;
                 } else {
                     confirmed = Some(path);
                 }
             }
         });
+    if closed_by_key {
+        open = false;
+    }
     match confirmed {
         Some(path) => app.run_path_action(ctx, prompt.purpose, path),
         None if open => app.prompt = Some(prompt),
