@@ -150,3 +150,42 @@ fn thread_count_does_not_change_the_image() {
         "PNG bytes differ between thread counts"
     );
 }
+
+/// A light outside the box leaves every pixel at 0 cd/m²: the command says so on stderr (and
+/// names the light outside the bounds); a lit image gets no such warning.
+#[test]
+fn an_all_zero_image_is_warned_about() {
+    let dir = temp_dir();
+    let out = dir.path().join("dark.png");
+    let run = render_in(
+        dir.path(),
+        ["-W", "64", "-H", "48", "-R"]
+            .map(Into::into)
+            .into_iter()
+            .chain([out.clone().into_os_string()])
+            .chain(["--", "-5000", "270", "-280"].map(Into::into)),
+    );
+    run.assert_ok();
+    assert!(
+        run.stderr
+            .contains("warning: every pixel is 0 cd/m²: no light reaches what the camera sees"),
+        "stderr: {}",
+        run.stderr
+    );
+    assert!(run.stderr.contains("light 1"), "stderr: {}", run.stderr);
+
+    let lit = dir.path().join("lit.png");
+    let run = render_in(
+        dir.path(),
+        ["-W", "64", "-H", "48", "-R"]
+            .map(Into::into)
+            .into_iter()
+            .chain([lit.into_os_string()]),
+    );
+    run.assert_ok();
+    assert!(
+        !run.stderr.contains("every pixel is 0"),
+        "stderr: {}",
+        run.stderr
+    );
+}

@@ -131,6 +131,10 @@ pub struct RaygineApp {
     pub viewport_px: [u32; 2],
     /// Whether the last frame drew a picture (only ever one of the scene open).
     pub picture_drawn: bool,
+    /// The film's brightness at the last pass measured (for `picture_hint`).
+    pub film_levels: Option<crate::picture_hints::FilmLevels>,
+    /// Why the picture is black, when it is.
+    pub picture_hint: Option<String>,
     /// Recent UI frame intervals while rendering (for the p95 in the status bar).
     pub frame_times: VecDeque<f32>,
     /// Time the app itself spent in recent frames while rendering (the rest is egui's
@@ -211,6 +215,8 @@ impl RaygineApp {
             report: None,
             viewport_px: [0, 0],
             picture_drawn: false,
+            film_levels: None,
+            picture_hint: None,
             frame_times: VecDeque::new(),
             frame_work: VecDeque::new(),
             last_frame: None,
@@ -626,6 +632,36 @@ impl RaygineApp {
         }
     }
 
+    /// Re-measures the film after each pass and says why the picture is black, if it is.
+    fn update_picture_hint(&mut self) {
+        let stats = self.worker.stats();
+        let known = self.film_levels.is_some_and(|l| {
+            l.generation == stats.generation && l.passes_done == stats.passes_done
+        });
+        if !known {
+            self.film_levels = self.worker.with_film(|f| {
+                f.filter(|f| f.generation == stats.generation)
+                    .map(|f| crate::picture_hints::FilmLevels::measure(f, stats.passes_done))
+            });
+        }
+        let current = self.worker.current().is_some_and(|k| {
+            std::sync::Arc::ptr_eq(&k.scene, &self.doc.scene) && k.setup == self.doc.setup
+        });
+        self.picture_hint = match self.film_levels {
+            Some(levels) if current && levels.generation == self.worker.generation() => {
+                let display = self.effective_display();
+                crate::picture_hints::picture_hint(
+                    &levels,
+                    stats.samples_per_pixel >= 1 && stats.generation == levels.generation,
+                    &display,
+                    display.exposure_stops,
+                    &crate::picture_hints::lights_outside(&self.doc.setup, &self.doc.scene.bounds),
+                )
+            }
+            _ => None,
+        };
+    }
+
     /// The 95th percentile of recent UI frame intervals while rendering, milliseconds.
     pub fn p95_frame_ms(&self) -> Option<f32> {
         p95_ms(&self.frame_times)
@@ -660,6 +696,7 @@ impl RaygineApp {
         }
         self.handle_shortcuts(&ctx);
         self.handle_dropped_files(&ctx);
+        self.update_picture_hint();
         crate::panels::menu_bar(ui, self);
         crate::panels::status_bar(ui, self);
         egui::Panel::left("controls")
@@ -672,8 +709,9 @@ impl RaygineApp {
             .frame(egui::Frame::NONE.fill(egui::Color32::from_gray(20)))
             .show(ui, |ui| crate::viewport_ui::viewport_ui(ui, self));
         crate::panels::windows_ui(&ctx, self);
-        // Commit a finished interaction as one undo step.
-        if !ctx.input(|i| i.pointer.any_down()) {
+        // Commit a finished interaction as one undo step: not while a button is held (a drag)
+        // nor while a value is being typed (it applies, and commits, when the field lets go).
+        if !ctx.input(|i| i.pointer.any_down()) && !ctx.text_edit_focused() {
             self.history.commit(&self.doc.setup);
         }
         if let Some(wait) = self

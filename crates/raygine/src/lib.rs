@@ -16,6 +16,7 @@ pub mod measure_cmd;
 pub mod measure_worker;
 pub mod merge_cmd;
 pub mod panels;
+pub mod picture_hints;
 pub mod prefs;
 pub mod render_cmd;
 pub mod render_worker;

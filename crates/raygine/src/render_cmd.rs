@@ -202,6 +202,20 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         rendered_at.elapsed().as_secs_f64() * 1e3,
     );
     println!("wrote {}", png_path.display());
+    if image.luminance_max <= 0.0 {
+        let outside = crate::picture_hints::lights_outside(&loaded.setup, &loaded.scene.bounds);
+        let lights = match outside.as_slice() {
+            [] => String::new(),
+            l => format!(
+                " (outside the scene's bounds: light {})",
+                l.iter()
+                    .map(usize::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        eprintln!("warning: every pixel is 0 cd/m²: no light reaches what the camera sees{lights}");
+    }
     if let Some(exr) = &args.exr {
         println!("wrote {} (linear cd/m² per channel)", exr.display());
     }

@@ -345,6 +345,9 @@ fn draw_overlays(ui: &mut egui::Ui, app: &mut RaygineApp, rect: Rect) {
             Color32::LIGHT_BLUE,
         );
     }
+    if let Some(hint) = &app.picture_hint {
+        line(hint.clone(), Color32::from_rgb(255, 210, 90));
+    }
     let top = Rect::from_min_max(
         Pos2::new(rect.min.x + 8.0, y),
         Pos2::new(rect.max.x - 8.0, rect.max.y),

@@ -1053,3 +1053,126 @@ fn banners_can_be_dismissed_and_expire() {
     h.run_steps(2);
     assert_eq!(h.state().notice, None, "the notice did not expire");
 }
+
+/// The light sliders stay within the scene's bounds; a typed value may go outside, and then the
+/// panel says so and the picture's hint tells "every pixel is 0 cd/m²".
+#[test]
+fn light_sliders_keep_to_the_bounds_and_a_light_outside_is_pointed_out() {
+    let (mut h, _mirror) = viewer();
+    let bounds = h.state().doc.scene.bounds;
+    let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
+    drag(
+        &mut h,
+        slider.center(),
+        Vec2::new(-slider.width() * 3.0, 0.0),
+    );
+    let x = light_x(h.state());
+    assert!(
+        (x - bounds.min.x).abs() < 1.0,
+        "a drag left took the light to x = {x}, outside {bounds:?}"
+    );
+    assert!(h.query_by_label("outside the scene's bounds").is_none());
+    assert_eq!(h.state().picture_hint, None);
+
+    h.get_by_role_and_label(Role::Slider, LIGHT_X)
+        .set_value_accesskit(-5000.0);
+    h.run_steps(2);
+    assert_eq!(light_x(h.state()), -5000.0, "a typed value may go anywhere");
+    settle(&mut h);
+    h.step();
+    assert!(h.query_by_label("outside the scene's bounds").is_some());
+    let hint = h.state().picture_hint.clone().unwrap_or_default();
+    assert!(
+        hint.starts_with("Every pixel is 0 cd/m²") && hint.contains("Light 1 is outside"),
+        "hint: {hint}"
+    );
+}
+
+/// A picture that is black only because of the exposure gets its own hint.
+#[test]
+fn a_picture_black_at_this_exposure_says_so() {
+    let (mut h, _mirror) = viewer();
+    assert_eq!(h.state().picture_hint, None);
+    h.get_by_role_and_label(Role::Slider, EXPOSURE)
+        .set_value_accesskit(-12.0);
+    h.run_steps(2);
+    let hint = h.state().picture_hint.clone().unwrap_or_default();
+    assert!(hint.starts_with("Black at this exposure"), "hint: {hint}");
+    // The panel's checkbox is below the test window's fold.
+    h.state_mut().display.auto_exposure = true;
+    h.run_steps(2);
+    assert_eq!(h.state().picture_hint, None);
+}
+
+/// A 20-point drag on the intensity changes it by a little (about 10 %), not by a factor of 50.
+#[test]
+fn intensity_drag_is_fine() {
+    let (mut h, _mirror) = viewer();
+    let i0 = h.state().doc.setup.lights[0].intensity_cd;
+    let field = h
+        .get_by_role_and_label(Role::SpinButton, "intensity (cd)")
+        .rect();
+    drag(&mut h, field.center(), Vec2::new(20.0, 0.0));
+    let i1 = h.state().doc.setup.lights[0].intensity_cd;
+    let ratio = i1 / i0;
+    assert!(ratio > 1.02 && ratio < 1.3, "{i0} -> {i1}");
+    h.get_by_role_and_label(Role::Button, "×2").click();
+    h.step();
+    assert_eq!(h.state().doc.setup.lights[0].intensity_cd, 2.0 * i1);
+}
+
+/// A typed value applies when committed (Enter), not at each keystroke, and undoes in one step.
+#[test]
+fn a_typed_value_is_one_undo_step() {
+    let (mut h, _mirror) = viewer();
+    let i0 = h.state().doc.setup.lights[0].intensity_cd;
+    let field = h
+        .get_by_role_and_label(Role::SpinButton, "intensity (cd)")
+        .rect();
+    click_at(&mut h, field.center());
+    h.step();
+    h.key_press_modifiers(Modifiers::COMMAND, Key::A);
+    h.step();
+    type_keys(&mut h, "150");
+    type_keys(&mut h, "");
+    assert_eq!(
+        h.state().doc.setup.lights[0].intensity_cd,
+        i0,
+        "the value applied before it was committed"
+    );
+    h.key_press(Key::Enter);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.setup.lights[0].intensity_cd, 150.0);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert_eq!(
+        h.state().doc.setup.lights[0].intensity_cd,
+        i0,
+        "one undo did not return to the value before typing"
+    );
+    assert!(
+        !h.state().history.can_undo(),
+        "typing left more than one step"
+    );
+}
+
+/// Add light puts the new light beside the first one, inside the room.
+#[test]
+fn add_light_offsets_the_new_light() {
+    let (mut h, _mirror) = viewer();
+    h.get_by_role_and_label(Role::Button, "Add light").click();
+    h.step();
+    let app = h.state();
+    let b = app.doc.scene.bounds;
+    let [a, n] = [&app.doc.setup.lights[0], &app.doc.setup.lights[1]];
+    let gap = a.position().distance(n.position());
+    assert!(
+        gap > 0.1 * b.extent().max_element(),
+        "the new light is {gap} from the first"
+    );
+    let p = n.position();
+    assert!(
+        b.contains(&tracer_core::Aabb { min: p, max: p }),
+        "the new light left the room: {p}"
+    );
+}

@@ -8,8 +8,12 @@ pub fn camera_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let cam = &mut app.doc.setup.camera;
     vec3_row(ui, "position", &mut cam.position, speed, unit);
     vec3_row(ui, "look at", &mut cam.look_at, speed, unit);
-    ui.add(egui::Slider::new(&mut cam.fov_deg, 5.0..=150.0).text("field of view (°)"))
-        .on_hover_text("Vertical field of view, degrees, from the top edge to the bottom edge");
+    ui.add(
+        egui::Slider::new(&mut cam.fov_deg, 5.0..=150.0)
+            .text("field of view (°)")
+            .update_while_editing(false),
+    )
+    .on_hover_text("Vertical field of view, degrees, from the top edge to the bottom edge");
     ui.horizontal(|ui| {
         if ui
             .button("Frame scene")
@@ -26,8 +30,13 @@ fn vec3_row(ui: &mut egui::Ui, label: &str, v: &mut [f32; 3], speed: f32, unit: 
     ui.horizontal(|ui| {
         ui.label(format!("{label} ({unit})"));
         for (c, axis) in v.iter_mut().zip(["x", "y", "z"]) {
-            ui.add(egui::DragValue::new(c).speed(speed).max_decimals(3))
-                .on_hover_text(format!("camera {label} {axis} ({unit})"));
+            ui.add(
+                egui::DragValue::new(c)
+                    .speed(speed)
+                    .max_decimals(3)
+                    .update_while_editing(false),
+            )
+            .on_hover_text(format!("camera {label} {axis} ({unit})"));
         }
     });
 }

@@ -1,17 +1,19 @@
-//! Point and spot lights: kind, position (slider over the scene bounds and out to the camera,
-//! or typed), intensity (logarithmic, cd), spot axis and angles, colour; add and remove.
-//! Emissive surfaces are edited with their material.
+//! Point and spot lights: kind, position (sliders over the scene's bounds; typed values may go
+//! anywhere, and a light outside the bounds is pointed out), intensity (cd, a drag changes it by
+//! a fraction of itself), spot axis and angles, colour; add (beside the lights already there)
+//! and remove. Emissive surfaces are edited with their material.
 
 use crate::app::RaygineApp;
 use tracer_core::scene::{Light, LightKind, default_light};
 
 pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let b = app.doc.scene.bounds;
-    let margin = b.extent() * 0.5;
-    // Over the bounds with a margin, and out to the camera: the default light of an object
-    // sits between it and the camera.
-    let eye = glam::Vec3::from_array(app.doc.setup.camera.position);
-    let (lo, hi) = ((b.min - margin).min(eye), (b.max + margin).max(eye));
+    // The sliders span the scene's bounds (a flat scene gets some height); typed values may go
+    // anywhere.
+    let pad = glam::Vec3::splat(b.extent().max_element().max(1e-3) * 0.25);
+    let flat = b.extent().cmple(glam::Vec3::splat(1e-6));
+    let lo = glam::Vec3::select(flat, b.min - pad, b.min);
+    let hi = glam::Vec3::select(flat, b.max + pad, b.max);
     let unit = app.doc.setup.unit.symbol();
     let mut remove = None;
     let count = app.doc.setup.lights.len();
@@ -48,27 +50,29 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 ui.add(
                     egui::Slider::new(&mut light.position[axis], lo[axis]..=hi[axis])
                         .text(format!("light {name} ({unit})"))
-                        .clamping(egui::SliderClamping::Never),
+                        .clamping(egui::SliderClamping::Never)
+                        .update_while_editing(false),
                 )
                 .on_hover_text(format!(
                     "Light {} position along {name}, scene units ({unit}); type any value",
                     i + 1
                 ));
             }
+            let p = light.position();
+            if !b.contains(&tracer_core::geometry::Aabb { min: p, max: p }) {
+                ui.colored_label(
+                    egui::Color32::from_rgb(255, 210, 90),
+                    "outside the scene's bounds",
+                )
+                .on_hover_text(
+                    "This light is outside the box around the scene's geometry: it may light \
+                     nothing the camera sees",
+                );
+            }
             if light.kind == LightKind::Luminaire {
                 luminaire_ui(ui, light);
             } else {
-                ui.add(
-                    egui::Slider::new(&mut light.intensity_cd, 0.01..=1.0e6)
-                        .logarithmic(true)
-                        .clamping(egui::SliderClamping::Never)
-                        .text("intensity (cd)"),
-                )
-                .on_hover_text(if light.kind == LightKind::Spot {
-                    "Luminous intensity in candela on the spot's axis"
-                } else {
-                    "Luminous intensity in candela, the same in every direction"
-                });
+                intensity_ui(ui, light);
             }
             if light.kind == LightKind::Spot {
                 spot_ui(ui, light);
@@ -91,14 +95,88 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         .on_hover_text("A new point light where a scene without a sidecar gets its light")
         .clicked()
     {
-        let light: Light = default_light(
+        let mut light: Light = default_light(
             &app.doc.scene,
             app.doc.setup.unit,
             app.doc.setup.camera.position,
         );
+        light.position = beside_lights(light.position, &app.doc.setup.lights, &b);
         app.doc.setup.lights.push(light);
     }
     add_luminaire_ui(ui, app);
+}
+
+/// Intensity in candela: a drag changes it by about 0.5 % a point (a 20-point drag about 10 %),
+/// ÷2 and ×2 take coarse steps, and a typed value applies when committed.
+fn intensity_ui(ui: &mut egui::Ui, light: &mut Light) {
+    ui.horizontal(|ui| {
+        let label = ui.label("intensity (cd)");
+        let speed = f64::from(light.intensity_cd.abs().max(0.01)) * 0.005;
+        ui.add(
+            egui::DragValue::new(&mut light.intensity_cd)
+                .speed(speed)
+                .range(0.0..=1.0e9)
+                .max_decimals(2)
+                .update_while_editing(false),
+        )
+        .labelled_by(label.id)
+        .on_hover_text(if light.kind == LightKind::Spot {
+            "Luminous intensity in candela on the spot's axis. Drag for fine changes, or type"
+        } else {
+            "Luminous intensity in candela, the same in every direction. Drag for fine \
+             changes, or type"
+        });
+        if ui
+            .small_button("÷2")
+            .on_hover_text("Halve the intensity")
+            .clicked()
+        {
+            light.intensity_cd *= 0.5;
+        }
+        if ui
+            .small_button("×2")
+            .on_hover_text("Double the intensity")
+            .clicked()
+        {
+            light.intensity_cd *= 2.0;
+        }
+    });
+}
+
+/// `position` moved aside (along x, then z, inside `bounds` when it was inside) until no light
+/// sits within a tenth of the scene's size of it.
+pub fn beside_lights(
+    position: [f32; 3],
+    lights: &[Light],
+    bounds: &tracer_core::geometry::Aabb,
+) -> [f32; 3] {
+    let step = (bounds.extent().max_element() * 0.15).max(1e-3);
+    let start = glam::Vec3::from(position);
+    let inside = |p: glam::Vec3| bounds.contains(&tracer_core::geometry::Aabb { min: p, max: p });
+    let keep_inside = inside(start);
+    let free = |p: glam::Vec3| {
+        lights
+            .iter()
+            .all(|l| l.position().distance(p) >= step * (2.0 / 3.0))
+    };
+    if free(start) {
+        return position;
+    }
+    for k in 1..=8 {
+        let d = step * k as f32;
+        for offset in [
+            glam::Vec3::X * d,
+            -glam::Vec3::X * d,
+            glam::Vec3::Z * d,
+            -glam::Vec3::Z * d,
+        ] {
+            let p = start + offset;
+            if free(p) && (!keep_inside || inside(p)) {
+                return p.to_array();
+            }
+        }
+    }
+    (start + glam::Vec3::X * step).to_array()
 }
 
 /// A typed path and a button that add a luminaire from an IES or EULUMDAT file.
@@ -133,8 +211,11 @@ fn add_luminaire_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                         app.doc.setup.unit,
                         app.doc.setup.camera.position,
                     );
+                    let position =
+                        beside_lights(base.position, &app.doc.setup.lights, &app.doc.scene.bounds);
                     app.doc.setup.lights.push(Light {
                         kind: LightKind::Luminaire,
+                        position,
                         luminaire: Some(std::sync::Arc::new(tracer_core::light::Luminaire::new(
                             photometry, path,
                         ))),
@@ -158,7 +239,8 @@ fn luminaire_ui(ui: &mut egui::Ui, light: &mut Light) {
         egui::Slider::new(&mut light.multiplier, 0.001..=1000.0)
             .logarithmic(true)
             .clamping(egui::SliderClamping::Never)
-            .text("multiplier"),
+            .text("multiplier")
+            .update_while_editing(false),
     )
     .on_hover_text("Factor on the file's intensities (1: as measured)");
     aim_ui(
@@ -167,8 +249,12 @@ fn luminaire_ui(ui: &mut egui::Ui, light: &mut Light) {
         "aim (nadir)",
         "Direction of the photometric nadir, γ = 0 (any length)",
     );
-    ui.add(egui::Slider::new(&mut light.rotation_deg, -180.0..=180.0).text("rotation (°)"))
-        .on_hover_text("Turn of the C planes about the aim");
+    ui.add(
+        egui::Slider::new(&mut light.rotation_deg, -180.0..=180.0)
+            .text("rotation (°)")
+            .update_while_editing(false),
+    )
+    .on_hover_text("Turn of the C planes about the aim");
     if let Some(l) = &light.luminaire {
         polar_ui(ui, &l.photometry, light.multiplier);
     }
@@ -214,10 +300,18 @@ fn spot_ui(ui: &mut egui::Ui, light: &mut Light) {
         "aim",
         "Direction of the spot's axis (any length)",
     );
-    ui.add(egui::Slider::new(&mut light.cone_deg, 0.0..=180.0).text("cone (°)"))
-        .on_hover_text("Half-angle of full intensity, degrees");
-    ui.add(egui::Slider::new(&mut light.falloff_deg, 0.0..=180.0).text("falloff (°)"))
-        .on_hover_text("Half-angle where the intensity reaches zero (smoothstep from the cone)");
+    ui.add(
+        egui::Slider::new(&mut light.cone_deg, 0.0..=180.0)
+            .text("cone (°)")
+            .update_while_editing(false),
+    )
+    .on_hover_text("Half-angle of full intensity, degrees");
+    ui.add(
+        egui::Slider::new(&mut light.falloff_deg, 0.0..=180.0)
+            .text("falloff (°)")
+            .update_while_editing(false),
+    )
+    .on_hover_text("Half-angle where the intensity reaches zero (smoothstep from the cone)");
     if light.falloff_deg < light.cone_deg {
         light.falloff_deg = light.cone_deg;
     }
@@ -231,7 +325,8 @@ fn aim_ui(ui: &mut egui::Ui, aim: &mut [f32; 3], label: &str, hover: &str) {
             ui.add(
                 egui::DragValue::new(&mut aim[axis])
                     .speed(0.01)
-                    .prefix(format!("{name} ")),
+                    .prefix(format!("{name} "))
+                    .update_while_editing(false),
             )
             .on_hover_text(hover);
         }

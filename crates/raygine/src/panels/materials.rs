@@ -81,7 +81,8 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     ui.add(
         egui::Slider::new(&mut m.glossiness, 0.0..=10_000.0)
             .logarithmic(true)
-            .text("glossiness"),
+            .text("glossiness")
+            .update_while_editing(false),
     )
     .on_hover_text(
         "Blinn-Phong exponent of the Ks lobe: 0 makes Ks a perfect mirror; in direct mode it \
@@ -91,7 +92,8 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         egui::Slider::new(&mut m.emission_cd_m2, 0.0..=1.0e6)
             .logarithmic(true)
             .clamping(egui::SliderClamping::Never)
-            .text("emission (cd/m²)"),
+            .text("emission (cd/m²)")
+            .update_while_editing(false),
     )
     .on_hover_text("Luminance this surface emits as a Lambertian light (0: not a light)");
     if m.emission_cd_m2 > 0.0 {

@@ -161,7 +161,8 @@ fn edit_ui(
                         ui.add(
                             egui::DragValue::new(c)
                                 .speed(1.0)
-                                .prefix(["x ", "y ", "z "][axis]),
+                                .prefix(["x ", "y ", "z "][axis])
+                                .update_while_editing(false),
                         )
                         .labelled_by(name.id);
                     }
@@ -169,10 +170,18 @@ fn edit_ui(
             }
             ui.horizontal(|ui| {
                 let name = ui.label("points nu × nv");
-                ui.add(egui::DragValue::new(&mut g.nu).range(1..=1000))
-                    .labelled_by(name.id);
-                ui.add(egui::DragValue::new(&mut g.nv).range(1..=1000))
-                    .labelled_by(name.id);
+                ui.add(
+                    egui::DragValue::new(&mut g.nu)
+                        .range(1..=1000)
+                        .update_while_editing(false),
+                )
+                .labelled_by(name.id);
+                ui.add(
+                    egui::DragValue::new(&mut g.nv)
+                        .range(1..=1000)
+                        .update_while_editing(false),
+                )
+                .labelled_by(name.id);
             });
         });
     if g == *grid {
