@@ -29,6 +29,8 @@ pub struct AppOptions {
     pub threads: usize,
     /// Do not reopen the last scene (tests, smoke runs).
     pub ignore_last_scene: bool,
+    /// The length unit of the scene opened at start (`--units`); wins over its sidecar.
+    pub unit: Option<tracer_core::scene::LengthUnit>,
 }
 
 /// Render preferences that restart the render when changed.
@@ -229,8 +231,10 @@ impl RaygineApp {
                 app.prefs.last_scene.clone().filter(|p| p.is_file())
             }
         });
-        if let Some(path) = start_scene {
-            app.open_path(&path);
+        match (start_scene, options.unit) {
+            (Some(path), unit) => app.open_path_in_unit(&path, unit),
+            (None, Some(unit)) => app.set_unit(unit),
+            (None, None) => {}
         }
         Ok(app)
     }
@@ -256,6 +260,27 @@ impl RaygineApp {
         if self.paused {
             self.paused = false;
             self.worker.set_paused(false);
+        }
+    }
+
+    /// [`RaygineApp::open_path`] with the scene's length unit given.
+    pub fn open_path_in_unit(&mut self, path: &Path, unit: Option<tracer_core::scene::LengthUnit>) {
+        self.loading = Some(PendingLoad::start_in_unit(path, unit, &self.ctx));
+    }
+
+    /// Reads the scene again in another length unit: distances, the default light and camera
+    /// follow it (edits not saved in the sidecar are dropped, as on reopening).
+    pub fn set_unit(&mut self, unit: tracer_core::scene::LengthUnit) {
+        match self.doc.path.clone() {
+            Some(path) => self.open_path_in_unit(&path, Some(unit)),
+            None => match tracer_core::scene::builtin_cornell_box(Some(unit)) {
+                Ok(loaded) => {
+                    let doc = Document::from_loaded(loaded, None);
+                    self.notice = (!doc.warnings.is_empty()).then(|| doc.warnings.join("; "));
+                    self.replace_document(doc);
+                }
+                Err(e) => self.error = Some(format!("cannot build the Cornell box: {e}")),
+            },
         }
     }
 
@@ -325,7 +350,13 @@ impl RaygineApp {
             match result {
                 Ok(loaded) => {
                     let doc = Document::from_loaded(loaded, path.clone());
-                    self.notice = (!doc.warnings.is_empty()).then(|| doc.warnings.join("; "));
+                    self.notice = (!doc.warnings.is_empty()).then(|| {
+                        // The viewer has its own unit control.
+                        doc.warnings.join("; ").replace(
+                            "pass --units",
+                            "choose the unit at the top of the side panel:",
+                        )
+                    });
                     self.replace_document(doc);
                     self.error = None;
                     if let Some(p) = path {

@@ -24,6 +24,10 @@ pub struct Cli {
     /// Start with the built-in Cornell box instead of reopening the last scene.
     #[arg(long)]
     pub no_restore: bool,
+    /// Length unit of the scene opened: mm, cm or m (default: the sidecar's, else mm). The
+    /// viewer's side panel changes it too.
+    #[arg(long, value_name = "UNIT")]
+    pub units: Option<LengthUnit>,
 }
 
 #[derive(Debug, Subcommand)]

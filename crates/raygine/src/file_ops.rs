@@ -17,14 +17,26 @@ pub struct PendingLoad {
 impl PendingLoad {
     /// Starts reading `path` (parse, BVH build, sidecar) on a named thread.
     pub fn start(path: &Path, ctx: &egui::Context) -> Self {
+        Self::start_in_unit(path, None, ctx)
+    }
+
+    /// [`PendingLoad::start`] with the scene's length unit given (it wins over the sidecar's).
+    pub fn start_in_unit(
+        path: &Path,
+        unit: Option<tracer_core::scene::LengthUnit>,
+        ctx: &egui::Context,
+    ) -> Self {
         let (tx, rx) = channel();
         let p = path.to_path_buf();
         let repaint = ctx.clone();
         let spawned = std::thread::Builder::new()
             .name("raygine-load".to_owned())
             .spawn(move || {
-                let result = tracer_core::scene::load(&p, &LoadOptions::default())
-                    .map_err(|e| e.to_string());
+                let options = LoadOptions {
+                    unit,
+                    ..LoadOptions::default()
+                };
+                let result = tracer_core::scene::load(&p, &options).map_err(|e| e.to_string());
                 let _ = tx.send(result);
                 repaint.request_repaint();
             });

@@ -45,6 +45,7 @@ pub fn run() -> ExitCode {
             scene: args.scene.clone(),
             threads: args.threads.unwrap_or(0) as usize,
             ignore_last_scene: args.no_restore,
+            unit: args.units,
         }),
     };
     match result {

@@ -99,6 +99,7 @@ fn viewer() -> (Viewer, TextureMirror) {
                     scene: None,
                     threads: 2,
                     ignore_last_scene: true,
+                    unit: None,
                 },
             )
             .unwrap()
@@ -633,6 +634,7 @@ fn smoke_script_layout_holds() {
                     scene: None,
                     threads: 1,
                     ignore_last_scene: true,
+                    unit: None,
                 },
             )
             .unwrap()
@@ -1175,4 +1177,59 @@ fn add_light_offsets_the_new_light() {
         b.contains(&tracer_core::Aabb { min: p, max: p }),
         "the new light left the room: {p}"
     );
+}
+
+/// The viewer has unit and handedness controls: a unit reads the scene again in it, a
+/// handedness mirrors the camera's picture; `--units` reaches the viewer.
+#[test]
+fn unit_and_handedness_controls() {
+    let (mut h, _mirror) = viewer();
+    h.get_by_role_and_label(Role::ComboBox, "unit").click();
+    h.run_steps(2);
+    h.get_by_label("m").click();
+    h.run_steps(2);
+    let app = h.state();
+    assert_eq!(app.doc.setup.unit, tracer_core::scene::LengthUnit::M);
+    assert!(
+        h.query_by_role_and_label(Role::Slider, "light x (m)")
+            .is_some(),
+        "sliders still in mm"
+    );
+    settle(&mut h);
+    let generation = h.state().worker.generation();
+    h.get_by_role_and_label(Role::ComboBox, "handedness")
+        .click();
+    h.run_steps(2);
+    h.get_by_label("right-handed").click();
+    h.run_steps(2);
+    let app = h.state();
+    assert_eq!(
+        app.doc.setup.handedness,
+        tracer_core::scene::Handedness::Right
+    );
+    assert!(
+        app.worker.generation() > generation,
+        "the render did not restart"
+    );
+
+    // `raygine --units m` parses, and the option reaches the app.
+    use clap::Parser;
+    let cli = raygine::cli::Cli::try_parse_from(["raygine", "--units", "m", "room.shp"]).unwrap();
+    assert_eq!(cli.units, Some(tracer_core::scene::LengthUnit::M));
+    let h = Harness::builder()
+        .with_size(Vec2::new(640.0, 400.0))
+        .with_accessibility_check(false)
+        .build_eframe(|cc| {
+            RaygineApp::new(
+                cc,
+                AppOptions {
+                    scene: None,
+                    threads: 1,
+                    ignore_last_scene: true,
+                    unit: Some(tracer_core::scene::LengthUnit::Cm),
+                },
+            )
+            .unwrap()
+        });
+    assert_eq!(h.state().doc.setup.unit, tracer_core::scene::LengthUnit::Cm);
 }

@@ -1,6 +1,7 @@
 //! The side panel, menu bar, status bar and windows of the viewer.
 
 mod camera;
+mod frame;
 mod lights;
 mod materials;
 mod measure;
@@ -8,6 +9,8 @@ mod render;
 mod windows;
 
 pub use windows::windows_ui;
+
+use frame::frame_ui;
 
 use crate::app::{
     RaygineApp, SHORTCUT_EXPORT, SHORTCUT_OPEN, SHORTCUT_REDO, SHORTCUT_SAVE, SHORTCUT_UNDO,
@@ -18,11 +21,13 @@ use crate::file_ops::DialogPurpose;
 pub fn controls_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     ui.heading(app.doc.scene.name.clone());
     ui.label(format!(
-        "{} triangles, {} breps, unit {}",
+        "{} triangles, {} breps",
         app.doc.scene.triangle_count(),
         app.doc.scene.breps.len(),
-        app.doc.setup.unit
     ));
+    if let Some(unit) = frame_ui(ui, app) {
+        app.set_unit(unit);
+    }
     ui.separator();
     egui::CollapsingHeader::new("Lights")
         .default_open(true)
