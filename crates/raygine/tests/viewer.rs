@@ -1233,3 +1233,35 @@ fn unit_and_handedness_controls() {
         });
     assert_eq!(h.state().doc.setup.unit, tracer_core::scene::LengthUnit::Cm);
 }
+
+/// Reflectance can be typed (one grey value, or 0-1 per channel), and Kd + Ks above 1 is shown
+/// (the sum per channel, and a notice saying what was scaled down) instead of scaled silently.
+#[test]
+fn reflectance_numbers_and_the_kd_ks_limit_are_shown() {
+    let (mut h, _mirror) = viewer();
+    h.get_by_label("red_wall").click();
+    h.run_steps(2);
+    let slot = h.state().selected_slot.unwrap() as usize;
+    h.get_all_by_role_and_label(Role::SpinButton, "grey")
+        .next()
+        .unwrap()
+        .set_value_accesskit(0.5);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.setup.materials[slot].kd, [0.5; 3]);
+    assert!(h.query_by_label_contains("Kd + Ks = 0.500").is_some());
+
+    // Ks red 0.8: Kd + Ks = 1.3 in red.
+    h.get_all_by_role_and_label(Role::SpinButton, "or")
+        .nth(3)
+        .unwrap()
+        .set_value_accesskit(0.8);
+    h.run_steps(2);
+    let m = h.state().doc.setup.materials[slot];
+    assert!((m.kd[0] + m.ks[0] - 1.0).abs() < 1e-5, "{m:?}");
+    let notice = h.state().notice.clone().unwrap_or_default();
+    assert!(
+        notice.contains("Kd + Ks was above 1 in red (1.30"),
+        "notice: {notice}"
+    );
+    assert!(h.query_by_label_contains("Kd + Ks = 1.000").is_some());
+}

@@ -70,14 +70,8 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         return;
     };
     ui.strong(format!("Material of {label}"));
-    ui.horizontal(|ui| {
-        ui.color_edit_button_rgb(&mut m.kd);
-        ui.label("Kd, diffuse reflectance");
-    });
-    ui.horizontal(|ui| {
-        ui.color_edit_button_rgb(&mut m.ks);
-        ui.label("Ks, mirror reflectance");
-    });
+    super::reflectance::reflectance_ui(ui, "Kd", "Kd, diffuse reflectance", &mut m.kd);
+    super::reflectance::reflectance_ui(ui, "Ks", "Ks, mirror reflectance", &mut m.ks);
     ui.add(
         egui::Slider::new(&mut m.glossiness, 0.0..=10_000.0)
             .logarithmic(true)
@@ -114,12 +108,34 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             });
     }
     let (clamped, changed) = m.clamped();
+    let sums: [f32; 3] = std::array::from_fn(|c| m.kd[c] + m.ks[c] + m.kt[c]);
     if changed {
+        let over: Vec<&str> = (0..3)
+            .filter(|&c| sums[c] > 1.0)
+            .map(|c| ["red", "green", "blue"][c])
+            .collect();
+        if !over.is_empty() {
+            app.notice = Some(format!(
+                "{label}: Kd + Ks was above 1 in {} ({}); both were scaled down so they add to 1",
+                over.join(", "),
+                sums.map(|v| format!("{v:.2}")).join(" ")
+            ));
+        }
         *m = clamped;
-        ui.colored_label(
-            egui::Color32::YELLOW,
-            "Kd + Ks was above 1: scaled down per channel",
+    }
+    let sums: [f32; 3] = std::array::from_fn(|c| m.kd[c] + m.ks[c] + m.kt[c]);
+    let at_limit = sums.iter().any(|&v| v >= 0.999);
+    let text = format!(
+        "Kd + Ks = {} (at most 1 per channel)",
+        sums.map(|v| format!("{v:.3}")).join(" ")
+    );
+    if at_limit {
+        ui.colored_label(egui::Color32::YELLOW, text).on_hover_text(
+            "A surface cannot reflect more light than it receives: a channel at 1 is at the \
+             limit, and raising Kd or Ks further scales both down",
         );
+    } else {
+        ui.label(text);
     }
 }
 

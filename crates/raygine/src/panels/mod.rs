@@ -5,6 +5,7 @@ mod frame;
 mod lights;
 mod materials;
 mod measure;
+mod reflectance;
 mod render;
 mod windows;
 
