@@ -82,6 +82,8 @@ pub struct PathPrompt {
     pub confirm_overwrite: bool,
     /// The path field takes keyboard focus on the next frame (set when the window opens).
     pub focus_field: bool,
+    /// Why Browse… did not help (no desktop file dialog), shown in the window.
+    pub note: Option<String>,
 }
 
 /// What the mouse points at in the viewport.
@@ -368,7 +370,21 @@ impl RaygineApp {
             }
         }
         if let Some(picked) = self.dialog.as_ref().and_then(PendingDialog::poll) {
+            let quick = self.dialog.as_ref().is_some_and(|d| {
+                d.started.elapsed().as_secs_f32() < crate::file_ops::NO_DIALOG_SECS
+            });
             let purpose = self.dialog.take().map(|d| d.purpose);
+            if picked.is_none()
+                && quick
+                && let Some(p) = &mut self.prompt
+            {
+                // The typed path stays; say why nothing opened.
+                p.note = Some(
+                    "No file dialog opened: this desktop has no file-dialog service (an XDG \
+                     desktop portal). Type the path above instead."
+                        .to_owned(),
+                );
+            }
             if let (Some(path), Some(purpose)) = (picked, purpose) {
                 match &mut self.prompt {
                     Some(p) if p.purpose == purpose => p.text = path.display().to_string(),
@@ -378,6 +394,7 @@ impl RaygineApp {
                             text: path.display().to_string(),
                             confirm_overwrite: false,
                             focus_field: true,
+                            note: None,
                         });
                     }
                 }
@@ -459,6 +476,7 @@ impl RaygineApp {
             text,
             confirm_overwrite: false,
             focus_field: true,
+            note: None,
         });
     }
 

@@ -81,8 +81,13 @@ pub enum DialogPurpose {
 #[derive(Debug)]
 pub struct PendingDialog {
     pub purpose: DialogPurpose,
+    pub started: Instant,
     rx: Receiver<Option<PathBuf>>,
 }
+
+/// A dialog that closes with nothing sooner than this never showed: without a desktop portal
+/// rfd returns at once.
+pub const NO_DIALOG_SECS: f32 = 0.4;
 
 impl PendingDialog {
     pub fn start(purpose: DialogPurpose, suggested: Option<&Path>, ctx: &egui::Context) -> Self {
@@ -118,7 +123,22 @@ impl PendingDialog {
                 let _ = tx.send(picked);
                 repaint.request_repaint();
             });
-        Self { purpose, rx }
+        Self {
+            purpose,
+            started: Instant::now(),
+            rx,
+        }
+    }
+
+    /// A dialog that has already closed with `picked` (tests; platforms without dialogs).
+    pub fn finished(purpose: DialogPurpose, picked: Option<PathBuf>) -> Self {
+        let (tx, rx) = channel();
+        let _ = tx.send(picked);
+        Self {
+            purpose,
+            started: Instant::now(),
+            rx,
+        }
     }
 
     /// `Some(result)` once the dialog closed.

@@ -1265,3 +1265,31 @@ fn reflectance_numbers_and_the_kd_ks_limit_are_shown() {
     );
     assert!(h.query_by_label_contains("Kd + Ks = 1.000").is_some());
 }
+
+/// Browse… on a desktop without a file-dialog service returns at once with nothing: the window
+/// says why, and the typed path stays.
+#[test]
+fn browse_without_a_portal_says_why_and_keeps_the_path() {
+    let (mut h, _mirror) = viewer();
+    h.key_press_modifiers(Modifiers::COMMAND, Key::O);
+    h.run_steps(2);
+    type_keys(&mut h, "/tmp/typed.shp");
+    // What rfd does without a portal (a real dialog never opens in tests).
+    h.state_mut().dialog = Some(raygine::file_ops::PendingDialog::finished(
+        raygine::file_ops::DialogPurpose::Open,
+        None,
+    ));
+    h.run_steps(2);
+    let prompt = h.state().prompt.as_ref().expect("the path window closed");
+    assert_eq!(prompt.text, "/tmp/typed.shp");
+    assert!(
+        prompt
+            .note
+            .as_deref()
+            .unwrap_or_default()
+            .contains("No file dialog opened"),
+        "{:?}",
+        prompt.note
+    );
+    assert!(h.query_by_label_contains("No file dialog opened").is_some());
+}

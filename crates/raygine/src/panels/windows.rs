@@ -62,9 +62,13 @@ fn path_prompt_ui(ctx: &egui::Context, app: &mut RaygineApp) {
                     .clicked()
                 {
                     let suggested = PathBuf::from(&prompt.text);
+                    prompt.note = None;
                     app.dialog = Some(PendingDialog::start(prompt.purpose, Some(&suggested), ctx));
                 }
             });
+            if let Some(note) = &prompt.note {
+                ui.colored_label(egui::Color32::from_rgb(255, 210, 90), note);
+            }
             let path = PathBuf::from(prompt.text.trim());
             let writes = prompt.purpose != DialogPurpose::Open;
             if prompt.confirm_overwrite {
