@@ -110,7 +110,7 @@ if [[ "${1:-}" == "--inside-xvfb" ]]; then
     # size (the test `smoke_script_layout_holds` keeps it true). Drag it left by 15 px: the light
     # moves about 190 mm towards the green wall and stays inside the box.
     SLIDER_X=$((X + 76))
-    SLIDER_Y=$((Y + 134))
+    SLIDER_Y=$((Y + 157))
     xdotool mousemove "$SLIDER_X" "$SLIDER_Y" mousedown 1
     for dx in 5 10 15; do
         sleep 0.1

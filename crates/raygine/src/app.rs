@@ -20,6 +20,9 @@ pub use crate::shortcuts::{
     SHORTCUT_EXPORT, SHORTCUT_OPEN, SHORTCUT_QUIT, SHORTCUT_REDO, SHORTCUT_SAVE, SHORTCUT_UNDO,
 };
 
+/// The narrowest the viewport gets while the side panel is shown, points.
+pub const MIN_VIEWPORT_WIDTH: f32 = 320.0;
+
 /// How the viewer starts.
 #[derive(Clone, Debug, Default)]
 pub struct AppOptions {
@@ -119,6 +122,8 @@ pub struct RaygineApp {
     pub hover: Option<HoverInfo>,
     pub paused: bool,
     pub show_help: bool,
+    /// Whether the side panel is shown (View > Side panel hides it for a small window).
+    pub show_controls: bool,
     /// The grids' background measurement (Measure panel, grid overlay).
     pub measure: crate::measure_worker::MeasureWorker,
     /// Whether grid readings are drawn over the picture.
@@ -211,6 +216,7 @@ impl RaygineApp {
             hover: None,
             paused: false,
             show_help: false,
+            show_controls: true,
             measure: crate::measure_worker::MeasureWorker::default(),
             show_grids: true,
             meter: None,
@@ -748,12 +754,17 @@ impl RaygineApp {
         self.update_picture_hint();
         crate::panels::menu_bar(ui, self);
         crate::panels::status_bar(ui, self);
-        egui::Panel::left("controls")
-            .resizable(true)
-            .default_size(310.0)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| crate::panels::controls_ui(ui, self));
-            });
+        if self.show_controls {
+            // The viewport keeps at least MIN_VIEWPORT_WIDTH points; the panel scrolls instead.
+            let max_panel = (ui.available_width() - MIN_VIEWPORT_WIDTH).max(120.0);
+            egui::Panel::left("controls")
+                .resizable(true)
+                .default_size(378.0_f32.min(max_panel))
+                .size_range(120.0..=max_panel)
+                .show(ui, |ui| {
+                    egui::ScrollArea::both().show(ui, |ui| crate::panels::controls_ui(ui, self));
+                });
+        }
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE.fill(egui::Color32::from_gray(20)))
             .show(ui, |ui| crate::viewport_ui::viewport_ui(ui, self));

@@ -645,7 +645,7 @@ fn smoke_script_layout_holds() {
     eprintln!("light x slider {slider:?}, viewport {view:?}");
     // scripts/smoke_viewer.sh: SLIDER_X/SLIDER_Y, PANEL_W and BAR_H.
     assert!(
-        slider.contains(Pos2::new(76.0, 134.0)),
+        slider.contains(Pos2::new(76.0, 157.0)),
         "slider moved: {slider:?}"
     );
     assert!(
@@ -1292,4 +1292,38 @@ fn browse_without_a_portal_says_why_and_keeps_the_path() {
         prompt.note
     );
     assert!(h.query_by_label_contains("No file dialog opened").is_some());
+}
+
+/// In the smallest window the side panel leaves the viewport its minimum width, and View > Side
+/// panel hides the panel to give the picture the whole window.
+#[test]
+fn a_small_window_keeps_a_usable_viewport() {
+    let mut h = Harness::builder()
+        .with_size(Vec2::new(640.0, 400.0))
+        .with_accessibility_check(false)
+        .build_eframe(|cc| {
+            RaygineApp::new(
+                cc,
+                AppOptions {
+                    scene: None,
+                    threads: 1,
+                    ignore_last_scene: true,
+                    unit: None,
+                },
+            )
+            .unwrap()
+        });
+    h.run_steps(3);
+    let view = h.get_by_label("viewport").rect();
+    assert!(
+        view.width() >= raygine::app::MIN_VIEWPORT_WIDTH - 1.0,
+        "viewport {view:?}"
+    );
+    h.get_by_label("View").click();
+    h.run_steps(2);
+    h.get_by_label("Side panel").click();
+    h.run_steps(3);
+    assert!(!h.state().show_controls);
+    let view = h.get_by_label("viewport").rect();
+    assert!(view.width() > 630.0, "viewport {view:?}");
 }

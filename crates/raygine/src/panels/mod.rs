@@ -77,6 +77,8 @@ pub fn menu_bar(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 }
             });
             ui.menu_button("View", |ui| {
+                ui.checkbox(&mut app.show_controls, "Side panel")
+                    .on_hover_text("Hide the controls to give the picture the whole window");
                 if ui
                     .add(egui::Button::new("Frame scene").shortcut_text("F"))
                     .clicked()
