@@ -212,13 +212,18 @@ fn draw_light_markers(ui: &egui::Ui, app: &RaygineApp, basis: &CameraBasis, rect
                 LightKind::Luminaire => format!("L{} {:.0} lm", i + 1, light.flux_lm()),
                 _ => format!("L{} {:.0} cd", i + 1, light.intensity_cd),
             };
-            painter.text(
-                pos + Vec2::new(9.0, -9.0),
-                Align2::LEFT_BOTTOM,
-                label,
-                FontId::proportional(12.0),
-                Color32::YELLOW,
+            // On a dark plate, so the label reads over bright pixels.
+            let galley = painter.layout_no_wrap(label, FontId::proportional(12.0), Color32::YELLOW);
+            let at = pos + Vec2::new(9.0, -9.0 - galley.size().y);
+            painter.rect_filled(
+                Rect::from_min_size(
+                    at - Vec2::new(3.0, 1.0),
+                    galley.size() + Vec2::new(6.0, 2.0),
+                ),
+                3.0,
+                Color32::from_black_alpha(200),
             );
+            painter.galley(at, galley, Color32::YELLOW);
             // Spots and luminaires: their aim, a tenth of the scene's size long.
             if light.kind != LightKind::Point {
                 let reach = app.doc.scene.bounds.radius() * 0.2;
@@ -269,40 +274,69 @@ fn draw_axis_triad(ui: &egui::Ui, app: &RaygineApp, rect: Rect) {
     }
 }
 
-fn draw_legend(ui: &egui::Ui, fc: &tracer_core::display::FalseColour, rect: Rect) {
+/// The legend's rows, top to bottom: above the range (white), the palette's values, and below
+/// the range (black), which on a log scale includes 0.
+pub fn legend_rows(fc: &tracer_core::display::FalseColour) -> Vec<(String, [u8; 4])> {
     let legend = fc.legend(8);
+    let mut rows = vec![(
+        format!("> {}", format_value(fc.max)),
+        fc.colour(f32::INFINITY),
+    )];
+    rows.extend(
+        legend
+            .entries
+            .iter()
+            .rev()
+            .map(|e| (format_value(e.value), e.rgba)),
+    );
+    let below = match fc.scale {
+        tracer_core::display::FalseColourScale::Log => format!("< {}, 0", format_value(fc.min)),
+        tracer_core::display::FalseColourScale::Linear => {
+            format!("< {}", format_value(fc.min))
+        }
+    };
+    rows.push((below, fc.colour(f32::NEG_INFINITY)));
+    rows
+}
+
+fn draw_legend(ui: &egui::Ui, fc: &tracer_core::display::FalseColour, rect: Rect) {
+    let rows = legend_rows(fc);
+    let unit = fc.quantity.unit();
     let painter = ui.painter_at(rect);
     let (w, row) = (22.0, 18.0);
     let top = rect.min.y + 12.0;
-    let x = rect.max.x - 120.0;
+    let x = rect.max.x - 130.0;
     painter.rect_filled(
         Rect::from_min_size(
             Pos2::new(x - 8.0, top - 8.0),
-            Vec2::new(120.0, row * legend.entries.len() as f32 + 30.0),
+            Vec2::new(130.0, row * rows.len() as f32 + 30.0),
         ),
         4.0,
         Color32::from_black_alpha(170),
     );
-    for (k, e) in legend.entries.iter().rev().enumerate() {
+    for (k, (label, [r, g, b, _])) in rows.iter().enumerate() {
         let y = top + k as f32 * row;
-        let [r, g, b, _] = e.rgba;
-        painter.rect_filled(
-            Rect::from_min_size(Pos2::new(x, y), Vec2::new(w, row - 2.0)),
+        let swatch = Rect::from_min_size(Pos2::new(x, y), Vec2::new(w, row - 2.0));
+        painter.rect_filled(swatch, 0.0, Color32::from_rgb(*r, *g, *b));
+        // Black and white swatches get an outline so they read against the backdrop.
+        painter.rect_stroke(
+            swatch,
             0.0,
-            Color32::from_rgb(r, g, b),
+            Stroke::new(1.0, Color32::from_gray(140)),
+            egui::StrokeKind::Inside,
         );
         painter.text(
             Pos2::new(x + w + 6.0, y + row * 0.5),
             Align2::LEFT_CENTER,
-            format_value(e.value),
+            label,
             FontId::monospace(12.0),
             Color32::WHITE,
         );
     }
     painter.text(
-        Pos2::new(x, top + row * legend.entries.len() as f32 + 4.0),
+        Pos2::new(x, top + row * rows.len() as f32 + 4.0),
         Align2::LEFT_TOP,
-        legend.unit,
+        unit,
         FontId::proportional(12.0),
         Color32::WHITE,
     );

@@ -1327,3 +1327,38 @@ fn a_small_window_keeps_a_usable_viewport() {
     let view = h.get_by_label("viewport").rect();
     assert!(view.width() > 630.0, "viewport {view:?}");
 }
+
+/// The false-colour legend has rows for above the range (white) and below it (black; on a log
+/// scale that includes 0), matching the colours drawn; the viewer draws it with false colour on.
+#[test]
+fn false_colour_legend_covers_above_and_below_the_range() {
+    use tracer_core::display::{FalseColour, FalseColourQuantity, FalseColourScale};
+    let fc = FalseColour {
+        quantity: FalseColourQuantity::Illuminance,
+        scale: FalseColourScale::Log,
+        min: 1.0,
+        max: 10_000.0,
+    };
+    let rows = raygine::viewport_ui::legend_rows(&fc);
+    assert_eq!(rows.len(), 11);
+    assert_eq!(rows[0].0, "> 10000");
+    assert_eq!(rows[0].1, fc.colour(2e4));
+    let last = rows.last().unwrap();
+    assert_eq!(last.0, "< 1.00, 0");
+    assert_eq!(last.1, fc.colour(0.0));
+    assert_eq!(last.1, fc.colour(0.5));
+    let linear = FalseColour {
+        scale: FalseColourScale::Linear,
+        min: 0.0,
+        ..fc
+    };
+    assert_eq!(
+        raygine::viewport_ui::legend_rows(&linear).last().unwrap().0,
+        "< 0"
+    );
+
+    let (mut h, _mirror) = viewer();
+    h.state_mut().false_colour.enabled = true;
+    h.run_steps(3);
+    assert!(h.state().effective_display().false_colour.is_some());
+}
