@@ -1362,3 +1362,30 @@ fn false_colour_legend_covers_above_and_below_the_range() {
     h.run_steps(3);
     assert!(h.state().effective_display().false_colour.is_some());
 }
+
+/// Save scene settings writes each array (positions, colours) on one line.
+#[test]
+fn the_sidecar_keeps_each_array_on_one_line() {
+    let (mut h, _mirror) = viewer();
+    let path = scratch_dir("sidecar-arrays").join("box.raygine.toml");
+    let ctx = h.state().ctx.clone();
+    h.state_mut().save_sidecar(&ctx, path.clone());
+    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        text.lines()
+            .any(|l| l.starts_with("position = [") && l.ends_with(']')),
+        "{text}"
+    );
+    assert!(
+        !text.lines().any(|l| l.trim_end() == "position = ["),
+        "arrays split over lines:\n{text}"
+    );
+    // It reads back to the same setup.
+    let sidecar: tracer_core::scene::Sidecar = toml::from_str(&text).unwrap();
+    assert_eq!(
+        sidecar.lights.map(|l| l.len()),
+        Some(h.state().doc.setup.lights.len())
+    );
+}

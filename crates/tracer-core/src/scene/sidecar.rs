@@ -313,7 +313,8 @@ impl Sidecar {
     }
 
     pub fn to_toml(&self) -> String {
-        toml::to_string_pretty(self).unwrap_or_else(|e| format!("# cannot write sidecar: {e}\n"))
+        // Not `to_string_pretty`: it writes every array one number a line.
+        toml::to_string(self).unwrap_or_else(|e| format!("# cannot write sidecar: {e}\n"))
     }
 }
 
