@@ -124,6 +124,12 @@ pub struct RaygineApp {
     pub show_help: bool,
     /// Whether the side panel is shown (View > Side panel hides it for a small window).
     pub show_controls: bool,
+    /// The setup as loaded or last saved: anything else is an unsaved edit.
+    pub saved_setup: Setup,
+    /// A scene switch or quit waiting for the user's answer about unsaved edits.
+    pub pending_switch: Option<crate::unsaved::Switch>,
+    /// The user agreed to close: the window's close request goes through.
+    allow_close: bool,
     /// The grids' background measurement (Measure panel, grid overlay).
     pub measure: crate::measure_worker::MeasureWorker,
     /// Whether grid readings are drawn over the picture.
@@ -169,6 +175,7 @@ impl RaygineApp {
             .and_then(|s| eframe::get_value(s, PREFS_KEY))
             .unwrap_or_default();
         let doc = Document::builtin()?;
+        let saved_setup = doc.setup.clone();
         let threads = options.threads;
         let worker = RenderWorker::new(&cc.egui_ctx, threads)?;
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
@@ -217,6 +224,9 @@ impl RaygineApp {
             paused: false,
             show_help: false,
             show_controls: true,
+            saved_setup,
+            pending_switch: None,
+            allow_close: false,
             measure: crate::measure_worker::MeasureWorker::default(),
             show_grids: true,
             meter: None,
@@ -262,6 +272,7 @@ impl RaygineApp {
     /// gets a picture (the old scene's picture is never shown for it).
     pub fn replace_document(&mut self, doc: Document) {
         self.history = History::new(&doc.setup);
+        self.saved_setup = doc.setup.clone();
         self.doc = doc;
         self.selected_slot = None;
         self.meter = None;
@@ -289,6 +300,60 @@ impl RaygineApp {
                 }
                 Err(e) => self.error = Some(format!("cannot build the Cornell box: {e}")),
             },
+        }
+    }
+
+    /// Whether the setup differs from what was loaded or last saved.
+    pub fn has_unsaved_edits(&self) -> bool {
+        self.doc.setup != self.saved_setup
+    }
+
+    /// Switches scenes or quits, asking first when that would drop unsaved edits.
+    pub fn request(&mut self, switch: crate::unsaved::Switch) {
+        if self.has_unsaved_edits() {
+            self.pending_switch = Some(switch);
+        } else {
+            self.perform(switch);
+        }
+    }
+
+    fn perform(&mut self, switch: crate::unsaved::Switch) {
+        use crate::unsaved::Switch;
+        match switch {
+            Switch::Open(path) => self.open_path(&path),
+            Switch::Builtin => match Document::builtin() {
+                Ok(doc) => self.replace_document(doc),
+                Err(e) => self.error = Some(format!("cannot build the Cornell box: {e:#}")),
+            },
+            Switch::Unit(unit) => self.set_unit(unit),
+            Switch::Quit => {
+                self.allow_close = true;
+                self.ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        }
+    }
+
+    /// Applies the answer of the unsaved-edits window.
+    fn answer_unsaved(&mut self, ctx: &egui::Context) {
+        use crate::unsaved::Choice;
+        let Some(switch) = self.pending_switch.clone() else {
+            return;
+        };
+        let can_save = self.doc.path.is_some();
+        match crate::unsaved::unsaved_ui(ctx, &switch, can_save) {
+            Some(Choice::Save) => {
+                if let Some(p) = self.doc.path.clone() {
+                    self.save_sidecar(ctx, sidecar_path(&p));
+                }
+                self.pending_switch = None;
+                self.perform(switch);
+            }
+            Some(Choice::Discard) => {
+                self.pending_switch = None;
+                self.perform(switch);
+            }
+            Some(Choice::Cancel) => self.pending_switch = None,
+            None => {}
         }
     }
 
@@ -406,7 +471,7 @@ impl RaygineApp {
                 }
                 if purpose == DialogPurpose::Open {
                     self.prompt = None;
-                    self.open_path(&path);
+                    self.request(crate::unsaved::Switch::Open(path));
                 }
             }
         }
@@ -489,7 +554,7 @@ impl RaygineApp {
     /// Runs the action of a path window once the user confirmed a path.
     pub fn run_path_action(&mut self, ctx: &egui::Context, purpose: DialogPurpose, path: PathBuf) {
         match purpose {
-            DialogPurpose::Open => self.open_path(&path),
+            DialogPurpose::Open => self.request(crate::unsaved::Switch::Open(path)),
             DialogPurpose::ExportPng => self.export_png(ctx, path),
             DialogPurpose::ExportExr => self.export_exr(ctx, path),
             DialogPurpose::SaveSidecar => self.save_sidecar(ctx, path),
@@ -539,6 +604,8 @@ impl RaygineApp {
     /// Saves materials, lights and camera as the scene's sidecar.
     pub fn save_sidecar(&mut self, ctx: &egui::Context, path: PathBuf) {
         let text = Sidecar::from_setup(&self.doc.scene, &self.doc.setup).to_toml();
+        // A failed write shows its error; the edits then count as saved all the same.
+        self.saved_setup = self.doc.setup.clone();
         self.writes.push(PendingWrite::start(ctx, move || {
             tracer_core::export::write_text(&path, &text)
                 .map(|()| format!("saved scene settings to {}", path.display()))
@@ -596,7 +663,7 @@ impl RaygineApp {
             toggle_pause: pause,
         } = crate::shortcuts::Pressed::read(ctx);
         if quit {
-            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            self.request(crate::unsaved::Switch::Quit);
         }
         if open {
             self.prompt_path(DialogPurpose::Open);
@@ -637,7 +704,7 @@ impl RaygineApp {
                 .extension()
                 .is_some_and(|e| e.eq_ignore_ascii_case("shp"))
             {
-                self.open_path(&path);
+                self.request(crate::unsaved::Switch::Open(path));
             } else {
                 self.error = Some(format!("{}: not a .shp scene", path.display()));
             }
@@ -769,6 +836,15 @@ impl RaygineApp {
             .frame(egui::Frame::NONE.fill(egui::Color32::from_gray(20)))
             .show(ui, |ui| crate::viewport_ui::viewport_ui(ui, self));
         crate::panels::windows_ui(&ctx, self);
+        // The window's close button: ask first when edits would be lost.
+        if ctx.input(|i| i.viewport().close_requested())
+            && !self.allow_close
+            && self.has_unsaved_edits()
+        {
+            ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.pending_switch = Some(crate::unsaved::Switch::Quit);
+        }
+        self.answer_unsaved(&ctx);
         // Commit a finished interaction as one undo step: not while a button is held (a drag)
         // nor while a value is being typed (it applies, and commits, when the field lets go).
         if !ctx.input(|i| i.pointer.any_down()) && !ctx.text_edit_focused() {

@@ -25,6 +25,7 @@ pub mod shard_cmd;
 pub mod shortcuts;
 pub mod sweep_cmd;
 pub mod sweep_variants;
+pub mod unsaved;
 pub mod viewer;
 pub mod viewport_ui;
 

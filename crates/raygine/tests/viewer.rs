@@ -985,6 +985,11 @@ fn ctrl_o_focuses_the_path_field_and_enter_opens() {
         Some(path.display().to_string())
     );
     h.key_press(Key::Enter);
+    h.run_steps(2);
+    // The light was moved: the viewer asks before dropping the edit.
+    assert!(h.state().pending_switch.is_some());
+    h.get_by_role_and_label(Role::Button, "Discard changes")
+        .click();
     h.step();
     step_until(&mut h, "the scene to load", |app| app.loading.is_none());
     let app = h.state();
@@ -1388,4 +1393,55 @@ fn the_sidecar_keeps_each_array_on_one_line() {
         sidecar.lights.map(|l| l.len()),
         Some(h.state().doc.setup.lights.len())
     );
+}
+
+/// Switching scenes or quitting with unsaved edits asks first: Cancel keeps the edits, Discard
+/// drops them, Save writes the sidecar and goes on; without edits nothing asks.
+#[test]
+fn unsaved_edits_are_not_thrown_away_without_asking() {
+    let (mut h, _mirror) = viewer();
+    let dir = scratch_dir("unsaved");
+    let path = dir.join("two_breps.shp");
+    std::fs::write(&path, two_brep_scene("0 2 3")).unwrap();
+    open(&mut h, &path);
+    assert!(!h.state().has_unsaved_edits());
+    let x0 = light_x(h.state());
+    h.get_by_role_and_label(Role::Slider, "light x (mm)")
+        .set_value_accesskit(f64::from(x0) + 40.0);
+    h.run_steps(2);
+    assert!(h.state().has_unsaved_edits());
+
+    // The built-in box from the File menu: asked, then cancelled.
+    h.state_mut().request(raygine::unsaved::Switch::Builtin);
+    h.run_steps(2);
+    assert!(h.query_by_label("Unsaved changes").is_some());
+    h.get_by_role_and_label(Role::Button, "Cancel").click();
+    h.step();
+    assert!(h.state().pending_switch.is_none());
+    assert_eq!(h.state().doc.path.as_deref(), Some(path.as_path()));
+    assert_eq!(light_x(h.state()), x0 + 40.0, "Cancel dropped the edit");
+
+    // Ctrl+Q: asked; Save writes the sidecar and quits.
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Q);
+    h.run_steps(2);
+    assert_eq!(
+        h.state().pending_switch,
+        Some(raygine::unsaved::Switch::Quit)
+    );
+    h.get_by_role_and_label(Role::Button, "Save and continue")
+        .click();
+    h.step();
+    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
+    let sidecar = std::fs::read_to_string(dir.join("two_breps.raygine.toml")).unwrap();
+    assert!(
+        sidecar.contains(&format!("{}", x0 + 40.0)),
+        "the saved sidecar lacks the moved light:\n{sidecar}"
+    );
+    assert!(!h.state().has_unsaved_edits());
+
+    // Nothing unsaved: switching does not ask.
+    h.state_mut().request(raygine::unsaved::Switch::Builtin);
+    h.step();
+    assert!(h.state().pending_switch.is_none());
+    assert_eq!(h.state().doc.path, None);
 }

@@ -27,7 +27,7 @@ pub fn controls_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         app.doc.scene.breps.len(),
     ));
     if let Some(unit) = frame_ui(ui, app) {
-        app.set_unit(unit);
+        app.request(crate::unsaved::Switch::Unit(unit));
     }
     ui.separator();
     egui::CollapsingHeader::new("Lights")
@@ -125,16 +125,13 @@ fn file_menu_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         }
         for path in app.prefs.recent.clone() {
             if ui.button(path.display().to_string()).clicked() {
-                app.open_path(&path);
+                app.request(crate::unsaved::Switch::Open(path));
                 ui.close();
             }
         }
     });
     if ui.button("Open built-in Cornell box").clicked() {
-        match crate::document::Document::builtin() {
-            Ok(doc) => app.replace_document(doc),
-            Err(e) => app.error = Some(format!("cannot build the Cornell box: {e:#}")),
-        }
+        app.request(crate::unsaved::Switch::Builtin);
         ui.close();
     }
     ui.separator();
@@ -194,7 +191,8 @@ fn file_menu_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         )
         .clicked()
     {
-        ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        app.request(crate::unsaved::Switch::Quit);
+        ui.close();
     }
 }
 
