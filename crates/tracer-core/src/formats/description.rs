@@ -33,8 +33,9 @@ pub struct SceneDescription {
     pub meshes: Vec<MeshDescription>,
     /// Materials that parts refer to by index ([`PartDescription::material`]).
     pub materials: Vec<MaterialDescription>,
-    /// Lights as designed (empty: the format has none, or all are switched off).
-    pub lights: Vec<LightDescription>,
+    /// Lights as designed: None when the format says nothing about lights (raygine places a
+    /// default one), empty when the design has none lit.
+    pub lights: Option<Vec<LightDescription>>,
     pub camera: Option<CameraDescription>,
     /// Length of one scene unit in metres, when the format states it (Integra: 1).
     pub metres_per_unit: Option<f32>,

@@ -47,9 +47,17 @@ impl Design {
                 }
             }
         }
-        let lights = (desc.format == crate::formats::SceneFormat::Integra
-            || !desc.lights.is_empty())
-        .then(|| desc.lights.iter().map(light_from_description).collect());
+        let lights: Option<Vec<Light>> = desc
+            .lights
+            .as_ref()
+            .map(|ls| ls.iter().map(light_from_description).collect());
+        if lights.as_ref().is_some_and(Vec::is_empty) {
+            notes.push(format!(
+                "{}: the scene designs no light that is on: the picture stays dark until a \
+                 light is added (Lights panel or sidecar)",
+                desc.path.display()
+            ));
+        }
         let camera = desc.camera.map(|c| Camera {
             position: c.position,
             look_at: c.look_at,

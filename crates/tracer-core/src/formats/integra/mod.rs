@@ -125,7 +125,7 @@ pub fn read_bundle(bundle: &Bundle, desc: &mut SceneDescription) -> Result<(), I
     }
     if let Some(p) = &bundle.lgt {
         let lgt = parse_lgt(&read(p)?, p)?;
-        desc.lights = lights_from_lgt(&lgt, p, &mut desc.notes)?;
+        desc.lights = Some(lights_from_lgt(&lgt, p, &mut desc.notes)?);
     }
     if let Some(p) = &bundle.cam
         && let Some(cam) = parse_cam(&read(p)?, p)?
