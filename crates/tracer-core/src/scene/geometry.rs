@@ -57,7 +57,8 @@ pub struct Scene {
 impl Scene {
     /// Places the meshes, builds the BVH and turns what the description says about materials,
     /// lights, camera and unit into the scene's [`Design`]. Takes a neutral description (or
-    /// anything a reader converts into one, such as a `ShpDescription`).
+    /// anything a reader converts into one, such as a `ShpDescription`). Vertex normals in the
+    /// description are not used yet: shading takes the geometric normal (issue #14 adds them).
     pub fn build<'a>(
         desc: impl Into<Cow<'a, SceneDescription>>,
         name: &str,
