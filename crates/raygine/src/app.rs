@@ -304,7 +304,7 @@ impl RaygineApp {
                 Ok(loaded) => {
                     let doc = Document::from_loaded(loaded, path.clone());
                     self.history = History::new(&doc.setup);
-                    self.notice = (!doc.warnings.is_empty()).then(|| doc.warnings.join("; "));
+                    self.notice = load_notice(&doc.warnings);
                     self.doc = doc;
                     self.selected_slot = None;
                     self.error = None;
@@ -707,5 +707,23 @@ impl eframe::App for RaygineApp {
         self.prefs.integrator = self.render.integrator.name().to_owned();
         self.prefs.resolution_scale = self.render.resolution_scale;
         eframe::set_value(storage, PREFS_KEY, &self.prefs);
+    }
+}
+
+/// The viewport's one-line notice after a load: the warnings themselves when they are few and
+/// short; else the first and a count (every warning goes to stderr, where the full list is read).
+fn load_notice(warnings: &[String]) -> Option<String> {
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    let joined = warnings.join("; ");
+    match warnings {
+        [] => None,
+        _ if joined.chars().count() <= 200 => Some(joined),
+        [first, rest @ ..] => Some(format!(
+            "{} … and {} more notes on this scene (printed on the terminal)",
+            first.chars().take(160).collect::<String>(),
+            rest.len()
+        )),
     }
 }
