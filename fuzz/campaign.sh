@@ -9,13 +9,14 @@ export RUSTC_BOOTSTRAP=1
 secs="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(shp brs sidecar ies ldt)
+[ ${#targets[@]} -gt 0 ] || targets=(shp brs sidecar ies ldt atr prb lgt cam)
 mkdir -p logs
 for t in "${targets[@]}"; do
     dict=shp.dict
     [ "$t" = sidecar ] && dict=sidecar.dict
     [ "$t" = ies ] && dict=ies.dict
     [ "$t" = ldt ] && dict=ldt.dict
+    case "$t" in atr | prb | lgt | cam) dict="$t.dict" ;; esac
     dirs=("corpus/$t")
     [ -d "seeds/$t" ] && dirs+=("seeds/$t")
     echo "== $t: ${secs}s" >&2

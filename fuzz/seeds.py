@@ -74,6 +74,8 @@ def main():
         raw = path.read_bytes()
         stem = path.relative_to(SHARED).as_posix().replace("/", "_")
         target = "brs" if path.suffix == ".brs" else "shp"
+        if path.suffix in (".atr", ".prb", ".lgt", ".cam"):
+            target = path.suffix[1:]
         if len(raw) <= 16384:
             write(target, stem, raw)
         if len(raw) > TRUNCATE:

@@ -2,7 +2,9 @@
 # Smoke run of the raygine viewer in a real X11 window (Xvfb, software OpenGL):
 #   1. the window opens and shows the built-in Cornell box: red wall left, green wall right;
 #   2. an xdotool drag on the first "light x" slider changes the picture;
-#   3. the app is still running, then the script ends it and exits by itself.
+#   3. the app is still running, then the script ends it;
+#   4. when ../shared is present, the viewer opens the Integra room ipur-room2 from the command
+#      line and its viewport (seen from room2.cam) is lit; the script ends it and exits.
 # Screenshots and the app's log go to target/smoke/. Exit 0 on success; 1 with a message on
 # failure; 0 with "SKIP:" when the X tools are missing and cannot be installed (SMOKE_STRICT=1
 # turns that into a failure).
@@ -141,6 +143,43 @@ if [[ "${1:-}" == "--inside-xvfb" ]]; then
     ((changed * 50 > total)) || fail "the slider drag did not change the picture (see $OUT/03-after-drag.png)"
 
     grep -E '^frame-stats' "$OUT/raygine.log" | tail -n 1 || true
+
+    # 4. The Integra room (../shared, when present) opens with its own camera and nine lamps:
+    # the lower part of the viewport (floor, rug, chairs, walls under the lamps) must be lit.
+    ROOM2="${RAYGINE_SHARED:-$ROOT/../shared}/scenes/ipur-room2/room2.shp"
+    if [[ -f "$ROOM2" ]]; then
+        kill -TERM "$APP_PID" 2>/dev/null || true
+        for _ in $(seq 1 20); do
+            kill -0 "$APP_PID" 2>/dev/null || break
+            sleep 0.5
+        done
+        env -u WAYLAND_DISPLAY \
+            HOME="$PRIVATE/home" XDG_DATA_HOME="$PRIVATE/data" XDG_CONFIG_HOME="$PRIVATE/config" \
+            XDG_RUNTIME_DIR="$PRIVATE/runtime" \
+            "$BIN" --no-restore "$ROOM2" >"$OUT/raygine-room2.log" 2>&1 &
+        APP_PID=$!
+        WID=$(timeout 60 xdotool search --sync --name '^raygine$' | head -n 1) ||
+            fail "no raygine window for room2 within 60 s (log: $OUT/raygine-room2.log)"
+        eval "$(xdotool getwindowgeometry --shell "$WID")"
+        xdotool mousemove $((X + 150)) $((Y + HEIGHT - 60))
+        BAND_Y=$((Y + BAR_H + (HEIGHT - 2 * BAR_H) * 55 / 100))
+        BAND_H=$(((HEIGHT - 2 * BAR_H) * 30 / 100))
+        lit=""
+        for attempt in $(seq 1 30); do
+            sleep 2
+            kill -0 "$APP_PID" 2>/dev/null || fail "the app exited on room2 (log: $OUT/raygine-room2.log)"
+            shot 04-room2
+            read -r r g b < <(mean_rgb "$OUT/04-room2.png" "$VW" "$BAND_H" "$VX" "$BAND_Y")
+            echo "smoke: room2 attempt $attempt: lower viewport rgb($r,$g,$b)"
+            if (((r + g + b) / 3 > 25)); then
+                lit=1
+                break
+            fi
+        done
+        [[ -n "$lit" ]] || fail "room2's viewport is not lit (see $OUT/04-room2.png)"
+    else
+        echo "smoke: room2 skipped: $ROOM2 is absent"
+    fi
     echo "smoke: OK"
     exit 0
 fi
@@ -183,5 +222,5 @@ else
 fi
 [[ -x "$BIN" ]] || fail "no binary at $BIN"
 
-timeout 170 xvfb-run -a -s "-screen 0 ${SCREEN_W}x${SCREEN_H}x24" \
+timeout 260 xvfb-run -a -s "-screen 0 ${SCREEN_W}x${SCREEN_H}x24" \
     bash "$0" --inside-xvfb "$BIN" || fail "the run under Xvfb failed or timed out (see above)"

@@ -295,7 +295,7 @@ impl RaygineApp {
             None => match tracer_core::scene::builtin_cornell_box(Some(unit)) {
                 Ok(loaded) => {
                     let doc = Document::from_loaded(loaded, None);
-                    self.notice = (!doc.warnings.is_empty()).then(|| doc.warnings.join("; "));
+                    self.notice = load_notice(&doc.warnings);
                     self.replace_document(doc);
                 }
                 Err(e) => self.error = Some(format!("cannot build the Cornell box: {e}")),
@@ -423,9 +423,9 @@ impl RaygineApp {
             match result {
                 Ok(loaded) => {
                     let doc = Document::from_loaded(loaded, path.clone());
-                    self.notice = (!doc.warnings.is_empty()).then(|| {
-                        // The viewer has its own unit control.
-                        doc.warnings.join("; ").replace(
+                    // The viewer has its own unit control.
+                    self.notice = load_notice(&doc.warnings).map(|n| {
+                        n.replace(
                             "pass --units",
                             "choose the unit at the top of the side panel:",
                         )
@@ -757,13 +757,16 @@ impl RaygineApp {
     /// Re-measures the film after each pass and says why the picture is black, if it is.
     fn update_picture_hint(&mut self) {
         let stats = self.worker.stats();
-        let known = self.film_levels.is_some_and(|l| {
-            l.generation == stats.generation && l.passes_done == stats.passes_done
-        });
+        // Measured three times a generation at most (first preview, first full pass, finished):
+        // measuring holds the film's lock, which the render threads wait for.
+        let stage = u32::from(stats.samples_per_pixel >= 1) + u32::from(stats.finished);
+        let known = self
+            .film_levels
+            .is_some_and(|l| l.generation == stats.generation && l.passes_done == stage);
         if !known {
             self.film_levels = self.worker.with_film(|f| {
                 f.filter(|f| f.generation == stats.generation)
-                    .map(|f| crate::picture_hints::FilmLevels::measure(f, stats.passes_done))
+                    .map(|f| crate::picture_hints::FilmLevels::measure(f, stage))
             });
         }
         let current = self.worker.current().is_some_and(|k| {
@@ -898,5 +901,23 @@ impl eframe::App for RaygineApp {
         self.prefs.integrator = self.render.integrator.name().to_owned();
         self.prefs.resolution_scale = self.render.resolution_scale;
         eframe::set_value(storage, PREFS_KEY, &self.prefs);
+    }
+}
+
+/// The viewport's one-line notice after a load: the warnings themselves when they are few and
+/// short; else the first and a count (every warning goes to stderr, where the full list is read).
+fn load_notice(warnings: &[String]) -> Option<String> {
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    let joined = warnings.join("; ");
+    match warnings {
+        [] => None,
+        _ if joined.chars().count() <= 200 => Some(joined),
+        [first, rest @ ..] => Some(format!(
+            "{} … and {} more notes on this scene (printed on the terminal)",
+            first.chars().take(160).collect::<String>(),
+            rest.len()
+        )),
     }
 }

@@ -81,6 +81,7 @@ pub fn describe(loaded: &LoadedScene) -> Value {
             v
         })
         .collect();
+    let total_flux_lm: f32 = setup.lights.iter().map(|l| l.flux_lm()).sum();
     let b = scene.bounds;
     json!({
         "name": scene.name,
@@ -93,11 +94,13 @@ pub fn describe(loaded: &LoadedScene) -> Value {
         "triangles": scene.triangle_count(),
         "materials": materials,
         "lights": lights,
+        "total_flux_lm": total_flux_lm,
         "camera": {
             "position": setup.camera.position,
             "look_at": setup.camera.look_at,
             "up": setup.camera.up,
             "fov_deg": setup.camera.fov_deg,
+            "resolution": scene.design.resolution,
         },
         "grids": setup.grids.iter().map(|g| json!({"name": g.name, "points": g.point_count()})).collect::<Vec<_>>(),
     })
@@ -128,7 +131,10 @@ fn print_text(v: &Value) {
         }
         println!("{line}");
     }
-    println!("lights:");
+    println!(
+        "lights: {:.1} lm in all",
+        v["total_flux_lm"].as_f64().unwrap_or(0.0)
+    );
     for (i, l) in v["lights"].as_array().into_iter().flatten().enumerate() {
         let mut line = format!(
             "  {}: {} at {} ({unit}), {:.1} lm",
@@ -156,6 +162,9 @@ fn print_text(v: &Value) {
         "camera at {} looking at {}, up {}, field of view {}°",
         c["position"], c["look_at"], c["up"], c["fov_deg"]
     );
+    if let (Some(w), Some(h)) = (c["resolution"][0].as_u64(), c["resolution"][1].as_u64()) {
+        println!("designed for {w} x {h} pixels");
+    }
     for g in v["grids"].as_array().into_iter().flatten() {
         println!("grid {}: {} points", g["name"], g["points"]);
     }

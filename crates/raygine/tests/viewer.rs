@@ -490,6 +490,61 @@ fn a_broken_file_shows_an_error_and_keeps_the_scene() {
 }
 
 #[test]
+fn opening_the_integra_room_lists_its_twenty_materials() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes/ipur-room2/room2.shp");
+    if !path.is_file() {
+        eprintln!(
+            "skipped: {} is absent (the shared scenes are not on this machine)",
+            path.display()
+        );
+        return;
+    }
+    let (mut h, _mirror) = viewer();
+    // Loaded but not rendered to the end: 11,452 triangles under nine lights take long in a
+    // debug build, and the list does not depend on the picture.
+    h.state_mut().open_path(&path);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.step();
+    h.step();
+    let app = h.state();
+    assert!(app.error.is_none(), "{:?}", app.error);
+    assert_eq!(app.doc.scene.slots.len(), 20);
+    assert_eq!(app.doc.setup.lights.len(), 9);
+    let parts: Vec<String> = (1..=20).map(|i| format!("proom2_{i:04}")).collect();
+    let parts: Vec<&str> = parts.iter().map(String::as_str).collect();
+    assert_listed(&h, &parts);
+}
+
+#[test]
+fn a_broken_integra_bundle_shows_file_and_line_and_keeps_the_scene() {
+    let (mut h, _mirror) = viewer();
+    let dir = scratch_dir("broken_bundle");
+    let good = dir.join("two_breps.shp");
+    std::fs::write(&good, two_brep_scene("0 2 3")).unwrap();
+    open(&mut h, &good);
+    let scene = Arc::clone(&h.state().doc.scene);
+
+    let room = dir.join("room.shp");
+    std::fs::write(&room, two_brep_scene("0 2 3")).unwrap();
+    std::fs::create_dir_all(dir.join("room")).unwrap();
+    std::fs::write(dir.join("room/room.atr"), "Attr a1\n  kd nope\nenddef\n").unwrap();
+    h.state_mut().open_path(&room);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.step();
+
+    let app = h.state();
+    let error = app.error.as_deref().expect("no error shown");
+    assert!(error.contains("room.atr:2: kd"), "{error}");
+    assert!(!error.contains('\n'), "not one line: {error}");
+    assert!(
+        Arc::ptr_eq(&app.doc.scene, &scene),
+        "the scene was replaced"
+    );
+    assert_eq!(app.doc.path.as_deref(), Some(good.as_path()));
+}
+
+#[test]
 fn exported_png_matches_an_independent_render() {
     let (mut h, _mirror) = viewer();
     // A non-default exposure, so the export must apply the display mapping, not a default one.

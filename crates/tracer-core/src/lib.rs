@@ -1,7 +1,7 @@
 //! # tracer-core: the raygine renderer as a library
 //!
 //! ```text
-//!  .shp / .brs file ──shp::load──▶ ShpDescription (plain data, line numbers)
+//!  .shp / .brs (+ Integra bundle) ──formats::read_scene──▶ SceneDescription (neutral, plain data)
 //!                                        │ scene::Scene::build (+ sidecar: materials, lights, camera)
 //!                                        ▼
 //!                                      Scene ──bvh::Bvh::build──▶ BVH over world triangles
@@ -36,6 +36,8 @@ pub mod sampling;
 pub mod scene;
 pub mod shading;
 pub mod shard;
-pub mod shp;
+
+/// The `.shp` reader, kept at its old path (it lives in [`formats::shp`]).
+pub use formats::shp;
 
 pub use geometry::{Aabb, Ray};

@@ -8,8 +8,9 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use tracer_core::formats::integra;
 use tracer_core::render::{RenderSettings, render};
-use tracer_core::scene::{Scene, Sidecar};
+use tracer_core::scene::{Scene, Sidecar, light_from_description, material_from_description};
 use tracer_core::shp::{parse_brs, parse_shp};
 
 /// Far above what any saved input takes (milliseconds), far below a hang.
@@ -83,6 +84,7 @@ fn replay(data: &[u8], scene: &Scene) {
             let _ = p.intensity(45.0, 30.0);
         }
     }
+    replay_integra(data);
     if let Ok(text) = std::str::from_utf8(data)
         && let Ok(sidecar) = Sidecar::parse(text, Path::new("fuzz.raygine.toml"))
     {
@@ -97,6 +99,29 @@ fn replay(data: &[u8], scene: &Scene) {
         };
         let _ = render(scene, &setup, &settings);
         let _ = Sidecar::from_setup(scene, &setup).to_toml();
+    }
+}
+
+/// What the `atr`, `prb`, `lgt` and `cam` targets do with `data`.
+fn replay_integra(data: &[u8]) {
+    let mut notes = Vec::new();
+    let atr = Path::new("fuzz.atr");
+    for attr in integra::parse_atr(data, atr).into_iter().flatten() {
+        let m = integra::material_from_attr(&attr, atr, &mut notes);
+        let _ = material_from_description(&m, &mut notes);
+    }
+    let _ = integra::parse_prb(data, Path::new("fuzz.prb"));
+    let lgt = Path::new("fuzz.lgt");
+    if let Ok(parsed) = integra::parse_lgt(data, lgt)
+        && let Ok(lights) = integra::lights_from_lgt(&parsed, lgt, &mut notes)
+    {
+        for l in &lights {
+            let _ = light_from_description(l).flux_lm();
+        }
+    }
+    let cam = Path::new("fuzz.cam");
+    if let Ok(Some(c)) = integra::parse_cam(data, cam) {
+        let _ = c.to_camera(cam);
     }
 }
 
@@ -134,7 +159,9 @@ fn saved_fuzz_inputs_never_panic_or_hang() {
 
 #[test]
 fn every_target_has_a_corpus() {
-    for target in ["shp", "brs", "sidecar", "ies", "ldt"] {
+    for target in [
+        "shp", "brs", "sidecar", "ies", "ldt", "atr", "prb", "lgt", "cam",
+    ] {
         let dir = fuzz_dir().join("corpus").join(target);
         let count = fs::read_dir(&dir).map(|d| d.count()).unwrap_or(0);
         assert!(count > 0, "{} is empty or missing", dir.display());

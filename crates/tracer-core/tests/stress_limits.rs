@@ -11,6 +11,7 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+use tracer_core::formats::SceneFileError;
 use tracer_core::scene::{LoadOptions, SceneError, load};
 use tracer_core::shp::{ShpError, parse_shp};
 
@@ -66,8 +67,9 @@ fn the_same_through_scene_load() {
     let started = Instant::now();
     let result = load(&file, &LoadOptions::default());
     std::fs::remove_dir_all(&dir).ok();
-    let Err(SceneError::Shp(err)) = result else {
-        panic!("expected the reader's error from scene::load");
+    let err = match result {
+        Err(SceneError::Shp(err)) | Err(SceneError::Format(SceneFileError::Shp(err))) => err,
+        _ => panic!("expected the reader's error from scene::load"),
     };
     assert_refused_up_front(&err, &file.display().to_string(), started);
 }

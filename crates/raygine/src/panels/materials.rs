@@ -4,6 +4,15 @@
 use crate::app::RaygineApp;
 use tracer_core::light::EmissionSides;
 
+/// A part's name in the list: its own name when the format gives one, else its number.
+fn part_label(brep: &tracer_core::scene::Brep, part: u32) -> String {
+    if brep.part_names.is_empty() {
+        format!("part {part}")
+    } else {
+        brep.part_label(part)
+    }
+}
+
 pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let scene = std::sync::Arc::clone(&app.doc.scene);
     egui::ScrollArea::vertical()
@@ -37,7 +46,11 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                         }
                     }
                 });
-                if brep.part_count > 1 && app.selected_slot.is_some_and(|s| slots.contains(&s)) {
+                // Parts the format names (an Integra room's 20 materials) are always listed;
+                // numbered parts when their brep is selected.
+                let named = !brep.part_names.is_empty();
+                let selected = app.selected_slot.is_some_and(|s| slots.contains(&s));
+                if brep.part_count > 1 && (named || selected) {
                     ui.indent(bi, |ui| {
                         ui.horizontal_wrapped(|ui| {
                             for s in slots.clone() {
@@ -45,7 +58,7 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                                 if ui
                                     .selectable_label(
                                         app.selected_slot == Some(s),
-                                        format!("part {part}"),
+                                        part_label(brep, part),
                                     )
                                     .clicked()
                                 {
@@ -69,7 +82,8 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     let Some(m) = app.doc.setup.materials.get_mut(slot as usize) else {
         return;
     };
-    ui.strong(format!("Material of {label}"));
+    ui.strong(format!("Material of {label}"))
+        .on_hover_text("Ctrl+S saves it in the sidecar under this key");
     super::reflectance::reflectance_ui(ui, "Kd", "Kd, diffuse reflectance", &mut m.kd);
     super::reflectance::reflectance_ui(ui, "Ks", "Ks, mirror reflectance", &mut m.ks);
     ui.add(

@@ -1,11 +1,24 @@
-//! Readers of file formats other than Lumicept's `.shp` (which lives in [`crate::shp`]): each
-//! turns a file into plain data and knows nothing of the scene builder.
+//! One module per file format: each turns a file into plain data and knows nothing of the scene
+//! builder. Scene readers produce the neutral [`SceneDescription`]; [`read_scene`] picks one.
 //!
+//! - [`shp`]: Lumicept `.shp` and IPUR `.brs` geometry.
+//! - [`integra`]: the Integra bundle beside a `.shp` (`.atr`, `.prb`, `.lgt`, `.cam`).
 //! - [`ies`]: IES LM-63 photometric files (1986/1991, 1995, 2002, 2019).
 //! - [`ldt`]: EULUMDAT photometric files.
 
+pub mod description;
 pub mod ies;
+pub mod integra;
 pub mod ldt;
+mod scene_file;
+pub mod shp;
+
+pub use description::{
+    CameraDescription, EmissionDescription, LightDescription, LightDistribution,
+    MaterialDescription, MeshDescription, PartDescription, PlacementDescription, SceneDescription,
+    SceneFormat, TransmissionDescription,
+};
+pub use scene_file::{SceneFileError, read_scene};
 
 use crate::light::Photometry;
 use std::path::{Path, PathBuf};

@@ -1,5 +1,6 @@
 //! Errors of building a scene and reading its sidecar.
 
+use crate::formats::SceneFileError;
 use crate::shp::ShpError;
 use std::path::PathBuf;
 
@@ -7,6 +8,8 @@ use std::path::PathBuf;
 pub enum SceneError {
     #[error(transparent)]
     Shp(#[from] ShpError),
+    #[error(transparent)]
+    Format(#[from] SceneFileError),
     #[error("{}: line {line}: the placement of brep {brep} moves a vertex to infinity", path.display())]
     NonFinitePlacement {
         path: PathBuf,

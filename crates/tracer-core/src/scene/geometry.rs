@@ -1,12 +1,13 @@
 //! The immutable part of a scene: world-space triangles, their breps and material slots, and the
 //! BVH over them. Shared between threads behind an `Arc`; edits never touch it.
 
+use super::design::Design;
 use super::error::SceneError;
-use super::transform::world_from_local;
 use crate::bvh::Bvh;
+use crate::formats::SceneDescription;
 use crate::geometry::Aabb;
-use crate::shp::{Placement, ShpDescription};
-use glam::Vec3;
+use glam::{DMat4, Vec3};
+use std::borrow::Cow;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -17,6 +18,9 @@ pub struct Brep {
     pub part_count: u32,
     pub first_slot: u32,
     pub triangle_count: usize,
+    /// One name per part when the format names parts (Integra `.prb`), else empty (parts are
+    /// numbered).
+    pub part_names: Vec<String>,
 }
 
 /// Which brep and part a material slot belongs to.
@@ -46,61 +50,88 @@ pub struct Scene {
     pub bounds: Aabb,
     /// Wall time of the BVH build, seconds.
     pub bvh_build_secs: f64,
+    /// What the file says about materials, lights, camera and unit: the setup before a sidecar.
+    pub design: Design,
 }
 
 impl Scene {
-    /// Applies placements and builds the BVH. Breps without a `set breps` block are placed with
-    /// the identity; a placement naming no brep is ignored here (the reader reports it).
-    pub fn build(desc: &ShpDescription, name: &str) -> Result<Scene, SceneError> {
-        let mut breps = Vec::with_capacity(desc.breps.len());
+    /// Places the meshes, builds the BVH and turns what the description says about materials,
+    /// lights, camera and unit into the scene's [`Design`]. Takes a neutral description (or
+    /// anything a reader converts into one, such as a `ShpDescription`). Vertex normals in the
+    /// description are not used yet: shading takes the geometric normal (issue #14 adds them).
+    pub fn build<'a>(
+        desc: impl Into<Cow<'a, SceneDescription>>,
+        name: &str,
+    ) -> Result<Scene, SceneError> {
+        let desc: Cow<'a, SceneDescription> = desc.into();
+        let mut breps = Vec::with_capacity(desc.meshes.len());
         let mut slots = Vec::new();
-        let total: usize = desc.breps.iter().map(|b| b.triangles.len()).sum();
+        let total = desc.triangle_count();
         let mut triangles = Vec::with_capacity(total);
         let mut triangle_slots = Vec::with_capacity(total);
-        let identity = Placement::default();
-        for (brep_index, def) in desc.breps.iter().enumerate() {
-            let placement = desc
-                .placements
-                .iter()
-                .find(|p| p.name == def.name)
-                .unwrap_or(&identity);
-            let m = world_from_local(placement);
-            let mut world = Vec::with_capacity(def.vertices.len());
-            for v in &def.vertices {
+        for (brep_index, mesh) in desc.meshes.iter().enumerate() {
+            let m = mesh
+                .placement
+                .as_ref()
+                .map_or(DMat4::IDENTITY, |p| p.world_from_local);
+            let mut world = Vec::with_capacity(mesh.positions.len());
+            for v in &mesh.positions {
                 let p = m.transform_point3(glam::DVec3::from(*v)).as_vec3();
                 if !p.is_finite() {
+                    let (path, line) = mesh
+                        .placement
+                        .as_ref()
+                        .map_or((mesh.source.clone(), mesh.line), |p| {
+                            (p.source.clone(), p.line)
+                        });
                     return Err(SceneError::NonFinitePlacement {
-                        path: placement.source.clone(),
-                        line: placement.line,
-                        brep: def.name.clone(),
+                        path,
+                        line,
+                        brep: mesh.name.clone(),
                     });
                 }
                 world.push(p);
             }
             let first_slot = slots.len() as u32;
-            let part_count = def.part_count.max(1);
+            let part_count = (mesh.parts.len() as u32).max(1);
             slots.extend((0..part_count).map(|part| SlotOwner {
                 brep: brep_index as u32,
                 part,
             }));
-            for (t, tri) in def.triangles.iter().enumerate() {
+            for (t, tri) in mesh.triangles.iter().enumerate() {
                 let fetch = |i: u32| world.get(i as usize).copied();
                 let (Some(a), Some(b), Some(c)) = (fetch(tri[0]), fetch(tri[1]), fetch(tri[2]))
                 else {
                     return Err(SceneError::BadIndex {
-                        brep: def.name.clone(),
+                        brep: mesh.name.clone(),
                         triangle: t,
                     });
                 };
                 triangles.push([a, b, c]);
-                let part = def.parts.get(t).copied().unwrap_or(0).min(part_count - 1);
+                let part = mesh
+                    .triangle_parts
+                    .get(t)
+                    .copied()
+                    .unwrap_or(0)
+                    .min(part_count - 1);
                 triangle_slots.push(first_slot + part);
             }
+            let part_names = if mesh.parts.iter().any(|p| p.name.is_some()) {
+                (0..part_count as usize)
+                    .map(|i| match mesh.parts.get(i).and_then(|p| p.name.clone()) {
+                        Some(n) => n,
+                        None => format!("part{i}"),
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
             breps.push(Brep {
-                name: def.name.clone(),
+                name: mesh.name.clone(),
                 part_count,
                 first_slot,
-                triangle_count: def.triangles.len(),
+                triangle_count: mesh.triangles.len(),
+                part_names,
             });
         }
         if triangles.is_empty() {
@@ -119,6 +150,7 @@ impl Scene {
         let started = Instant::now();
         let bvh = Bvh::build(&triangles);
         let bvh_build_secs = started.elapsed().as_secs_f64();
+        let design = Design::from_description(&desc, &breps, slots.len());
         Ok(Scene {
             name: name.to_owned(),
             source: (!desc.path.as_os_str().is_empty()).then(|| desc.path.clone()),
@@ -130,6 +162,7 @@ impl Scene {
             bvh,
             bounds,
             bvh_build_secs,
+            design,
         })
     }
 
@@ -137,30 +170,62 @@ impl Scene {
         self.triangles.len()
     }
 
-    /// A label for a material slot: the brep name, with `/part` when the brep has several parts.
+    /// A label for a material slot, which is also the sidecar key that `Sidecar::from_setup`
+    /// (the viewer's Ctrl+S) writes for it: the brep name, with `/part` when the brep has
+    /// several parts; `part` is the part's name when the format names parts
+    /// (`room2/proom2_0001`), else its number (`brs_0/1`).
     pub fn slot_label(&self, slot: u32) -> String {
         let Some(owner) = self.slots.get(slot as usize) else {
             return format!("slot {slot}");
         };
         let brep = &self.breps[owner.brep as usize];
         if brep.part_count > 1 {
-            format!("{}/{}", brep.name, owner.part)
+            format!("{}/{}", brep.name, brep.part_label(owner.part))
         } else {
             brep.name.clone()
         }
     }
 
-    /// Finds the slots a sidecar key names: `brep` (every part) or `brep/part`.
+    /// Finds the slots a sidecar key names: `brep` (every part), `brep/N` (part number N,
+    /// from 0), `brep/NAME` or a bare part `NAME` (a part the format named; a brep of that name
+    /// wins).
     pub fn slots_for_key(&self, key: &str) -> Option<Vec<u32>> {
-        let (name, part) = match key.rsplit_once('/') {
-            Some((n, p)) => (n, Some(p.trim().parse::<u32>().ok()?)),
-            None => (key, None),
-        };
-        let brep = self.breps.iter().find(|b| b.name == name)?;
-        match part {
-            Some(p) if p < brep.part_count => Some(vec![brep.first_slot + p]),
-            Some(_) => None,
-            None => Some((brep.first_slot..brep.first_slot + brep.part_count).collect()),
+        if let Some((name, part)) = key.rsplit_once('/') {
+            let brep = self.breps.iter().find(|b| b.name == name)?;
+            let part = brep.part_index(part.trim())?;
+            return Some(vec![brep.first_slot + part]);
+        }
+        if let Some(brep) = self.breps.iter().find(|b| b.name == key) {
+            return Some((brep.first_slot..brep.first_slot + brep.part_count).collect());
+        }
+        let mut named = self.breps.iter().filter_map(|b| {
+            let i = b.part_names.iter().position(|n| n == key)?;
+            Some(b.first_slot + i as u32)
+        });
+        let first = named.next()?;
+        // A name two breps share is ambiguous: refuse rather than guess.
+        named.next().is_none().then(|| vec![first])
+    }
+}
+
+impl Brep {
+    /// The part's name when the format names parts, else its number.
+    pub fn part_label(&self, part: u32) -> String {
+        self.part_names
+            .get(part as usize)
+            .cloned()
+            .unwrap_or_else(|| part.to_string())
+    }
+
+    /// The part a key names: its number (from 0) or its name.
+    pub fn part_index(&self, key: &str) -> Option<u32> {
+        match key.parse::<u32>() {
+            Ok(p) => (p < self.part_count).then_some(p),
+            Err(_) => self
+                .part_names
+                .iter()
+                .position(|n| n == key)
+                .map(|i| i as u32),
         }
     }
 }

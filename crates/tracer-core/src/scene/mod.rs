@@ -1,8 +1,9 @@
-//! From a plain `.shp` description to a renderable scene: world-space geometry with its BVH
+//! From a neutral scene description (`formats`) to a renderable scene: world-space geometry with its BVH
 //! ([`Scene`], immutable, shared) and the editable [`Setup`] (camera, lights, materials).
 
 mod builtin;
 mod camera;
+mod design;
 mod error;
 mod geometry;
 mod light;
@@ -10,11 +11,11 @@ mod light_spec;
 mod material;
 mod setup;
 mod sidecar;
-pub mod transform;
 mod units;
 
 pub use builtin::{BUILTIN_NAME, builtin_cornell_box};
 pub use camera::{Camera, CameraBasis};
+pub use design::{Design, light_from_description, material_from_description};
 pub use error::SceneError;
 pub use geometry::{Brep, Scene, SlotOwner};
 pub use light::{LUMINANCE_WEIGHTS, Light, LightKind, luminance};
@@ -47,10 +48,12 @@ pub struct LoadOptions<'a> {
     pub sidecar: Option<&'a Path>,
 }
 
-/// Reads a `.shp` (and the `.brs` files it names), builds the scene and applies its sidecar.
+/// Reads a scene file with the reader its content and extension call for (`.shp` with the
+/// `.brs` files it names and any Integra bundle beside it, or a bare `.brs`), builds the scene
+/// and applies its sidecar, which overrides what the file designed.
 pub fn load(path: &Path, options: &LoadOptions<'_>) -> Result<LoadedScene, SceneError> {
     let started = Instant::now();
-    let desc = crate::shp::load(path)?;
+    let desc = crate::formats::read_scene(path)?;
     let parse_secs = started.elapsed().as_secs_f64();
     let name = path
         .file_stem()
@@ -72,7 +75,7 @@ pub fn load(path: &Path, options: &LoadOptions<'_>) -> Result<LoadedScene, Scene
         None => Sidecar::read_if_present(&sidecar_file)?,
     }
     .unwrap_or_default();
-    let mut warnings = Vec::new();
+    let mut warnings = scene.design.notes.clone();
     let setup = sidecar.apply(&scene, options.unit, &mut warnings);
     if let Some(hint) = setup.unit.size_hint(scene.bounds.extent().length()) {
         warnings.push(format!("hint: {hint}"));

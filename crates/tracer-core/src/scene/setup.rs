@@ -27,17 +27,35 @@ pub struct Setup {
 }
 
 impl Setup {
-    /// What a scene without a sidecar gets: neutral grey diffuse everywhere, one light just below
-    /// the top centre of the bounds, a camera framing the bounds looking towards -Z.
+    /// What a scene without a sidecar gets: what its file designed ([`Scene::design`]), and for
+    /// what it did not: neutral grey diffuse, one light just below the top centre of the
+    /// bounds, a camera framing the bounds looking towards -Z.
     pub fn defaults(scene: &Scene, unit: LengthUnit) -> Setup {
         let slots = scene.slots.len();
-        let camera = framing_camera(scene, DEFAULT_FOV_DEG);
+        let design = &scene.design;
+        let camera = design
+            .camera
+            .unwrap_or_else(|| framing_camera(scene, DEFAULT_FOV_DEG));
+        let lights = match &design.lights {
+            Some(lights) => lights.clone(),
+            None => vec![default_light(scene, unit, camera.position)],
+        };
+        let materials = (0..slots)
+            .map(|s| {
+                design
+                    .materials
+                    .get(s)
+                    .copied()
+                    .flatten()
+                    .unwrap_or_default()
+            })
+            .collect();
         Setup {
             unit,
             handedness: Handedness::Left,
             camera,
-            lights: vec![default_light(scene, unit, camera.position)],
-            materials: vec![Material::default(); slots],
+            lights,
+            materials,
             hidden: vec![false; slots],
             grids: Vec::new(),
             maintenance_factor: 1.0,

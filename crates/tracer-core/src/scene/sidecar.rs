@@ -18,7 +18,8 @@
 //! [default_material]     # slots not named below
 //! kd = [0.7, 0.7, 0.7]
 //!
-//! [materials.brs_1]      # every part of brep brs_1; "brs_1/2" names part 2 only
+//! [materials.brs_1]      # every part of brep brs_1; "brs_1/2" names part 2 only; parts
+//!                        # a format names also take their name ("room2/proom2_0003")
 //! kd = [0.14, 0.45, 0.091]
 //! ks = [0.0, 0.0, 0.0]
 //! glossiness = 0.0
@@ -194,7 +195,10 @@ impl Sidecar {
         unit_override: Option<LengthUnit>,
         warnings: &mut Vec<String>,
     ) -> Setup {
-        let unit = unit_override.or(self.unit).unwrap_or_default();
+        let unit = unit_override
+            .or(self.unit)
+            .or(scene.design.unit)
+            .unwrap_or_default();
         let mut setup = Setup::defaults(scene, unit);
         if let Some(h) = self.handedness {
             setup.handedness = h;
@@ -285,7 +289,8 @@ impl Sidecar {
                 materials.insert(brep.name.clone(), mats[0]);
             } else {
                 for (part, m) in mats.iter().enumerate() {
-                    materials.insert(format!("{}/{part}", brep.name), *m);
+                    let label = brep.part_label(part as u32);
+                    materials.insert(format!("{}/{label}", brep.name), *m);
                 }
             }
             let hid = &setup.hidden[range];
@@ -293,7 +298,8 @@ impl Sidecar {
                 hidden.push(brep.name.clone());
             } else {
                 for (part, _) in hid.iter().enumerate().filter(|(_, h)| **h) {
-                    hidden.push(format!("{}/{part}", brep.name));
+                    let label = brep.part_label(part as u32);
+                    hidden.push(format!("{}/{label}", brep.name));
                 }
             }
         }

@@ -39,7 +39,7 @@ pub struct Placement {
     /// The file and 1-based line of `set breps`.
     pub source: PathBuf,
     pub line: usize,
-    /// `rotation rx ry rz` as written (degrees, see `scene::transform`).
+    /// `rotation rx ry rz` as written (degrees, see `placement.rs`).
     pub rotation_deg: [f64; 3],
     pub translation: [f64; 3],
     pub scale: [f64; 3],

@@ -30,7 +30,9 @@ pub mod description;
 mod error;
 mod lexer;
 mod memory;
+mod neutral;
 mod parser;
+pub mod placement;
 mod resolve;
 mod writer;
 
@@ -39,6 +41,7 @@ use std::path::Path;
 
 pub use description::{BrepDef, Placement, ShpDescription};
 pub use error::ShpError;
+pub use placement::world_from_local;
 
 /// Reads a `.shp` file; for every `set breps NAME` whose geometry is not defined in the file,
 /// loads `NAME.brs` from the same folder (matching the file name's case loosely if need be).

@@ -11,7 +11,7 @@
 //! are degrees, and each rotation follows the right-hand rule applied to the file's numbers (a
 //! positive `rz` turns +X towards +Y), whatever the handedness used to display the scene.
 
-use crate::shp::Placement;
+use super::description::Placement;
 use glam::{DMat4, DVec3};
 
 /// The matrix that takes a brep's local coordinates to scene coordinates.

@@ -1,0 +1,183 @@
+//! The format-neutral scene description every scene reader produces and `scene::Scene::build`
+//! consumes: meshes with named parts and optional vertex normals, and the materials, lights and
+//! camera a format carries. Plain data, each item with the file and line it came from; no reader
+//! knows the scene builder and the builder knows no format.
+//!
+//! Units: lengths in the scene unit (`metres_per_unit` when the format says it), reflectances
+//! as fractions in 0..=1 (linear RGB), flux in lumen, intensity in candela, luminance in cd/m².
+
+use crate::light::{EmissionSides, Photometry};
+use glam::DMat4;
+use std::borrow::Cow;
+use std::path::PathBuf;
+
+/// Which reader produced a description.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SceneFormat {
+    /// Lumicept `.shp` (with any `NAME.brs` it names).
+    #[default]
+    Shp,
+    /// A bare IPUR `.brs` brep file.
+    Brs,
+    /// An Integra bundle: `.shp` + `NAME.brs` + `NAME.prb` + folder `NAME/` (`.atr`, `.prb`,
+    /// `.lgt`, `.cam`).
+    Integra,
+}
+
+/// Everything a reader found in a scene file (and the files it pulled in).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SceneDescription {
+    /// The file opened.
+    pub path: PathBuf,
+    pub format: SceneFormat,
+    pub meshes: Vec<MeshDescription>,
+    /// Materials that parts refer to by index ([`PartDescription::material`]).
+    pub materials: Vec<MaterialDescription>,
+    /// Lights as designed: None when the format says nothing about lights (raygine places a
+    /// default one), empty when the design has none lit.
+    pub lights: Option<Vec<LightDescription>>,
+    pub camera: Option<CameraDescription>,
+    /// Length of one scene unit in metres, when the format states it (Integra: 1).
+    pub metres_per_unit: Option<f32>,
+    /// Non-fatal findings for the user: skipped blocks, features drawn without, clamped values.
+    pub notes: Vec<String>,
+}
+
+/// One mesh (a brep, an OBJ group, a glTF primitive): triangles over local positions, grouped
+/// into parts (material slots).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshDescription {
+    pub name: String,
+    /// The file and 1-based line the mesh starts at.
+    pub source: PathBuf,
+    pub line: usize,
+    /// Positions in local coordinates (the scene unit).
+    pub positions: Vec<[f64; 3]>,
+    /// Vertex normals, one per position (unit length, pointing out of the visible side); empty
+    /// when the format has none (the geometric normal is used).
+    pub normals: Vec<[f32; 3]>,
+    /// Vertex indices into `positions`, three per triangle.
+    pub triangles: Vec<[u32; 3]>,
+    /// The parts, at least one when the mesh has triangles.
+    pub parts: Vec<PartDescription>,
+    /// Part index of each triangle (`< parts.len()`); empty: every triangle is part 0.
+    pub triangle_parts: Vec<u32>,
+    /// Where the mesh is placed in the scene (None: the identity).
+    pub placement: Option<PlacementDescription>,
+}
+
+/// One part of a mesh: a material slot.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PartDescription {
+    /// The part's name when the format gives one (`proom2_0001`); else the slot is numbered.
+    pub name: Option<String>,
+    /// Index into [`SceneDescription::materials`] (None: the default material).
+    pub material: Option<usize>,
+}
+
+/// The matrix taking a mesh's local coordinates to scene coordinates, and where it was written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlacementDescription {
+    pub world_from_local: DMat4,
+    pub source: PathBuf,
+    pub line: usize,
+}
+
+/// A surface material in the terms raygine's model uses; the reader does the format's mapping.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MaterialDescription {
+    pub name: String,
+    pub source: PathBuf,
+    pub line: usize,
+    /// Diffuse reflectance per channel (linear RGB, 0..=1).
+    pub diffuse: [f32; 3],
+    /// Reflectance of the specular lobe per channel (0..=1).
+    pub specular: [f32; 3],
+    /// Blinn-Phong exponent of the specular lobe (0: a perfect mirror when `specular` > 0).
+    pub glossiness: f32,
+    /// Light let through the surface, when the format says any is.
+    pub transmission: Option<TransmissionDescription>,
+    /// Light the surface emits itself.
+    pub emission: Option<EmissionDescription>,
+}
+
+/// Transmission as formats describe it (fractions of the incident light).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TransmissionDescription {
+    /// Specular (clear) transmittance, 0..=1.
+    pub specular: f32,
+    /// Diffuse (frosted) transmittance, 0..=1.
+    pub diffuse: f32,
+    /// Index of refraction (1: no bending).
+    pub ior: f32,
+}
+
+/// A Lambertian emitter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmissionDescription {
+    pub luminance_cd_m2: f32,
+    /// RGB tint (any scale; the builder normalises it to luminance 1).
+    pub color: [f32; 3],
+    pub sides: EmissionSides,
+}
+
+/// A placed light source.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightDescription {
+    pub name: String,
+    pub source: PathBuf,
+    pub line: usize,
+    /// Position in scene coordinates.
+    pub position: [f32; 3],
+    /// The photometric axis (nadir of a distribution), any length.
+    pub aim: [f32; 3],
+    /// Turn of the C planes about the aim, degrees.
+    pub rotation_deg: f32,
+    /// RGB tint (any scale; normalised to luminance 1 when rendering, so flux stays lumen).
+    pub color: [f32; 3],
+    pub distribution: LightDistribution,
+}
+
+/// How a light's intensity varies with direction.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightDistribution {
+    /// The same intensity everywhere: `flux_lm / 4π` candela.
+    Isotropic { flux_lm: f32 },
+    /// A tabulated distribution already in candela; `label` names it (file, diagram).
+    Goniometric {
+        photometry: Photometry,
+        label: String,
+    },
+}
+
+/// A pinhole camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraDescription {
+    pub line: usize,
+    pub position: [f32; 3],
+    pub look_at: [f32; 3],
+    pub up: [f32; 3],
+    /// Vertical field of view, degrees.
+    pub fov_deg: f32,
+    /// The image size the scene was designed for, pixels (width, height).
+    pub resolution: Option<[u32; 2]>,
+}
+
+impl SceneDescription {
+    /// Total number of triangles over all meshes.
+    pub fn triangle_count(&self) -> usize {
+        self.meshes.iter().map(|m| m.triangles.len()).sum()
+    }
+}
+
+impl<'a> From<&'a SceneDescription> for Cow<'a, SceneDescription> {
+    fn from(desc: &'a SceneDescription) -> Self {
+        Cow::Borrowed(desc)
+    }
+}
+
+impl From<SceneDescription> for Cow<'_, SceneDescription> {
+    fn from(desc: SceneDescription) -> Self {
+        Cow::Owned(desc)
+    }
+}

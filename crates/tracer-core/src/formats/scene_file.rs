@@ -1,0 +1,73 @@
+//! Picking the scene reader for a file, by extension and content: `.shp` (with its `.brs` files,
+//! and the Integra bundle when one sits beside it), a bare `.brs`; other extensions are read as
+//! a `.brs` when the first line with data is `vertices N`, else as a `.shp`.
+
+use super::description::{SceneDescription, SceneFormat};
+use super::integra::{self, IntegraError};
+use super::shp::{self, ShpDescription, ShpError};
+use std::path::Path;
+
+/// Why a scene file could not be read: always one line naming the file (and line).
+#[derive(Debug, thiserror::Error)]
+pub enum SceneFileError {
+    #[error(transparent)]
+    Shp(#[from] ShpError),
+    #[error(transparent)]
+    Integra(#[from] IntegraError),
+}
+
+/// Reads a scene file into the neutral description.
+pub fn read_scene(path: &Path) -> Result<SceneDescription, SceneFileError> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    let bare_brs = match ext.as_str() {
+        "shp" => false,
+        "brs" => true,
+        _ => starts_like_brs(path),
+    };
+    if bare_brs {
+        let bytes = std::fs::read(path).map_err(|error| ShpError::Io {
+            path: path.to_path_buf(),
+            error,
+        })?;
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "brep".to_owned());
+        let brep = shp::parse_brs(&bytes, path, &name)?;
+        let mut desc = ShpDescription {
+            path: path.to_path_buf(),
+            breps: vec![brep],
+            placements: Vec::new(),
+        }
+        .to_scene_description();
+        desc.format = SceneFormat::Brs;
+        return Ok(desc);
+    }
+    let mut desc = shp::load(path)?.to_scene_description();
+    if let Some(bundle) = integra::Bundle::beside(path) {
+        integra::read_bundle(&bundle, &mut desc)?;
+    }
+    Ok(desc)
+}
+
+/// Whether the first line holding data (not blank, not a `;;` comment) is `vertices ...`.
+fn starts_like_brs(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = Vec::new();
+    let read = std::fs::File::open(path).and_then(|f| f.take(64 * 1024).read_to_end(&mut head));
+    if read.is_err() {
+        return false;
+    }
+    String::from_utf8_lossy(&head)
+        .lines()
+        .map(|l| l.split(";;").next().unwrap_or("").trim())
+        .find(|l| !l.is_empty())
+        .is_some_and(|l| {
+            l.split_whitespace()
+                .next()
+                .is_some_and(|w| w.eq_ignore_ascii_case("vertices"))
+        })
+}

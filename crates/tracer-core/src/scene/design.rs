@@ -1,0 +1,161 @@
+//! The setup a scene file designs: its materials, lights, camera and unit in model terms. A
+//! scene's defaults start from it; a sidecar overrides it. Formats without any of these leave
+//! the parts empty and raygine's own defaults apply.
+
+use super::camera::Camera;
+use super::geometry::Brep;
+use super::material::Material;
+use super::units::LengthUnit;
+use crate::formats::{LightDescription, LightDistribution, MaterialDescription, SceneDescription};
+use crate::light::{Light, LightKind, Luminaire};
+use std::sync::Arc;
+
+/// What the file says, per slot where it applies.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Design {
+    /// One entry per material slot: the file's material, or None for raygine's default.
+    pub materials: Vec<Option<Material>>,
+    /// The file's lights (None: the format has no lights; the default light is used).
+    pub lights: Option<Vec<Light>>,
+    pub camera: Option<Camera>,
+    pub unit: Option<LengthUnit>,
+    /// The image size the camera was designed for (width, height), pixels.
+    pub resolution: Option<[u32; 2]>,
+    /// Non-fatal findings (the reader's and the mapping's), for the user.
+    pub notes: Vec<String>,
+}
+
+impl Design {
+    /// Maps the description's materials onto `breps`' slots (`slot_count` in all), and its
+    /// lights, camera and unit onto the model.
+    pub fn from_description(desc: &SceneDescription, breps: &[Brep], slot_count: usize) -> Design {
+        let mut notes = desc.notes.clone();
+        let models: Vec<Material> = desc
+            .materials
+            .iter()
+            .map(|m| material_from_description(m, &mut notes))
+            .collect();
+        let mut materials = vec![None; slot_count];
+        for (mesh, brep) in desc.meshes.iter().zip(breps) {
+            for (part, p) in mesh.parts.iter().enumerate() {
+                let slot = brep.first_slot as usize + part;
+                if let (Some(m), Some(out)) = (
+                    p.material.and_then(|i| models.get(i)),
+                    materials.get_mut(slot),
+                ) {
+                    *out = Some(*m);
+                }
+            }
+        }
+        let lights: Option<Vec<Light>> = desc
+            .lights
+            .as_ref()
+            .map(|ls| ls.iter().map(light_from_description).collect());
+        if lights.as_ref().is_some_and(Vec::is_empty) {
+            notes.push(format!(
+                "{}: the scene designs no light that is on: the picture stays dark until a \
+                 light is added (Lights panel or sidecar)",
+                desc.path.display()
+            ));
+        }
+        let camera = desc.camera.map(|c| Camera {
+            position: c.position,
+            look_at: c.look_at,
+            up: c.up,
+            fov_deg: c.fov_deg,
+        });
+        let unit = desc.metres_per_unit.and_then(|m| {
+            LengthUnit::ALL
+                .into_iter()
+                .find(|u| (u.metres_per_unit() - m).abs() <= 1e-6 * m)
+        });
+        Design {
+            materials,
+            lights,
+            camera,
+            unit,
+            resolution: desc.camera.and_then(|c| c.resolution),
+            notes,
+        }
+    }
+}
+
+/// A described material as raygine's model draws it: diffuse and specular reflectance and the
+/// lobe's glossiness carry over (clamped into range, with a note), emission becomes a
+/// Lambertian emitter, clear transmission becomes glass (Kt, ior; the global-illumination
+/// integrators trace it), diffuse transmission is noted once per material and absorbed.
+pub fn material_from_description(m: &MaterialDescription, notes: &mut Vec<String>) -> Material {
+    let mut out = Material {
+        kd: m.diffuse,
+        ks: m.specular,
+        glossiness: m.glossiness,
+        ..Material::default()
+    };
+    if let Some(e) = m.emission {
+        out.emission_cd_m2 = e.luminance_cd_m2;
+        out.emission_color = e.color;
+        out.emission_sides = e.sides;
+    }
+    if let Some(t) = m.transmission {
+        // Clear transmission is the smooth dielectric (glass): Kt with the index behind the
+        // front face; an index of 1 is a thin sheet that does not bend light.
+        if t.specular > 0.0 {
+            out.kt = [t.specular; 3];
+            out.ior = t.ior;
+            if !(1.0..=4.0).contains(&t.ior) {
+                notes.push(format!(
+                    "{}:{}: material {}: index of refraction {} is outside 1..4; clamped",
+                    m.source.display(),
+                    m.line,
+                    m.name,
+                    t.ior
+                ));
+            }
+        }
+        if t.diffuse > 0.0 {
+            notes.push(format!(
+                "{}:{}: material {}: diffuse transmission {} (frosted) is not in raygine's \
+                 material model; that part is absorbed",
+                m.source.display(),
+                m.line,
+                m.name,
+                t.diffuse
+            ));
+        }
+    }
+    let (clamped, changed) = out.clamped();
+    if changed {
+        notes.push(format!(
+            "{}:{}: material {}: clamped into range (0..1, Kd + Ks + Kt <= 1 per channel)",
+            m.source.display(),
+            m.line,
+            m.name
+        ));
+    }
+    clamped
+}
+
+/// A described light as a model light: isotropic sources become point lights of
+/// `flux / 4π` cd, tabulated ones luminaires (multiplier 1: the table is already in candela).
+pub fn light_from_description(l: &LightDescription) -> Light {
+    let base = Light {
+        position: l.position,
+        color: l.color,
+        aim: l.aim,
+        rotation_deg: l.rotation_deg,
+        ..Light::default()
+    };
+    match &l.distribution {
+        LightDistribution::Isotropic { flux_lm } => Light {
+            intensity_cd: flux_lm / (4.0 * std::f32::consts::PI),
+            ..base
+        },
+        LightDistribution::Goniometric { photometry, label } => Light {
+            kind: LightKind::Luminaire,
+            intensity_cd: photometry.max_cd(),
+            multiplier: 1.0,
+            luminaire: Some(Arc::new(Luminaire::new(photometry.clone(), label.into()))),
+            ..base
+        },
+    }
+}
