@@ -1500,3 +1500,17 @@ fn unsaved_edits_are_not_thrown_away_without_asking() {
     assert!(h.state().pending_switch.is_none());
     assert_eq!(h.state().doc.path, None);
 }
+
+/// The colour picker's numeric row ("U8", the copy button "📋", R G B) and the viewer's own
+/// labels draw with glyphs the fonts have (no missing-glyph boxes).
+#[test]
+fn the_colour_picker_and_labels_have_their_glyphs() {
+    let (h, _mirror) = viewer();
+    let font = egui::FontId::proportional(14.0);
+    for text in ["U8 📋 R G B", "× ÷2 ×2 cd/m² lx °", "Kd + Ks = 1.000"] {
+        assert!(
+            h.ctx.fonts_mut(|f| f.has_glyphs(&font, text)),
+            "a glyph of {text:?} is missing"
+        );
+    }
+}
