@@ -15,7 +15,7 @@ use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, TestRenderer};
 use glam::Vec3;
 use raygine::app::{AppOptions, RaygineApp};
-use raygine::render_worker::map_rect;
+use raygine::render_worker::texture_rect;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -187,11 +187,13 @@ fn film_rgb(app: &RaygineApp) -> ([usize; 2], Vec<Vec3>) {
         .expect("no film yet")
 }
 
-/// The film through the app's current display mapping, as the texture should hold it.
+/// The film through the app's current display mapping (and the backdrop), as the texture should
+/// hold it.
 fn expected_texture(app: &RaygineApp) -> ColorImage {
     assert!(!app.display.auto_exposure && !app.false_colour.enabled);
+    let exposure = app.display.exposure_stops;
     app.worker
-        .with_film(|f| f.map(|f| map_rect(f, &app.display, app.display.exposure_stops, None)))
+        .with_film(|f| f.map(|f| texture_rect(f, &app.display, exposure, None, None)))
         .expect("no film yet")
 }
 
@@ -1513,4 +1515,50 @@ fn the_colour_picker_and_labels_have_their_glyphs() {
             "a glyph of {text:?} is missing"
         );
     }
+}
+
+/// Where the camera ray hit nothing the viewport shows the backdrop (a dark gradient), while an
+/// unlit surface (0 cd/m²) stays black; the exported PNG keeps the background black.
+#[test]
+fn the_background_is_told_apart_from_unlit_surfaces() {
+    let (mut h, mirror) = viewer();
+    // The light behind the green wall: every surface the camera sees is unlit.
+    h.get_by_role_and_label(Role::Slider, LIGHT_X)
+        .set_value_accesskit(-5000.0);
+    h.run_steps(2);
+    settle(&mut h);
+    h.step();
+    let (size, rgb) = film_rgb(h.state());
+    assert!(rgb.iter().all(|p| *p == Vec3::ZERO), "something is lit");
+    let [w, height] = size;
+    let texture = mirror.film(size);
+    assert_eq!(texture.pixels, expected_texture(h.state()).pixels);
+    let fraction = |x: usize, y: usize| {
+        h.state()
+            .worker
+            .with_film(|f| f.unwrap().background_fraction(y * w + x))
+    };
+    // The Cornell box's opening is narrower than the picture: its left column sees outside;
+    // the middle sees the back wall.
+    let (mid, bottom) = (height / 2, height - 1);
+    for (x, y) in [(0, mid), (0, bottom)] {
+        assert_eq!(fraction(x, y), 1.0, "({x}, {y}) sees the box");
+        let shown = texture.pixels[y * w + x];
+        assert_eq!(shown, raygine::backdrop::colour_at(y as u32, height as u32));
+        assert_ne!(shown, egui::Color32::BLACK);
+    }
+    assert_ne!(texture.pixels[0], texture.pixels[bottom * w], "no gradient");
+    assert_eq!(fraction(w / 2, mid), 0.0);
+    assert_eq!(texture.pixels[mid * w + w / 2], egui::Color32::BLACK);
+
+    let path = scratch_dir("backdrop").join("view.png");
+    let ctx = h.state().ctx.clone();
+    h.state_mut().export_png(&ctx, path.clone());
+    step_until(&mut h, "the PNG write", |app| app.writes.is_empty());
+    let png = image::open(&path).unwrap().to_rgb8();
+    assert_eq!(
+        png.get_pixel(0, mid as u32).0,
+        [0, 0, 0],
+        "the export has a backdrop"
+    );
 }
