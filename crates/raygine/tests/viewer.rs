@@ -1390,6 +1390,31 @@ fn a_small_window_keeps_a_usable_viewport() {
     assert!(view.width() > 630.0, "viewport {view:?}");
 }
 
+/// In a narrow window the status bar stays one line (cut off at the edge) instead of wrapping:
+/// a wrapped line shrank the viewport, the new size restarted the render, the new figures
+/// unwrapped it again, and the render restarted every frame without finishing.
+#[test]
+fn a_narrow_window_keeps_one_status_line_and_the_render_finishes() {
+    let (mut h, _mirror) = viewer();
+    h.set_size(Vec2::new(700.0, 500.0));
+    h.run_steps(2);
+    settle(&mut h);
+    let view = h.get_by_label("viewport").rect();
+    assert!(500.0 - view.max.y < 30.0, "the status bar wraps: viewport {view:?}");
+    // Rendering again (a new light position): the viewport keeps its size frame after frame.
+    h.state_mut().doc.setup.lights[0].position[0] -= 50.0;
+    h.step();
+    let generation = h.state().worker.generation();
+    let size = h.state().viewport_px;
+    for _ in 0..20 {
+        h.step();
+        assert_eq!(h.state().viewport_px, size, "the viewport changed size");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert_eq!(h.state().worker.generation(), generation, "the render restarted");
+    settle(&mut h);
+}
+
 /// The false-colour legend has rows for above the range (white) and below it (black; on a log
 /// scale that includes 0), matching the colours drawn; the viewer draws it with false colour on.
 #[test]
