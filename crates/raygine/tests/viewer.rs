@@ -1400,7 +1400,10 @@ fn a_narrow_window_keeps_one_status_line_and_the_render_finishes() {
     h.run_steps(2);
     settle(&mut h);
     let view = h.get_by_label("viewport").rect();
-    assert!(500.0 - view.max.y < 30.0, "the status bar wraps: viewport {view:?}");
+    assert!(
+        500.0 - view.max.y < 30.0,
+        "the status bar wraps: viewport {view:?}"
+    );
     // Rendering again (a new light position): the viewport keeps its size frame after frame.
     h.state_mut().doc.setup.lights[0].position[0] -= 50.0;
     h.step();
@@ -1411,7 +1414,11 @@ fn a_narrow_window_keeps_one_status_line_and_the_render_finishes() {
         assert_eq!(h.state().viewport_px, size, "the viewport changed size");
         std::thread::sleep(Duration::from_millis(5));
     }
-    assert_eq!(h.state().worker.generation(), generation, "the render restarted");
+    assert_eq!(
+        h.state().worker.generation(),
+        generation,
+        "the render restarted"
+    );
     settle(&mut h);
 }
 
@@ -1585,5 +1592,97 @@ fn the_background_is_told_apart_from_unlit_surfaces() {
         png.get_pixel(0, mid as u32).0,
         [0, 0, 0],
         "the export has a backdrop"
+    );
+}
+
+/// A Lumicept scene of one box brep from `lo` to `hi` (twelve triangles).
+fn box_scene(lo: [f32; 3], hi: [f32; 3]) -> String {
+    let mut text =
+        String::from(";; written by raygine's UI tests\ndefine breps slab\nvertices 8\n");
+    for i in 0..8 {
+        let pick = |axis: usize| {
+            if i >> axis & 1 == 0 {
+                lo[axis]
+            } else {
+                hi[axis]
+            }
+        };
+        text += &format!("{} {} {}\n", pick(0), pick(1), pick(2));
+    }
+    text += "triangles 12\n";
+    for [a, b, c, d] in [
+        [0, 1, 3, 2],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 3, 7, 6],
+        [0, 2, 6, 4],
+        [1, 3, 7, 5],
+    ] {
+        text += &format!("{a} {b} {c}\n{a} {c} {d}\n");
+    }
+    text += "parts 1\n0 0 0 0 0 0 0 0 0 0\n0 0\nenddef\n\n";
+    text += "set breps slab\nrotation 0 0 0\ntranslation 0 0 0\nscale 1 1 1\nenddef\n";
+    text
+}
+
+/// An object whose largest outline is seen along X (a slab standing in the YZ plane) opens
+/// seen from +X, not from +Z where it is a thin edge; after orbiting, F frames it from +X again.
+#[test]
+fn an_object_opens_seen_from_its_largest_side() {
+    let (mut h, _mirror) = viewer();
+    assert_eq!(
+        h.state().doc.setup.camera.position,
+        [278.0, 273.0, 800.0],
+        "the Cornell box keeps its camera"
+    );
+    let path = scratch_dir("largest-side").join("slab.shp");
+    std::fs::write(&path, box_scene([0.0, 0.0, 0.0], [50.0, 1000.0, 2000.0])).unwrap();
+    open(&mut h, &path);
+    let from_x = |h: &Viewer| {
+        let camera = h.state().doc.setup.camera;
+        let c = h.state().doc.scene.bounds.center();
+        let eye = Vec3::from(camera.position) - c;
+        eye.x > 0.0 && eye.y.abs() < 1e-3 * eye.x && eye.z.abs() < 1e-3 * eye.x
+    };
+    assert!(from_x(&h), "camera {:?}", h.state().doc.setup.camera);
+    let view = h.get_by_label("viewport").rect();
+    drag(&mut h, view.center(), Vec2::new(120.0, 40.0));
+    assert!(!from_x(&h), "the drag did not orbit");
+    h.key_press(Key::F);
+    h.step();
+    assert!(from_x(&h), "F: camera {:?}", h.state().doc.setup.camera);
+    // The picture shows the slab's face: most of the middle row is lit.
+    settle(&mut h);
+    let (size, rgb) = film_rgb(h.state());
+    let row = &rgb[size[0] * (size[1] / 2)..size[0] * (size[1] / 2 + 1)];
+    let lit = row.iter().filter(|p| p.max_element() > 0.0).count();
+    assert!(lit > size[0] / 3, "{lit} of {} pixels lit", size[0]);
+}
+
+/// Light labels sit on a dark plate, so they read over bright pixels.
+#[test]
+fn light_labels_sit_on_a_dark_plate() {
+    let (mut h, _mirror) = viewer();
+    h.step();
+    let mut texts = Vec::new();
+    let mut plates = Vec::new();
+    let mut todo: Vec<egui::Shape> = h.output().shapes.iter().map(|c| c.shape.clone()).collect();
+    while let Some(shape) = todo.pop() {
+        match shape {
+            egui::Shape::Vec(v) => todo.extend(v),
+            egui::Shape::Text(t) if t.galley.text().starts_with("L1 ") => {
+                texts.push(t.galley.rect.translate(t.pos.to_vec2()));
+            }
+            egui::Shape::Rect(r) if r.fill == egui::Color32::from_black_alpha(200) => {
+                plates.push(r.rect);
+            }
+            _ => {}
+        }
+    }
+    assert_eq!(texts.len(), 1, "one label for the one light");
+    assert!(
+        plates.iter().any(|p| p.contains_rect(texts[0])),
+        "no dark plate under the label {:?}: {plates:?}",
+        texts[0]
     );
 }
