@@ -1659,19 +1659,26 @@ fn an_object_opens_seen_from_its_largest_side() {
     assert!(lit > size[0] / 3, "{lit} of {} pixels lit", size[0]);
 }
 
-/// Light labels sit on a dark plate, so they read over bright pixels.
+/// Light labels and the hover read-out sit on dark plates, so they read over bright pixels.
 #[test]
-fn light_labels_sit_on_a_dark_plate() {
+fn light_labels_and_the_hover_readout_sit_on_dark_plates() {
     let (mut h, _mirror) = viewer();
-    h.step();
+    // Over the bright floor, in front of the short block.
+    let view = h.get_by_label("viewport").rect();
+    h.hover_at(view.lerp_inside(Vec2::new(0.5, 0.95)));
+    h.run_steps(2);
+    assert!(h.state().hover.is_some(), "no read-out under the pointer");
     let mut texts = Vec::new();
     let mut plates = Vec::new();
     let mut todo: Vec<egui::Shape> = h.output().shapes.iter().map(|c| c.shape.clone()).collect();
     while let Some(shape) = todo.pop() {
         match shape {
             egui::Shape::Vec(v) => todo.extend(v),
-            egui::Shape::Text(t) if t.galley.text().starts_with("L1 ") => {
-                texts.push(t.galley.rect.translate(t.pos.to_vec2()));
+            egui::Shape::Text(t) => {
+                let text = t.galley.text().to_owned();
+                if text.starts_with("L1 ") || text.contains(" cd/m²   ") {
+                    texts.push((text, t.galley.rect.translate(t.pos.to_vec2())));
+                }
             }
             egui::Shape::Rect(r) if r.fill == egui::Color32::from_black_alpha(200) => {
                 plates.push(r.rect);
@@ -1679,10 +1686,15 @@ fn light_labels_sit_on_a_dark_plate() {
             _ => {}
         }
     }
-    assert_eq!(texts.len(), 1, "one label for the one light");
-    assert!(
-        plates.iter().any(|p| p.contains_rect(texts[0])),
-        "no dark plate under the label {:?}: {plates:?}",
-        texts[0]
+    assert_eq!(
+        texts.len(),
+        2,
+        "the light's label and the read-out: {texts:?}"
     );
+    for (text, rect) in &texts {
+        assert!(
+            plates.iter().any(|p| p.contains_rect(*rect)),
+            "no dark plate under {text:?} at {rect:?}: {plates:?}"
+        );
+    }
 }
