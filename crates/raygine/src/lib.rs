@@ -4,7 +4,9 @@
 pub mod app;
 pub mod camera_control;
 pub mod cli;
+pub mod cli_args;
 pub mod cli_shards;
+pub mod cli_support;
 pub mod document;
 pub mod file_ops;
 pub mod grid_overlay;
