@@ -3,12 +3,10 @@
 
 use crate::cli_args::{DisplayArgs, SceneArgs};
 use anyhow::{Context, Result, bail};
-use glam::Vec3;
-use rayon::prelude::*;
 use std::path::Path;
-use tracer_core::display::{ChannelLut, DisplaySettings};
+use tracer_core::display::{DisplayMapper, DisplaySettings, luminance_sum_max};
 use tracer_core::render::{Film, RenderSettings};
-use tracer_core::scene::{self, LoadOptions, LoadedScene, luminance};
+use tracer_core::scene::{self, LoadOptions, LoadedScene};
 
 /// Loads the scene the arguments name (the built-in Cornell box without one).
 pub fn load_scene(args: &SceneArgs) -> Result<LoadedScene> {
@@ -113,39 +111,11 @@ pub struct MappedImage {
     pub luminance_max: f32,
 }
 
-/// Maps the film to display pixels (as [`DisplaySettings::map_film`] does, without alpha) and
-/// gathers its luminance figures in the same pass, rows in parallel on the current rayon pool.
-/// Row sums are added in row order, so the figures do not depend on the thread count.
+/// Maps the film to display pixels through the one display path ([`DisplayMapper`]) and
+/// gathers its luminance figures.
 pub fn map_film_rgb(film: &Film, display: &DisplaySettings, exposure_stops: f32) -> MappedImage {
-    let scale = DisplaySettings::scale_for(exposure_stops);
-    let lut = ChannelLut::new(display, scale);
-    let width = film.width as usize;
-    let mut rgb = vec![0u8; film.pixels.len() * 3];
-    let rows: Vec<(f64, f32)> = rgb
-        .par_chunks_mut((width * 3).max(1))
-        .zip(film.pixels.par_chunks(width.max(1)))
-        .map(|(out, sums)| {
-            let (mut y_sum, mut y_max) = (0.0f64, 0.0f32);
-            for (o, p) in out.chunks_exact_mut(3).zip(sums) {
-                let (mean, e): (Vec3, f32) = (p.mean_rgb(), p.mean_illuminance());
-                let code = match &lut {
-                    Some(lut) => [lut.code(mean.x), lut.code(mean.y), lut.code(mean.z)],
-                    None => {
-                        let [r, g, b, _] = display.map_pixel(mean, e, scale);
-                        [r, g, b]
-                    }
-                };
-                o.copy_from_slice(&code);
-                let y = luminance(mean);
-                y_sum += f64::from(y);
-                y_max = y_max.max(y);
-            }
-            (y_sum, y_max)
-        })
-        .collect();
-    let (luminance_sum, luminance_max) = rows
-        .iter()
-        .fold((0.0, 0.0f32), |(s, m), &(rs, rm)| (s + rs, m.max(rm)));
+    let rgb = DisplayMapper::new(display, exposure_stops).map_film::<3>(film);
+    let (luminance_sum, luminance_max) = luminance_sum_max(film);
     MappedImage {
         rgb,
         luminance_sum,
