@@ -186,6 +186,19 @@ fn a_slab_is_framed_from_its_largest_side() {
     assert_eq!(framing_side(&lying), (Vec3::Y, Vec3::NEG_Z));
 }
 
+/// Seen from above only when lying flat: a box lower than it is wide and deep (outline from
+/// above 1.0, sides 0.7) is seen from the front, as a teapot is; a flat one (above 1.0, sides
+/// 0.45) from above.
+#[test]
+fn only_a_flat_scene_is_seen_from_above() {
+    let low = boxes(&[([0.0, 0.0, 0.0], [1.0, 0.7, 1.0])]);
+    let [x, y, z] = outline_areas(&low);
+    assert!(y > x / 0.9 && y < 2.0 * x.max(z), "{:?}", [x, y, z]);
+    assert_eq!(framing_side(&low), (Vec3::Z, Vec3::Y));
+    let flat = boxes(&[([0.0, 0.0, 0.0], [1.0, 0.45, 1.0])]);
+    assert_eq!(framing_side(&flat), (Vec3::Y, Vec3::NEG_Z));
+}
+
 /// +Z stays while its outline is within 10 % of the largest: a box 8 % deeper than wide keeps
 /// the front view, one 15 % deeper is seen from +X.
 #[test]

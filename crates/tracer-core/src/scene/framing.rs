@@ -2,8 +2,10 @@
 //!
 //! Rooms, and scenes whose front/back outline (seen along Z) is within 10 % of the largest
 //! outline, are seen from +Z, the usual front. Any other scene is seen from the side with the
-//! largest outline (a bust stored Z-up from its side, not the top of its head). Outline areas
-//! are measured by casting a grid of parallel rays along each axis.
+//! largest outline (a bust stored Z-up from its side, not the top of its head); from above only
+//! when the scene lies flat (its outline from above at least twice any side's), so a teapot is
+//! not looked down on. Outline areas are measured by casting a grid of parallel rays along
+//! each axis.
 
 use super::camera::Camera;
 use super::geometry::Scene;
@@ -14,6 +16,9 @@ use glam::Vec3;
 const OUTLINE_GRID: u32 = 96;
 /// +Z stays the view while its outline is at least this share of the largest one.
 const KEEP_FRONT: f32 = 0.9;
+/// The view from above is taken only when its outline is at least this many times the largest
+/// side's (a scene lying flat).
+const FLAT_FROM_ABOVE: f32 = 2.0;
 
 /// A camera looking at the centre of the bounds from the side [`framing_side`] picks, far
 /// enough that the bounding sphere fits the vertical field of view.
@@ -35,8 +40,9 @@ pub fn framing_camera(scene: &Scene, fov_deg: f32) -> Camera {
 /// - +Z (up +Y) for a room the front camera sees into (a ceiling over open space, as the
 ///   default light finds it), and whenever the outline seen along Z is at least 90 % of the
 ///   largest outline.
-/// - Otherwise the positive side of the axis with the largest outline: +X with +Y up, or
-///   +Y (from above) with -Z up, so the scene's front (+Z) is at the bottom of the picture.
+/// - +Y (from above) with -Z up, so the scene's front (+Z) is at the bottom of the picture,
+///   when the scene lies flat: its outline from above is at least twice the largest side's.
+/// - Otherwise the side (+Z or +X, up +Y) with the larger outline, +Z while within 10 %.
 pub fn framing_side(scene: &Scene) -> (Vec3, Vec3) {
     let front = (Vec3::Z, Vec3::Y);
     if scene.bounds.is_empty() {
@@ -49,12 +55,15 @@ pub fn framing_side(scene: &Scene) -> (Vec3, Vec3) {
     }
     let [x, y, z] = outline_areas(scene);
     let largest = x.max(y).max(z);
+    let side = x.max(z);
     if z >= KEEP_FRONT * largest {
         front
-    } else if x >= y {
-        (Vec3::X, Vec3::Y)
-    } else {
+    } else if y >= FLAT_FROM_ABOVE * side {
         (Vec3::Y, Vec3::NEG_Z)
+    } else if z >= KEEP_FRONT * side {
+        front
+    } else {
+        (Vec3::X, Vec3::Y)
     }
 }
 
