@@ -1,7 +1,7 @@
 //! Command-line options of work spread over machines: shards of `render` and `measure`,
 //! `raygine merge` and `raygine sweep`.
 
-use crate::cli::{DisplayArgs, SceneArgs};
+use crate::cli_args::{DisplayArgs, SceneArgs};
 use clap::Args;
 use std::path::PathBuf;
 

@@ -2,7 +2,7 @@
 //! camera), as text or JSON.
 
 use crate::cli::InfoArgs;
-use crate::render_cmd::load_scene;
+use crate::cli_support::load_scene;
 use anyhow::Result;
 use serde_json::{Value, json};
 use tracer_core::scene::{LightKind, LoadedScene, Material};

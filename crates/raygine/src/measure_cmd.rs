@@ -2,7 +2,7 @@
 //! as CSV and JSON.
 
 use crate::cli::MeasureArgs;
-use crate::render_cmd::{load_scene, thread_pool};
+use crate::cli_support::{load_scene, thread_pool};
 use anyhow::{Context, Result, bail};
 use serde_json::json;
 use std::fmt::Write as _;

@@ -3,8 +3,8 @@
 //! N samples.
 
 use crate::cli_shards::MergeArgs;
+use crate::cli_support::{check_output_path, display_settings, write_images};
 use crate::measure_cmd::{summary_line, write_readings};
-use crate::render_cmd::{check_output_path, display_settings, write_images};
 use anyhow::{Result, bail};
 use std::path::{Path, PathBuf};
 use std::time::Instant;

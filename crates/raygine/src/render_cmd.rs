@@ -1,41 +1,18 @@
 //! `raygine render`: load a scene, apply the command line's overrides, render, write the image.
 
-use crate::cli::{DisplayArgs, RenderArgs, SceneArgs};
-use anyhow::{Context, Result, bail};
-use glam::Vec3;
-use rayon::prelude::*;
+use crate::cli::RenderArgs;
+use crate::cli_support::{
+    check_output_path, display_settings, load_scene, sampling_settings, thread_pool, write_images,
+};
+use anyhow::{Result, bail};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tracer_core::display::{ChannelLut, DisplaySettings};
 use tracer_core::integrator::IntegratorKind;
-use tracer_core::render::{Film, RenderSettings, render_for};
-use tracer_core::scene::{self, LightKind, LoadOptions, LoadedScene, luminance};
+use tracer_core::render::{RenderSettings, render_for};
+use tracer_core::scene::{LightKind, LoadedScene};
 
 /// Samples per pixel of `-A/--antialiased`.
 pub const ANTIALIASED_SAMPLES: u32 = 16;
-
-/// Loads the scene the arguments name (the built-in Cornell box without one).
-pub fn load_scene(args: &SceneArgs) -> Result<LoadedScene> {
-    match &args.scene_path {
-        Some(path) => {
-            let options = LoadOptions {
-                unit: args.units,
-                sidecar: args.sidecar.as_deref(),
-            };
-            Ok(scene::load(path, &options)?)
-        }
-        None => {
-            let mut loaded = scene::builtin_cornell_box(args.units)?;
-            if let Some(sidecar) = &args.sidecar {
-                let text = std::fs::read_to_string(sidecar)
-                    .with_context(|| format!("{}: cannot read the sidecar", sidecar.display()))?;
-                let parsed = scene::Sidecar::parse(&text, sidecar)?;
-                loaded.setup = parsed.apply(&loaded.scene, args.units, &mut loaded.warnings);
-            }
-            Ok(loaded)
-        }
-    }
-}
 
 /// Applies `-I`, the positional `lx ly lz cx cy cz cf` (any prefix) and `--look-at`.
 pub fn apply_overrides(loaded: &mut LoadedScene, args: &RenderArgs) -> Result<()> {
@@ -91,25 +68,6 @@ pub fn default_render_path(scene_path: Option<&Path>) -> PathBuf {
         Some(p) => p.with_extension("png"),
         None => PathBuf::from("cornell_box.png"),
     }
-}
-
-/// The render settings the shared options give (without size and depth).
-pub fn sampling_settings(args: &SceneArgs, direct_samples: u32) -> RenderSettings {
-    RenderSettings {
-        samples_per_pixel: args.samples_or(direct_samples),
-        integrator: args.integrator,
-        max_bounces: args.max_bounces,
-        ..RenderSettings::default()
-    }
-}
-
-/// A rayon pool of `--threads` workers (all cores by default).
-pub fn thread_pool(args: &SceneArgs) -> Result<rayon::ThreadPool> {
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = args.threads {
-        pool = pool.num_threads(n as usize);
-    }
-    pool.build().context("cannot start the render threads")
 }
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -220,105 +178,4 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         println!("wrote {} (linear cd/m² per channel)", exr.display());
     }
     Ok(())
-}
-
-/// The display settings the options give.
-pub fn display_settings(args: &DisplayArgs) -> Result<DisplaySettings> {
-    let display = DisplaySettings {
-        exposure_stops: args.exposure.unwrap_or(0.0),
-        auto_exposure: args.auto_exposure,
-        tone_map: args.tone_map,
-        false_colour: None,
-    };
-    if !display.exposure_stops.is_finite() {
-        bail!("exposure must be a finite number of stops");
-    }
-    Ok(display)
-}
-
-/// Writes the film as the displayed PNG (and the linear EXR); returns the image and the
-/// exposure used. The same film gives the same bytes, whoever rendered it.
-pub fn write_images(
-    film: &Film,
-    display: &DisplaySettings,
-    png: &Path,
-    exr: Option<&Path>,
-    pool: &rayon::ThreadPool,
-) -> Result<(MappedImage, f32)> {
-    let exposure = display.effective_exposure(film);
-    let image = pool.install(|| map_film_rgb(film, display, exposure));
-    tracer_core::export::write_png_rgb(png, &image.rgb, film.width, film.height)?;
-    if let Some(exr) = exr {
-        tracer_core::export::write_exr(exr, film)?;
-    }
-    Ok((image, exposure))
-}
-
-/// Fails before rendering when an output path cannot be written (a folder, or a folder that does
-/// not exist), so a long render is not wasted. Writing itself stays atomic in `export`.
-pub fn check_output_path(path: &Path) -> Result<()> {
-    if path.is_dir() {
-        bail!("{}: is a directory", path.display());
-    }
-    match path.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => {
-            bail!(
-                "{}: the folder {} does not exist",
-                path.display(),
-                dir.display()
-            )
-        }
-        _ => Ok(()),
-    }
-}
-
-/// The display image of a film with the luminance figures the summary prints.
-#[derive(Debug)]
-pub struct MappedImage {
-    /// RGB8, sRGB-encoded, row-major, top row first.
-    pub rgb: Vec<u8>,
-    /// Sum over pixels of the mean Rec. 709 luminance, cd/m².
-    pub luminance_sum: f64,
-    /// Largest pixel luminance, cd/m².
-    pub luminance_max: f32,
-}
-
-/// Maps the film to display pixels (as [`DisplaySettings::map_film`] does, without alpha) and
-/// gathers its luminance figures in the same pass, rows in parallel on the current rayon pool.
-/// Row sums are added in row order, so the figures do not depend on the thread count.
-pub fn map_film_rgb(film: &Film, display: &DisplaySettings, exposure_stops: f32) -> MappedImage {
-    let scale = DisplaySettings::scale_for(exposure_stops);
-    let lut = ChannelLut::new(display, scale);
-    let width = film.width as usize;
-    let mut rgb = vec![0u8; film.pixels.len() * 3];
-    let rows: Vec<(f64, f32)> = rgb
-        .par_chunks_mut((width * 3).max(1))
-        .zip(film.pixels.par_chunks(width.max(1)))
-        .map(|(out, sums)| {
-            let (mut y_sum, mut y_max) = (0.0f64, 0.0f32);
-            for (o, p) in out.chunks_exact_mut(3).zip(sums) {
-                let (mean, e): (Vec3, f32) = (p.mean_rgb(), p.mean_illuminance());
-                let code = match &lut {
-                    Some(lut) => [lut.code(mean.x), lut.code(mean.y), lut.code(mean.z)],
-                    None => {
-                        let [r, g, b, _] = display.map_pixel(mean, e, scale);
-                        [r, g, b]
-                    }
-                };
-                o.copy_from_slice(&code);
-                let y = luminance(mean);
-                y_sum += f64::from(y);
-                y_max = y_max.max(y);
-            }
-            (y_sum, y_max)
-        })
-        .collect();
-    let (luminance_sum, luminance_max) = rows
-        .iter()
-        .fold((0.0, 0.0f32), |(s, m), &(rs, rm)| (s + rs, m.max(rm)));
-    MappedImage {
-        rgb,
-        luminance_sum,
-        luminance_max,
-    }
 }

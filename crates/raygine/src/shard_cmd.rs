@@ -4,7 +4,7 @@
 
 use crate::cli::{MeasureArgs, RenderArgs};
 use crate::cli_shards::ShardArgs;
-use crate::render_cmd::{check_output_path, thread_pool};
+use crate::cli_support::{check_output_path, thread_pool};
 use anyhow::{Result, bail};
 use std::path::Path;
 use std::time::Instant;

@@ -4,7 +4,7 @@
 //! the same `sweep.csv` one run of every variant writes.
 
 use crate::cli_shards::SweepArgs;
-use crate::render_cmd::{
+use crate::cli_support::{
     display_settings, load_scene, sampling_settings, thread_pool, write_images,
 };
 use crate::sweep_variants::{Variant, patched, read_variants};

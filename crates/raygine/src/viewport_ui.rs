@@ -165,9 +165,7 @@ pub fn pick_slot(app: &RaygineApp, fx: f32, fy: f32) -> Option<u32> {
         key.settings.width,
         key.settings.height,
     );
-    let prep = tracer_core::shading::Prepared::new(&key.scene, &key.setup, 0);
-    let hit = prep.closest_visible(&basis.ray(fx, fy))?;
-    key.scene.triangle_slots.get(hit.prim as usize).copied()
+    key.scene.pick_slot(&basis.ray(fx, fy), &key.setup.hidden)
 }
 
 fn hover_info(app: &RaygineApp, fx: f32, fy: f32) -> Option<HoverInfo> {

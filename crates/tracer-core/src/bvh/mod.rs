@@ -24,6 +24,7 @@
 //! why not Möller–Trumbore). Box tests are conservative (slab exit scaled up by a few ulps, and
 //! in the fused AVX2 test the origin moved by a few ulps; see `simd.rs`).
 
+mod binary;
 mod build;
 mod pages;
 mod simd;

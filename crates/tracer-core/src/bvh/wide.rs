@@ -16,7 +16,7 @@
 //! During [`collapse`] a leaf reference holds a triangle range of the binary tree; `build.rs` then
 //! copies the triangles into packs and rewrites the reference to the pack range.
 
-use super::build;
+use super::binary;
 use crate::geometry::Aabb;
 
 /// Children per node: groups of four lanes, each group one SSE register.
@@ -117,7 +117,7 @@ impl WideNode {
 /// Wide nodes from a binary tree (root at 0, children adjacent and after their parent).
 /// Children of a node stay in the binary tree's left-to-right order; nodes are laid out depth
 /// first, each node's interior children allocated together.
-pub(crate) fn collapse(binary: &[build::Node]) -> Vec<WideNode> {
+pub(crate) fn collapse(binary: &[binary::Node]) -> Vec<WideNode> {
     if binary.is_empty() {
         return Vec::new();
     }

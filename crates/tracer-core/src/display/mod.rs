@@ -6,10 +6,12 @@
 
 mod false_colour;
 mod lut;
+mod mapper;
 mod tonemap;
 
 pub use false_colour::{FalseColour, FalseColourQuantity, FalseColourScale, Legend, LegendEntry};
 pub use lut::ChannelLut;
+pub use mapper::{DisplayMapper, luminance_sum_max};
 pub use tonemap::{ToneMap, linear_to_srgb, srgb_to_linear};
 
 use crate::render::Film;
@@ -90,18 +92,9 @@ impl DisplaySettings {
         exposure_stops.exp2() / REFERENCE_LUMINANCE
     }
 
-    /// The whole film as RGBA8, row-major, top row first.
+    /// The whole film as RGBA8, row-major, top row first, at the effective exposure.
     pub fn map_film(&self, film: &Film) -> Vec<u8> {
-        let scale = Self::scale_for(self.effective_exposure(film));
-        let mut out = Vec::with_capacity(film.pixels.len() * 4);
-        for i in 0..film.pixels.len() {
-            out.extend_from_slice(&self.map_pixel(
-                film.mean_rgb(i),
-                film.mean_illuminance(i),
-                scale,
-            ));
-        }
-        out
+        DisplayMapper::new(self, self.effective_exposure(film)).map_film::<4>(film)
     }
 }
 

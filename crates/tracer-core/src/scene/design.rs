@@ -3,7 +3,6 @@
 //! the parts empty and raygine's own defaults apply.
 
 use super::camera::Camera;
-use super::geometry::Brep;
 use super::material::Material;
 use super::units::LengthUnit;
 use crate::formats::{LightDescription, LightDistribution, MaterialDescription, SceneDescription};
@@ -26,9 +25,13 @@ pub struct Design {
 }
 
 impl Design {
-    /// Maps the description's materials onto `breps`' slots (`slot_count` in all), and its
-    /// lights, camera and unit onto the model.
-    pub fn from_description(desc: &SceneDescription, breps: &[Brep], slot_count: usize) -> Design {
+    /// Maps the description's materials onto the material slots (`slot_count` in all; mesh i's
+    /// parts start at `first_slots[i]`), and its lights, camera and unit onto the model.
+    pub fn from_description(
+        desc: &SceneDescription,
+        first_slots: &[u32],
+        slot_count: usize,
+    ) -> Design {
         let mut notes = desc.notes.clone();
         let models: Vec<Material> = desc
             .materials
@@ -36,9 +39,9 @@ impl Design {
             .map(|m| material_from_description(m, &mut notes))
             .collect();
         let mut materials = vec![None; slot_count];
-        for (mesh, brep) in desc.meshes.iter().zip(breps) {
+        for (mesh, &first_slot) in desc.meshes.iter().zip(first_slots) {
             for (part, p) in mesh.parts.iter().enumerate() {
-                let slot = brep.first_slot as usize + part;
+                let slot = first_slot as usize + part;
                 if let (Some(m), Some(out)) = (
                     p.material.and_then(|i| models.get(i)),
                     materials.get_mut(slot),

@@ -150,7 +150,8 @@ impl Scene {
         let started = Instant::now();
         let bvh = Bvh::build(&triangles);
         let bvh_build_secs = started.elapsed().as_secs_f64();
-        let design = Design::from_description(&desc, &breps, slots.len());
+        let first_slots: Vec<u32> = breps.iter().map(|b| b.first_slot).collect();
+        let design = Design::from_description(&desc, &first_slots, slots.len());
         Ok(Scene {
             name: name.to_owned(),
             source: (!desc.path.as_os_str().is_empty()).then(|| desc.path.clone()),

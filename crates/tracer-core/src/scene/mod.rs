@@ -9,6 +9,7 @@ mod geometry;
 mod light;
 mod light_spec;
 mod material;
+mod pick;
 mod setup;
 mod sidecar;
 mod units;

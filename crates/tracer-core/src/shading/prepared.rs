@@ -140,12 +140,6 @@ impl<'a> Prepared<'a> {
             Handedness::Left => -1.0,
         };
         let emitters = emitter_table(scene, &clamped, &materials, &hidden, front_sign);
-        // Relative to the scene's size and its distance from the origin (f32 precision).
-        let b = scene.bounds;
-        let scale = b
-            .radius()
-            .max(b.min.abs().max_element())
-            .max(b.max.abs().max_element());
         Prepared {
             scene,
             lights,
@@ -153,7 +147,7 @@ impl<'a> Prepared<'a> {
             emitters,
             front_sign,
             metres_per_unit_sq: mpu * mpu,
-            epsilon: (scale * 2e-5).max(1e-6),
+            epsilon: scene.ray_epsilon(),
             max_depth,
             any_hidden: hidden.iter().any(|&h| h),
             hidden,
@@ -162,13 +156,10 @@ impl<'a> Prepared<'a> {
 
     /// Closest hit on a drawn surface.
     pub fn closest_visible(&self, ray: &Ray) -> Option<Hit> {
-        let mut r = *ray;
-        loop {
-            let hit = self.scene.bvh.intersect(&r)?;
-            if !self.any_hidden || !self.is_hidden_prim(hit.prim) {
-                return Some(hit);
-            }
-            r.t_min = hit.t + self.epsilon / r.dir.length().max(1e-20);
+        if self.any_hidden {
+            self.scene.closest_drawn(ray, &self.hidden)
+        } else {
+            self.scene.bvh.intersect(ray)
         }
     }
 
@@ -217,11 +208,6 @@ impl<'a> Prepared<'a> {
     /// The material of triangle `prim`.
     pub fn material_of(&self, prim: u32) -> &PreparedMaterial {
         &self.materials[self.scene.triangle_slots[prim as usize] as usize]
-    }
-
-    fn is_hidden_prim(&self, prim: u32) -> bool {
-        let slot = self.scene.triangle_slots[prim as usize] as usize;
-        self.hidden[slot]
     }
 }
 

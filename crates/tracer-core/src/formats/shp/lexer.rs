@@ -142,7 +142,8 @@ impl<'a> Lexer<'a> {
         count: u32,
         bytes_each: u64,
     ) -> Result<(), ShpError> {
-        self.memory.declare(self.path, line, count, bytes_each)
+        self.memory
+            .declare(self.path, line.no, line.keyword(), count, bytes_each)
     }
 
     #[cfg(test)]

@@ -6,7 +6,6 @@
 use std::path::Path;
 
 use super::error::ShpError;
-use super::lexer::Line;
 
 /// Estimated bytes per triangle from file to rendered scene: indices and part (16 in the
 /// description), world positions (36), normal (12), slot (4), BVH nodes and references and the
@@ -43,12 +42,13 @@ impl MemoryBudget {
         }
     }
 
-    /// Adds `count` items of `bytes_each` declared on `line`; an error when the total would
-    /// exceed the available memory.
+    /// Adds `count` items of `bytes_each` declared by `keyword` on line `line_no`; an error when
+    /// the total would exceed the available memory.
     pub fn declare(
         &mut self,
         path: &Path,
-        line: &Line<'_>,
+        line_no: usize,
+        keyword: &str,
         count: u32,
         bytes_each: u64,
     ) -> Result<(), ShpError> {
@@ -60,8 +60,8 @@ impl MemoryBudget {
             if let Some(available) = available.filter(|&a| total > a) {
                 return Err(ShpError::TooLargeForMemory {
                     path: path.to_path_buf(),
-                    line: line.no,
-                    keyword: line.keyword().to_string(),
+                    line: line_no,
+                    keyword: keyword.to_string(),
                     count,
                     needed: gigabytes(total),
                     available: gigabytes(available),
@@ -117,18 +117,15 @@ mod tests {
     #[test]
     fn budget_adds_up_counts_and_refuses_past_the_available_memory() {
         let path = Path::new("big.shp");
-        let line = Line {
-            no: 7,
-            text: "triangles 3000000",
-        };
+        let keyword = "triangles";
         let mut budget = MemoryBudget::with_available(1 << 30);
         // 3 million triangles: 600 MB, fits in 1 GiB.
         budget
-            .declare(path, &line, 3_000_000, BYTES_PER_TRIANGLE)
+            .declare(path, 7, keyword, 3_000_000, BYTES_PER_TRIANGLE)
             .unwrap();
         // Another 3 million do not.
         let err = budget
-            .declare(path, &line, 3_000_000, BYTES_PER_TRIANGLE)
+            .declare(path, 7, keyword, 3_000_000, BYTES_PER_TRIANGLE)
             .unwrap_err();
         assert_eq!(
             err.to_string(),

@@ -1,0 +1,124 @@
+//! What the commands share: loading the scene the options name, the thread pool, render and
+//! display settings from options, checking output paths, and writing the images.
+
+use crate::cli_args::{DisplayArgs, SceneArgs};
+use anyhow::{Context, Result, bail};
+use std::path::Path;
+use tracer_core::display::{DisplayMapper, DisplaySettings, luminance_sum_max};
+use tracer_core::render::{Film, RenderSettings};
+use tracer_core::scene::{self, LoadOptions, LoadedScene};
+
+/// Loads the scene the arguments name (the built-in Cornell box without one).
+pub fn load_scene(args: &SceneArgs) -> Result<LoadedScene> {
+    match &args.scene_path {
+        Some(path) => {
+            let options = LoadOptions {
+                unit: args.units,
+                sidecar: args.sidecar.as_deref(),
+            };
+            Ok(scene::load(path, &options)?)
+        }
+        None => {
+            let mut loaded = scene::builtin_cornell_box(args.units)?;
+            if let Some(sidecar) = &args.sidecar {
+                let text = std::fs::read_to_string(sidecar)
+                    .with_context(|| format!("{}: cannot read the sidecar", sidecar.display()))?;
+                let parsed = scene::Sidecar::parse(&text, sidecar)?;
+                loaded.setup = parsed.apply(&loaded.scene, args.units, &mut loaded.warnings);
+            }
+            Ok(loaded)
+        }
+    }
+}
+
+/// The render settings the shared options give (without size and depth).
+pub fn sampling_settings(args: &SceneArgs, direct_samples: u32) -> RenderSettings {
+    RenderSettings {
+        samples_per_pixel: args.samples_or(direct_samples),
+        integrator: args.integrator,
+        max_bounces: args.max_bounces,
+        ..RenderSettings::default()
+    }
+}
+
+/// A rayon pool of `--threads` workers (all cores by default).
+pub fn thread_pool(args: &SceneArgs) -> Result<rayon::ThreadPool> {
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = args.threads {
+        pool = pool.num_threads(n as usize);
+    }
+    pool.build().context("cannot start the render threads")
+}
+
+/// The display settings the options give.
+pub fn display_settings(args: &DisplayArgs) -> Result<DisplaySettings> {
+    let display = DisplaySettings {
+        exposure_stops: args.exposure.unwrap_or(0.0),
+        auto_exposure: args.auto_exposure,
+        tone_map: args.tone_map,
+        false_colour: None,
+    };
+    if !display.exposure_stops.is_finite() {
+        bail!("exposure must be a finite number of stops");
+    }
+    Ok(display)
+}
+
+/// Writes the film as the displayed PNG (and the linear EXR); returns the image and the
+/// exposure used. The same film gives the same bytes, whoever rendered it.
+pub fn write_images(
+    film: &Film,
+    display: &DisplaySettings,
+    png: &Path,
+    exr: Option<&Path>,
+    pool: &rayon::ThreadPool,
+) -> Result<(MappedImage, f32)> {
+    let exposure = display.effective_exposure(film);
+    let image = pool.install(|| map_film_rgb(film, display, exposure));
+    tracer_core::export::write_png_rgb(png, &image.rgb, film.width, film.height)?;
+    if let Some(exr) = exr {
+        tracer_core::export::write_exr(exr, film)?;
+    }
+    Ok((image, exposure))
+}
+
+/// Fails before rendering when an output path cannot be written (a folder, or a folder that does
+/// not exist), so a long render is not wasted. Writing itself stays atomic in `export`.
+pub fn check_output_path(path: &Path) -> Result<()> {
+    if path.is_dir() {
+        bail!("{}: is a directory", path.display());
+    }
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => {
+            bail!(
+                "{}: the folder {} does not exist",
+                path.display(),
+                dir.display()
+            )
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The display image of a film with the luminance figures the summary prints.
+#[derive(Debug)]
+pub struct MappedImage {
+    /// RGB8, sRGB-encoded, row-major, top row first.
+    pub rgb: Vec<u8>,
+    /// Sum over pixels of the mean Rec. 709 luminance, cd/m².
+    pub luminance_sum: f64,
+    /// Largest pixel luminance, cd/m².
+    pub luminance_max: f32,
+}
+
+/// Maps the film to display pixels through the one display path ([`DisplayMapper`]) and
+/// gathers its luminance figures.
+pub fn map_film_rgb(film: &Film, display: &DisplaySettings, exposure_stops: f32) -> MappedImage {
+    let rgb = DisplayMapper::new(display, exposure_stops).map_film::<3>(film);
+    let (luminance_sum, luminance_max) = luminance_sum_max(film);
+    MappedImage {
+        rgb,
+        luminance_sum,
+        luminance_max,
+    }
+}

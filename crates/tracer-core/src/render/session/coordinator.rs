@@ -1,0 +1,154 @@
+//! The coordinator thread: waits for a job, then runs one generation's passes (previews, then
+//! full samples) over the tiles on its rayon pool until the target, the time limit or a newer
+//! generation.
+
+use super::super::passes::Pass;
+use super::super::pixel::FrameSampler;
+use super::super::tiles::tiles_centre_out;
+use super::priority::lower_thread_priority;
+use super::shared::{Shared, full_frame, prepare_film};
+use super::tile_work::PassContext;
+use super::{SessionStats, Snapshot};
+use rayon::prelude::*;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+
+/// The coordinator: waits for a job, runs its passes, repeats.
+pub(super) fn coordinator(shared: &Shared) {
+    let mut pool: Option<(usize, rayon::ThreadPool)> = None;
+    let mut done_generation = 0u64;
+    loop {
+        let (generation, snapshot, threads) = {
+            let mut st = shared.lock();
+            loop {
+                if st.shutdown {
+                    return;
+                }
+                match &st.job {
+                    Some((g, s)) if *g != done_generation && !st.paused => {
+                        break (*g, Arc::clone(s), st.threads);
+                    }
+                    _ => {}
+                }
+                st = match shared.wake.wait(st) {
+                    Ok(g) => g,
+                    Err(e) => e.into_inner(),
+                };
+            }
+        };
+        if pool.as_ref().is_none_or(|(n, _)| *n != threads) {
+            let built = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .thread_name(|i| format!("raygine-worker-{i}"))
+                .start_handler(|_| lower_thread_priority())
+                .build();
+            match built {
+                Ok(p) => pool = Some((threads, p)),
+                Err(_) if pool.is_some() => {}
+                Err(_) => return,
+            }
+        }
+        let Some((_, p)) = pool.as_ref() else { return };
+        run_generation(shared, p, generation, &snapshot, threads);
+        done_generation = generation;
+    }
+}
+
+/// Runs every pass of one generation unless a newer one arrives.
+fn run_generation(
+    shared: &Shared,
+    pool: &rayon::ThreadPool,
+    generation: u64,
+    snap: &Snapshot,
+    threads: usize,
+) {
+    let started = Instant::now();
+    let s = &snap.settings;
+    let target = s.samples_per_pixel.max(1);
+    {
+        let mut st = shared.lock();
+        st.stats = SessionStats {
+            generation,
+            target_spp: target,
+            threads,
+            paused: st.paused,
+            ..SessionStats::default()
+        };
+    }
+    if !prepare_film(shared, generation, s) {
+        return;
+    }
+    let frame = FrameSampler::new(&snap.scene, &snap.setup, s);
+    let rays = AtomicU64::new(0);
+    let mut pass = Some(Pass::first());
+    while let Some(current) = pass {
+        if !shared.is_current(generation) {
+            return;
+        }
+        if snap.time_limit.is_some_and(|limit| {
+            started.elapsed() >= limit && matches!(current, Pass::Full { index } if index > 0)
+        }) {
+            break;
+        }
+        shared.lock().stats.pass = current.label();
+        let tiles = tiles_centre_out(s.width, s.height, current.tile_size());
+        let ctx = PassContext {
+            shared,
+            generation,
+            frame: &frame,
+            pass: current,
+            rays: &rays,
+        };
+        pool.install(|| tiles.par_iter().for_each(|tile| ctx.run_tile(tile)));
+        if !shared.is_current(generation) {
+            return;
+        }
+        let mut st = shared.lock();
+        let elapsed = started.elapsed().as_secs_f64();
+        st.stats.passes_done += 1;
+        st.stats.rays = rays.load(Ordering::Relaxed);
+        st.stats.elapsed_secs = elapsed;
+        match current {
+            Pass::Preview { .. } if st.stats.first_preview_secs.is_none() => {
+                st.stats.first_preview_secs = Some(elapsed);
+                // The first complete preview replaces the previous generation's picture.
+                if let Some(film) = st.pending.take() {
+                    st.spare = st.film.replace(film);
+                    st.dirty = vec![full_frame(s)];
+                }
+            }
+            Pass::Full { index } => {
+                st.stats.samples_per_pixel = index + 1;
+                if s.integrator == crate::integrator::IntegratorKind::Bidirectional {
+                    // The pass's last splats landed all over the picture.
+                    st.dirty.push(full_frame(s));
+                }
+                if index > 0 {
+                    st.stats.relative_noise = st
+                        .film
+                        .as_ref()
+                        .filter(|f| f.generation == generation)
+                        .and_then(|f| f.accum.relative_noise());
+                }
+                if index == 0 {
+                    st.stats.first_full_secs = Some(elapsed);
+                }
+            }
+            Pass::Preview { .. } => {}
+        }
+        drop(st);
+        shared.wake.notify_all();
+        (shared.notify)();
+        pass = current.next(target);
+    }
+    let mut st = shared.lock();
+    if shared.is_current(generation) {
+        st.stats.finished = true;
+        st.stats.rays = rays.load(Ordering::Relaxed);
+        st.stats.elapsed_secs = started.elapsed().as_secs_f64();
+    }
+    drop(st);
+    shared.wake.notify_all();
+    (shared.notify)();
+}

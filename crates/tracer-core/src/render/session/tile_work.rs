@@ -1,0 +1,162 @@
+//! What a worker does with one tile of a pass: a coarse preview (one sample per block) or one
+//! full sample per pixel, then the result applied to this generation's film under the lock.
+
+use super::super::film::PixelSum;
+use super::super::passes::Pass;
+use super::super::pixel::FrameSampler;
+use super::super::progressive_film::ProgressiveFilm;
+use super::super::tiles::Tile;
+use super::shared::Shared;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Least time between whole-frame refreshes for splats (bidirectional mode), seconds.
+const SPLAT_REFRESH_SECS: f64 = 0.5;
+
+pub(super) struct PassContext<'a> {
+    pub shared: &'a Shared,
+    pub generation: u64,
+    pub frame: &'a FrameSampler<'a>,
+    pub pass: Pass,
+    pub rays: &'a AtomicU64,
+}
+
+impl PassContext<'_> {
+    /// Waits while paused; returns false when this generation is stale.
+    fn keep_going(&self) -> bool {
+        if self.shared.paused.load(Ordering::Acquire) {
+            let mut st = self.shared.lock();
+            while st.paused && !st.shutdown && self.shared.is_current(self.generation) {
+                st = match self.shared.wake.wait(st) {
+                    Ok(g) => g,
+                    Err(e) => e.into_inner(),
+                };
+            }
+        }
+        self.shared.is_current(self.generation)
+    }
+
+    pub fn run_tile(&self, tile: &Tile) {
+        if !self.keep_going() {
+            return;
+        }
+        match self.pass {
+            Pass::Preview { block } => self.preview_tile(tile, block),
+            Pass::Full { index } => self.full_tile(tile, index),
+        }
+    }
+
+    fn preview_tile(&self, tile: &Tile, block: u32) {
+        let mut blocks = Vec::new();
+        let mut rays = 0u64;
+        for by in (tile.y0..tile.y1).step_by(block as usize) {
+            if !self.shared.is_current(self.generation) {
+                return;
+            }
+            for bx in (tile.x0..tile.x1).step_by(block as usize) {
+                let rect = Tile {
+                    x0: bx,
+                    y0: by,
+                    x1: (bx + block).min(tile.x1),
+                    y1: (by + block).min(tile.y1),
+                };
+                let cx = (rect.x0 + rect.x1) as f32 * 0.5;
+                let cy = (rect.y0 + rect.y1) as f32 * 0.5;
+                let sample = self.frame.preview(cx, cy);
+                rays += u64::from(sample.rays);
+                blocks.push((rect, sample));
+            }
+        }
+        self.rays.fetch_add(rays, Ordering::Relaxed);
+        self.commit(tile, |film| {
+            for (rect, s) in &blocks {
+                film.fill_preview(rect, s.rgb, s.illuminance_lx);
+            }
+        });
+    }
+
+    fn full_tile(&self, tile: &Tile, index: u32) {
+        let mut sums = Vec::with_capacity(tile.pixel_count());
+        let mut splats = Vec::new();
+        let mut rays = 0u64;
+        for y in tile.y0..tile.y1 {
+            if !self.shared.is_current(self.generation) {
+                return;
+            }
+            for x in tile.x0..tile.x1 {
+                let mut sum = PixelSum::default();
+                rays += self
+                    .frame
+                    .add_samples(x, y, index..index + 1, &mut sum, &mut splats);
+                sums.push(sum);
+            }
+        }
+        self.rays.fetch_add(rays, Ordering::Relaxed);
+        self.commit(tile, |film| {
+            film.add_tile(tile, &sums);
+            film.add_splats(&splats);
+        });
+        if !splats.is_empty() {
+            self.refresh_everywhere_now_and_then();
+        }
+    }
+
+    /// Light subpaths land anywhere in the picture: mark the whole frame changed, at most every
+    /// [`SPLAT_REFRESH_SECS`] (and at the end of every pass), so the display keeps up without
+    /// remapping the whole picture for every tile.
+    fn refresh_everywhere_now_and_then(&self) {
+        let mut st = self.shared.lock();
+        let due = st
+            .last_full_refresh
+            .is_none_or(|t| t.elapsed().as_secs_f64() >= SPLAT_REFRESH_SECS);
+        let shown = st
+            .film
+            .as_ref()
+            .is_some_and(|f| f.generation == self.generation);
+        if due && shown && self.shared.is_current(self.generation) {
+            st.last_full_refresh = Some(std::time::Instant::now());
+            let (w, h) = (self.frame.basis.width, self.frame.basis.height);
+            st.dirty.push(Tile {
+                x0: 0,
+                y0: 0,
+                x1: w,
+                y1: h,
+            });
+            drop(st);
+            (self.shared.notify)();
+        }
+    }
+
+    /// Applies a finished tile to this generation's film unless the generation is stale. Until
+    /// the first preview pass is complete the new film is kept aside (the consumer keeps showing
+    /// the previous picture); after that, the tile is marked dirty and the consumer woken.
+    fn commit(&self, tile: &Tile, apply: impl FnOnce(&mut ProgressiveFilm)) {
+        let mut st = self.shared.lock();
+        // Checked under the lock: `start` bumps the generation under the same lock, so a stale
+        // tile can never land in a newer film.
+        if !self.shared.is_current(self.generation) {
+            return;
+        }
+        let shown = st
+            .film
+            .as_ref()
+            .is_some_and(|f| f.generation == self.generation);
+        if shown {
+            if let Some(film) = st.film.as_mut() {
+                apply(film);
+            }
+            st.dirty.push(*tile);
+            drop(st);
+            (self.shared.notify)();
+            return;
+        }
+        // Before the first preview is complete the tile goes to the pending film, prepared
+        // (allocated) by the coordinator outside the lock.
+        if let Some(film) = st
+            .pending
+            .as_mut()
+            .filter(|f| f.generation == self.generation)
+        {
+            apply(film);
+        }
+    }
+}
