@@ -3,6 +3,7 @@
 
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
+use tracer_core::scene::LengthUnit;
 
 pub use crate::cli_args::{
     DisplayArgs, PATH_DEFAULT_SAMPLES, SceneArgs, parse_tone_map, parse_vec3,
