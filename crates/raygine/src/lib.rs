@@ -2,6 +2,7 @@
 //! Both are thin shells that turn user intent into `tracer-core` calls.
 
 pub mod app;
+pub mod backdrop;
 pub mod banners;
 pub mod camera_control;
 pub mod cli;

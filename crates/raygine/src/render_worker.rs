@@ -209,7 +209,7 @@ impl RenderWorker {
         if full {
             let image = self
                 .session
-                .with_film(|f| f.map(|f| map_rect(f, display, exposure, None)));
+                .with_film(|f| f.map(|f| texture_rect(f, display, exposure, None, None)));
             let Some(image) = image else {
                 return;
             };
@@ -231,7 +231,7 @@ impl RenderWorker {
             for rect in merge_rows(dirty) {
                 let image = self
                     .session
-                    .with_film(|f| f.map(|f| map_rect_with(f, display, exposure, Some(rect), lut)));
+                    .with_film(|f| f.map(|f| texture_rect(f, display, exposure, Some(rect), lut)));
                 if let Some(image) = image {
                     texture.set_partial(
                         [rect.x0 as usize, rect.y0 as usize],
@@ -258,7 +258,25 @@ impl RenderWorker {
     }
 }
 
-/// Maps a rectangle of the film (all of it for `None`) to display pixels.
+/// What the viewport shows of a rectangle of the film (all of it for `None`): its display
+/// mapping with the backdrop where the camera saw nothing. Exports use [`map_rect`] instead.
+pub fn texture_rect(
+    film: &ProgressiveFilm,
+    display: &DisplaySettings,
+    exposure: f32,
+    rect: Option<Tile>,
+    lut: Option<&ChannelLut>,
+) -> ColorImage {
+    let mut image = match lut {
+        Some(_) => map_rect_with(film, display, exposure, rect, lut),
+        None => map_rect(film, display, exposure, rect),
+    };
+    crate::backdrop::draw(&mut image, film, display, exposure, rect);
+    image
+}
+
+/// Maps a rectangle of the film (all of it for `None`) to display pixels, as exports write them
+/// (no backdrop).
 pub fn map_rect(
     film: &ProgressiveFilm,
     display: &DisplaySettings,

@@ -401,13 +401,17 @@ fn draw_overlays(ui: &mut egui::Ui, app: &mut RaygineApp, rect: Rect) {
             format_value(h.illuminance),
             h.surface.as_deref().unwrap_or("(background)")
         );
-        let pos = Pos2::new(rect.min.x + 8.0, rect.max.y - 90.0);
-        painter.text(
-            pos,
-            Align2::LEFT_BOTTOM,
-            text,
-            FontId::monospace(13.0),
-            Color32::WHITE,
+        // On a dark plate, like the light labels: white text over a bright floor was lost.
+        let galley = painter.layout_no_wrap(text, FontId::monospace(13.0), Color32::WHITE);
+        let at = Pos2::new(rect.min.x + 8.0, rect.max.y - 90.0 - galley.size().y);
+        painter.rect_filled(
+            Rect::from_min_size(
+                at - Vec2::new(3.0, 1.0),
+                galley.size() + Vec2::new(6.0, 2.0),
+            ),
+            3.0,
+            Color32::from_black_alpha(200),
         );
+        painter.galley(at, galley, Color32::WHITE);
     }
 }

@@ -15,7 +15,7 @@ use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, TestRenderer};
 use glam::Vec3;
 use raygine::app::{AppOptions, RaygineApp};
-use raygine::render_worker::map_rect;
+use raygine::render_worker::texture_rect;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -187,11 +187,13 @@ fn film_rgb(app: &RaygineApp) -> ([usize; 2], Vec<Vec3>) {
         .expect("no film yet")
 }
 
-/// The film through the app's current display mapping, as the texture should hold it.
+/// The film through the app's current display mapping (and the backdrop), as the texture should
+/// hold it.
 fn expected_texture(app: &RaygineApp) -> ColorImage {
     assert!(!app.display.auto_exposure && !app.false_colour.enabled);
+    let exposure = app.display.exposure_stops;
     app.worker
-        .with_film(|f| f.map(|f| map_rect(f, &app.display, app.display.exposure_stops, None)))
+        .with_film(|f| f.map(|f| texture_rect(f, &app.display, exposure, None, None)))
         .expect("no film yet")
 }
 
@@ -1388,6 +1390,38 @@ fn a_small_window_keeps_a_usable_viewport() {
     assert!(view.width() > 630.0, "viewport {view:?}");
 }
 
+/// In a narrow window the status bar stays one line (cut off at the edge) instead of wrapping:
+/// a wrapped line shrank the viewport, the new size restarted the render, the new figures
+/// unwrapped it again, and the render restarted every frame without finishing.
+#[test]
+fn a_narrow_window_keeps_one_status_line_and_the_render_finishes() {
+    let (mut h, _mirror) = viewer();
+    h.set_size(Vec2::new(700.0, 500.0));
+    h.run_steps(2);
+    settle(&mut h);
+    let view = h.get_by_label("viewport").rect();
+    assert!(
+        500.0 - view.max.y < 30.0,
+        "the status bar wraps: viewport {view:?}"
+    );
+    // Rendering again (a new light position): the viewport keeps its size frame after frame.
+    h.state_mut().doc.setup.lights[0].position[0] -= 50.0;
+    h.step();
+    let generation = h.state().worker.generation();
+    let size = h.state().viewport_px;
+    for _ in 0..20 {
+        h.step();
+        assert_eq!(h.state().viewport_px, size, "the viewport changed size");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert_eq!(
+        h.state().worker.generation(),
+        generation,
+        "the render restarted"
+    );
+    settle(&mut h);
+}
+
 /// The false-colour legend has rows for above the range (white) and below it (black; on a log
 /// scale that includes 0), matching the colours drawn; the viewer draws it with false colour on.
 #[test]
@@ -1511,6 +1545,156 @@ fn the_colour_picker_and_labels_have_their_glyphs() {
         assert!(
             h.ctx.fonts_mut(|f| f.has_glyphs(&font, text)),
             "a glyph of {text:?} is missing"
+        );
+    }
+}
+
+/// Where the camera ray hit nothing the viewport shows the backdrop (a dark gradient), while an
+/// unlit surface (0 cd/m²) stays black; the exported PNG keeps the background black.
+#[test]
+fn the_background_is_told_apart_from_unlit_surfaces() {
+    let (mut h, mirror) = viewer();
+    // The light behind the green wall: every surface the camera sees is unlit.
+    h.get_by_role_and_label(Role::Slider, LIGHT_X)
+        .set_value_accesskit(-5000.0);
+    h.run_steps(2);
+    settle(&mut h);
+    h.step();
+    let (size, rgb) = film_rgb(h.state());
+    assert!(rgb.iter().all(|p| *p == Vec3::ZERO), "something is lit");
+    let [w, height] = size;
+    let texture = mirror.film(size);
+    assert_eq!(texture.pixels, expected_texture(h.state()).pixels);
+    let fraction = |x: usize, y: usize| {
+        h.state()
+            .worker
+            .with_film(|f| f.unwrap().background_fraction(y * w + x))
+    };
+    // The Cornell box's opening is narrower than the picture: its left column sees outside;
+    // the middle sees the back wall.
+    let (mid, bottom) = (height / 2, height - 1);
+    for (x, y) in [(0, mid), (0, bottom)] {
+        assert_eq!(fraction(x, y), 1.0, "({x}, {y}) sees the box");
+        let shown = texture.pixels[y * w + x];
+        assert_eq!(shown, raygine::backdrop::colour_at(y as u32, height as u32));
+        assert_ne!(shown, egui::Color32::BLACK);
+    }
+    assert_ne!(texture.pixels[0], texture.pixels[bottom * w], "no gradient");
+    assert_eq!(fraction(w / 2, mid), 0.0);
+    assert_eq!(texture.pixels[mid * w + w / 2], egui::Color32::BLACK);
+
+    let path = scratch_dir("backdrop").join("view.png");
+    let ctx = h.state().ctx.clone();
+    h.state_mut().export_png(&ctx, path.clone());
+    step_until(&mut h, "the PNG write", |app| app.writes.is_empty());
+    let png = image::open(&path).unwrap().to_rgb8();
+    assert_eq!(
+        png.get_pixel(0, mid as u32).0,
+        [0, 0, 0],
+        "the export has a backdrop"
+    );
+}
+
+/// A Lumicept scene of one box brep from `lo` to `hi` (twelve triangles).
+fn box_scene(lo: [f32; 3], hi: [f32; 3]) -> String {
+    let mut text =
+        String::from(";; written by raygine's UI tests\ndefine breps slab\nvertices 8\n");
+    for i in 0..8 {
+        let pick = |axis: usize| {
+            if i >> axis & 1 == 0 {
+                lo[axis]
+            } else {
+                hi[axis]
+            }
+        };
+        text += &format!("{} {} {}\n", pick(0), pick(1), pick(2));
+    }
+    text += "triangles 12\n";
+    for [a, b, c, d] in [
+        [0, 1, 3, 2],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 3, 7, 6],
+        [0, 2, 6, 4],
+        [1, 3, 7, 5],
+    ] {
+        text += &format!("{a} {b} {c}\n{a} {c} {d}\n");
+    }
+    text += "parts 1\n0 0 0 0 0 0 0 0 0 0\n0 0\nenddef\n\n";
+    text += "set breps slab\nrotation 0 0 0\ntranslation 0 0 0\nscale 1 1 1\nenddef\n";
+    text
+}
+
+/// An object whose largest outline is seen along X (a slab standing in the YZ plane) opens
+/// seen from +X, not from +Z where it is a thin edge; after orbiting, F frames it from +X again.
+#[test]
+fn an_object_opens_seen_from_its_largest_side() {
+    let (mut h, _mirror) = viewer();
+    assert_eq!(
+        h.state().doc.setup.camera.position,
+        [278.0, 273.0, 800.0],
+        "the Cornell box keeps its camera"
+    );
+    let path = scratch_dir("largest-side").join("slab.shp");
+    std::fs::write(&path, box_scene([0.0, 0.0, 0.0], [50.0, 1000.0, 2000.0])).unwrap();
+    open(&mut h, &path);
+    let from_x = |h: &Viewer| {
+        let camera = h.state().doc.setup.camera;
+        let c = h.state().doc.scene.bounds.center();
+        let eye = Vec3::from(camera.position) - c;
+        eye.x > 0.0 && eye.y.abs() < 1e-3 * eye.x && eye.z.abs() < 1e-3 * eye.x
+    };
+    assert!(from_x(&h), "camera {:?}", h.state().doc.setup.camera);
+    let view = h.get_by_label("viewport").rect();
+    drag(&mut h, view.center(), Vec2::new(120.0, 40.0));
+    assert!(!from_x(&h), "the drag did not orbit");
+    h.key_press(Key::F);
+    h.step();
+    assert!(from_x(&h), "F: camera {:?}", h.state().doc.setup.camera);
+    // The picture shows the slab's face: most of the middle row is lit.
+    settle(&mut h);
+    let (size, rgb) = film_rgb(h.state());
+    let row = &rgb[size[0] * (size[1] / 2)..size[0] * (size[1] / 2 + 1)];
+    let lit = row.iter().filter(|p| p.max_element() > 0.0).count();
+    assert!(lit > size[0] / 3, "{lit} of {} pixels lit", size[0]);
+}
+
+/// Light labels and the hover read-out sit on dark plates, so they read over bright pixels.
+#[test]
+fn light_labels_and_the_hover_readout_sit_on_dark_plates() {
+    let (mut h, _mirror) = viewer();
+    // Over the bright floor, in front of the short block.
+    let view = h.get_by_label("viewport").rect();
+    h.hover_at(view.lerp_inside(Vec2::new(0.5, 0.95)));
+    h.run_steps(2);
+    assert!(h.state().hover.is_some(), "no read-out under the pointer");
+    let mut texts = Vec::new();
+    let mut plates = Vec::new();
+    let mut todo: Vec<egui::Shape> = h.output().shapes.iter().map(|c| c.shape.clone()).collect();
+    while let Some(shape) = todo.pop() {
+        match shape {
+            egui::Shape::Vec(v) => todo.extend(v),
+            egui::Shape::Text(t) => {
+                let text = t.galley.text().to_owned();
+                if text.starts_with("L1 ") || text.contains(" cd/m²   ") {
+                    texts.push((text, t.galley.rect.translate(t.pos.to_vec2())));
+                }
+            }
+            egui::Shape::Rect(r) if r.fill == egui::Color32::from_black_alpha(200) => {
+                plates.push(r.rect);
+            }
+            _ => {}
+        }
+    }
+    assert_eq!(
+        texts.len(),
+        2,
+        "the light's label and the read-out: {texts:?}"
+    );
+    for (text, rect) in &texts {
+        assert!(
+            plates.iter().any(|p| p.contains_rect(*rect)),
+            "no dark plate under {text:?} at {rect:?}: {plates:?}"
         );
     }
 }

@@ -1,7 +1,12 @@
-//! Defaults for a scene without a sidecar: where the light goes, how bright it is.
+//! Defaults for a scene without a sidecar: where the light goes, how bright it is, which side
+//! the camera looks from.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use tracer_core::scene::{LengthUnit, Scene, builtin_cornell_box, default_light};
+use glam::Vec3;
+use tracer_core::scene::{
+    DEFAULT_FOV_DEG, LengthUnit, Scene, builtin_cornell_box, default_light, framing_camera,
+    framing_side, outline_areas,
+};
 use tracer_core::shp::{BrepDef, ShpDescription};
 
 /// A camera in front of and above the test scenes (metres).
@@ -152,4 +157,81 @@ fn light_inside_a_closed_mesh_seen_from_outside_becomes_a_key_light() {
     // Seen from inside (a camera in the box, as in a room), the light stays under the top.
     let inside = default_light(&cube, LengthUnit::M, [0.5, 0.5, 0.9]);
     assert!(inside.position[1] < 1.0, "{inside:?}");
+}
+
+/// A slab fills its bounds, so its outlines are exactly the bounds' faces.
+#[test]
+fn outline_areas_of_a_slab_are_its_faces() {
+    let slab = boxes(&[([0.0, 0.0, 0.0], [0.05, 1.0, 2.0])]);
+    let [x, y, z] = outline_areas(&slab);
+    for (got, want) in [(x, 1.0 * 2.0), (y, 2.0 * 0.05), (z, 0.05 * 1.0)] {
+        assert!((got - want).abs() < 1e-4 * want, "{:?}", [x, y, z]);
+    }
+}
+
+/// A slab standing in the YZ plane is seen face-on from +X (up +Y), a slab lying flat from
+/// above (+Z, its front, at the bottom of the picture): the side with the largest outline.
+#[test]
+fn a_slab_is_framed_from_its_largest_side() {
+    let standing = boxes(&[([0.0, 0.0, 0.0], [0.05, 1.0, 2.0])]);
+    assert_eq!(framing_side(&standing), (Vec3::X, Vec3::Y));
+    let camera = framing_camera(&standing, DEFAULT_FOV_DEG);
+    let c = standing.bounds.center();
+    let distance = standing.bounds.radius() / (DEFAULT_FOV_DEG.to_radians() * 0.5).sin();
+    assert_eq!(camera.look_at, c.to_array());
+    assert_eq!(camera.position, (c + Vec3::X * distance).to_array());
+    assert_eq!(camera.up, [0.0, 1.0, 0.0]);
+
+    let lying = boxes(&[([0.0, 0.0, 0.0], [2.0, 0.05, 1.0])]);
+    assert_eq!(framing_side(&lying), (Vec3::Y, Vec3::NEG_Z));
+}
+
+/// +Z stays while its outline is within 10 % of the largest: a box 8 % deeper than wide keeps
+/// the front view, one 15 % deeper is seen from +X.
+#[test]
+fn the_front_view_stays_within_ten_percent() {
+    let cube = boxes(&[([0.0, 0.0, 0.0], [1.0, 1.0, 1.0])]);
+    assert_eq!(framing_side(&cube), (Vec3::Z, Vec3::Y));
+    let a_little_deeper = boxes(&[([0.0, 0.0, 0.0], [1.0, 1.0, 1.08])]);
+    assert_eq!(framing_side(&a_little_deeper), (Vec3::Z, Vec3::Y));
+    let deeper = boxes(&[([0.0, 0.0, 0.0], [1.0, 1.0, 1.15])]);
+    assert_eq!(framing_side(&deeper), (Vec3::X, Vec3::Y));
+}
+
+/// A room is seen from +Z even when its outline along X is five times larger (a corridor).
+#[test]
+fn a_room_keeps_the_front_view() {
+    let (w, h, d, t) = (2.0, 2.5, 10.0, 0.02);
+    let corridor = boxes(&[
+        ([0.0, 0.0, 0.0], [w, t, d]),
+        ([0.0, h - t, 0.0], [w, h, d]),
+        ([0.0, 0.0, 0.0], [t, h, d]),
+        ([w - t, 0.0, 0.0], [w, h, d]),
+        ([0.0, 0.0, 0.0], [w, h, t]),
+    ]);
+    let [x, _, z] = outline_areas(&corridor);
+    assert!(x > 4.0 * z, "{x} {z}");
+    assert_eq!(framing_side(&corridor), (Vec3::Z, Vec3::Y));
+    let cornell = builtin_cornell_box(None).unwrap();
+    assert_eq!(framing_side(&cornell.scene), (Vec3::Z, Vec3::Y));
+}
+
+/// Nefertiti (stored Z-up) was seen from the top of her head; her outline from +X is the
+/// largest, the one along Z (the top) 29 % smaller.
+#[test]
+fn nefertiti_is_seen_from_the_side() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/scenes/meshes/nefertiti.shp");
+    if !path.is_file() {
+        eprintln!("skipping: {} not found", path.display());
+        return;
+    }
+    let loaded = tracer_core::scene::load(&path, &Default::default()).unwrap();
+    let [x, y, z] = outline_areas(&loaded.scene);
+    assert!(z < 0.9 * x && y < x, "{:?}", [x, y, z]);
+    assert_eq!(framing_side(&loaded.scene), (Vec3::X, Vec3::Y));
+    assert_eq!(
+        loaded.setup.camera,
+        framing_camera(&loaded.scene, DEFAULT_FOV_DEG)
+    );
 }

@@ -231,3 +231,30 @@ fn time_limit_stops_before_the_target() {
 fn rng() -> tracer_core::sampling::SampleRng {
     tracer_core::sampling::SampleRng::new(0, 0)
 }
+
+/// The film records where the camera saw nothing (the viewer's backdrop goes there): with a
+/// field of view wider than the box's opening the corners see only background and the centre
+/// none, in every mode, while the accumulated sums there stay those of black.
+#[test]
+fn the_film_knows_where_the_camera_saw_nothing() {
+    let loaded = cornell();
+    let scene = Arc::new(builtin_cornell_box(None).unwrap().scene);
+    for integrator in tracer_core::integrator::IntegratorKind::ALL {
+        let mut snap = snapshot(&loaded, &scene, 2);
+        snap.settings.integrator = integrator;
+        snap.setup.camera.fov_deg = 120.0;
+        let s = session(2);
+        let generation = s.start(snap.clone());
+        assert!(s.wait_for(WAIT, |st| st.generation == generation && st.finished));
+        s.with_film(|f| {
+            let f = f.unwrap();
+            let (w, h) = (f.width(), f.height());
+            let corner = f.accum.index(0, 0);
+            let centre = f.accum.index(w / 2, h / 2);
+            assert_eq!(f.background_fraction(corner), 1.0, "{integrator}");
+            assert_eq!(f.accum.mean_rgb(corner), Vec3::ZERO, "{integrator}");
+            assert_eq!(f.background_fraction(centre), 0.0, "{integrator}");
+            assert!(f.accum.mean_rgb(centre).max_element() > 0.0, "{integrator}");
+        });
+    }
+}

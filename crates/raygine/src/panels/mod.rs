@@ -196,9 +196,13 @@ fn file_menu_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
     }
 }
 
+/// One line at the bottom; what does not fit is cut off at the window's edge. It never wraps:
+/// a second line would shrink the viewport, whose new size restarts the render, whose new
+/// figures could unwrap it again (a narrow window restarted the render every frame).
 pub fn status_bar(ui: &mut egui::Ui, app: &mut RaygineApp) {
     egui::Panel::bottom("status").show(ui, |ui| {
-        ui.horizontal_wrapped(|ui| {
+        ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
+        ui.horizontal(|ui| {
             let s = app.worker.stats();
             let state = if app.paused {
                 "paused"

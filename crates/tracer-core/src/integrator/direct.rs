@@ -21,6 +21,7 @@ pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
     for depth in 0..=prep.max_depth {
         sample.rays += 1;
         let Some(hit) = prep.closest_visible(&ray) else {
+            sample.missed = depth == 0;
             break;
         };
         let p = ray.at(hit.t);

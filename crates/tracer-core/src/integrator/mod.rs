@@ -34,6 +34,9 @@ pub struct Sample {
     pub illuminance_lx: f32,
     /// Rays traced for this sample.
     pub rays: u32,
+    /// The camera ray hit no drawn surface (0 cd/m² here, as in every export). The viewer draws
+    /// its backdrop in such pixels, so the background is told apart from unlit surfaces.
+    pub missed: bool,
 }
 
 /// Which light transport to compute.
@@ -161,6 +164,7 @@ impl<'a> Integrator<'a> {
             rgb: estimate.value,
             illuminance_lx,
             rays,
+            missed: first.is_none(),
         }
     }
 

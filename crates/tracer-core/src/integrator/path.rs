@@ -77,6 +77,7 @@ impl PathTracer<'_, '_> {
         let mut rays = 0u32;
         let Some((v, le)) = self.arrive(ray, Came::Delta, &mut rays) else {
             sample.rays = rays;
+            sample.missed = true;
             return sample;
         };
         let mat = self.prep.material_of(v.prim);

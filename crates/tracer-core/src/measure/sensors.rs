@@ -117,6 +117,7 @@ fn add_samples(
                     rgb: Vec3::splat(e),
                     illuminance_lx: e,
                     rays: r,
+                    missed: false,
                 });
             }
             rays

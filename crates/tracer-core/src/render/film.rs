@@ -338,6 +338,7 @@ impl Film {
                 rgb: rgb.get(i).copied().unwrap_or_default(),
                 illuminance_lx: lx.get(i).copied().unwrap_or_default(),
                 rays: 0,
+                missed: false,
             });
         }
         film
@@ -354,6 +355,7 @@ mod tests {
             rgb: Vec3::new(v, 2.0 * v, 0.5 * v),
             illuminance_lx: 3.0 * v,
             rays: 1,
+            missed: false,
         }
     }
 

@@ -115,6 +115,7 @@ mod tests {
                     rgb: Vec3::new(s as f32 * 1e6, -0.25, 3.5e-9),
                     illuminance_lx: 1e9,
                     rays: 1,
+                    missed: false,
                 });
             }
         }

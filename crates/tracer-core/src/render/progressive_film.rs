@@ -3,6 +3,7 @@
 
 use super::film::{Film, PixelSum};
 use super::tiles::Tile;
+use crate::integrator::Sample;
 use glam::Vec3;
 
 #[derive(Clone, Debug)]
@@ -14,6 +15,11 @@ pub struct ProgressiveFilm {
     /// Coarse preview values (luminance per channel, illuminance), one per pixel.
     preview_rgb: Vec<Vec3>,
     preview_lx: Vec<f32>,
+    /// Per pixel, the full samples whose camera ray hit nothing (display only: the viewer draws
+    /// its backdrop there; films, exports and part files do not keep it).
+    misses: Vec<u32>,
+    /// Per pixel, whether the preview sample's camera ray hit nothing.
+    preview_missed: Vec<bool>,
     /// Whether any preview value has been written (else the film shows nothing yet).
     pub has_preview: bool,
     /// Full-resolution samples added over all pixels (each traced one light subpath in
@@ -29,6 +35,8 @@ impl ProgressiveFilm {
             accum: Film::new(width, height),
             preview_rgb: vec![Vec3::ZERO; n],
             preview_lx: vec![0.0; n],
+            misses: vec![0; n],
+            preview_missed: vec![false; n],
             has_preview: false,
             samples_added: 0,
         }
@@ -40,6 +48,8 @@ impl ProgressiveFilm {
         self.accum.pixels.fill(PixelSum::default());
         self.preview_rgb.fill(Vec3::ZERO);
         self.preview_lx.fill(0.0);
+        self.misses.fill(0);
+        self.preview_missed.fill(false);
         self.has_preview = false;
         self.samples_added = 0;
     }
@@ -53,11 +63,12 @@ impl ProgressiveFilm {
     }
 
     /// Fills a preview block's pixels (clipped to `tile`) with one sample's value.
-    pub fn fill_preview(&mut self, rect: &Tile, rgb: Vec3, lx: f32) {
+    pub fn fill_preview(&mut self, rect: &Tile, sample: &Sample) {
         for (x, y) in rect.pixels() {
             let i = self.accum.index(x, y);
-            self.preview_rgb[i] = rgb;
-            self.preview_lx[i] = lx;
+            self.preview_rgb[i] = sample.rgb;
+            self.preview_lx[i] = sample.illuminance_lx;
+            self.preview_missed[i] = sample.missed;
         }
         self.has_preview = true;
     }
@@ -65,6 +76,26 @@ impl ProgressiveFilm {
     pub fn add_tile(&mut self, tile: &Tile, sums: &[PixelSum]) {
         self.accum.add_tile(tile, sums);
         self.samples_added += sums.iter().map(|s| u64::from(s.count)).sum::<u64>();
+    }
+
+    /// Counts the full samples of a tile (one per pixel, the tile's row-major order) whose
+    /// camera ray hit nothing.
+    pub fn add_misses(&mut self, tile: &Tile, missed: &[bool]) {
+        for ((x, y), &m) in tile.pixels().zip(missed) {
+            let i = self.accum.index(x, y);
+            self.misses[i] += u32::from(m);
+        }
+    }
+
+    /// The share (0..=1) of pixel `i` where the camera sees nothing: of its full samples, else
+    /// its preview's. The background of the viewer's display, never of a render.
+    pub fn background_fraction(&self, i: usize) -> f32 {
+        let count = self.accum.pixels[i].count;
+        if count > 0 {
+            (self.misses[i] as f32 / count as f32).min(1.0)
+        } else {
+            f32::from(u8::from(self.preview_missed[i]))
+        }
     }
 
     /// Adds light-subpath splats (bidirectional mode).
@@ -103,7 +134,44 @@ impl ProgressiveFilm {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrator::{Sample, Splat};
+    use crate::integrator::Splat;
+
+    /// The share of a pixel's samples that saw nothing: the preview's until full samples
+    /// arrive, then the full samples'.
+    #[test]
+    fn background_fraction_counts_the_samples_that_saw_nothing() {
+        let mut film = ProgressiveFilm::new(1, 2, 1);
+        let both = Tile {
+            x0: 0,
+            y0: 0,
+            x1: 2,
+            y1: 1,
+        };
+        let missed = Sample {
+            missed: true,
+            ..Sample::default()
+        };
+        let hit = Sample {
+            rgb: Vec3::splat(1.0),
+            ..Sample::default()
+        };
+        film.fill_preview(&both, &missed);
+        assert_eq!(film.background_fraction(0), 1.0);
+        // Pixel 0: one sample hit, one missed; pixel 1: two hits.
+        for (a, b) in [(&hit, &hit), (&missed, &hit)] {
+            let sums = [a, b].map(|s| {
+                let mut sum = PixelSum::default();
+                assert!(sum.add(s));
+                sum
+            });
+            film.add_tile(&both, &sums);
+            film.add_misses(&both, &[a.missed, b.missed]);
+        }
+        assert_eq!(film.background_fraction(0), 0.5);
+        assert_eq!(film.background_fraction(1), 0.0);
+        film.reset(2);
+        assert_eq!(film.background_fraction(0), 0.0);
+    }
 
     /// Mid-pass, splats are divided by the light subpaths traced so far, not by a pixel's own
     /// count: a pixel reads the same before and after the rest of the pass arrives.

@@ -2,6 +2,7 @@
 //! every render snapshot carries one.
 
 use super::camera::Camera;
+use super::framing::framing_camera;
 use super::geometry::Scene;
 use super::light::Light;
 use super::material::Material;
@@ -29,7 +30,7 @@ pub struct Setup {
 impl Setup {
     /// What a scene without a sidecar gets: what its file designed ([`Scene::design`]), and for
     /// what it did not: neutral grey diffuse, one light just below the top centre of the
-    /// bounds, a camera framing the bounds looking towards -Z.
+    /// bounds, a camera framing the bounds ([`framing_camera`]).
     pub fn defaults(scene: &Scene, unit: LengthUnit) -> Setup {
         let slots = scene.slots.len();
         let design = &scene.design;
@@ -64,20 +65,6 @@ impl Setup {
 
     pub fn is_hidden(&self, slot: u32) -> bool {
         self.hidden.get(slot as usize).copied().unwrap_or(false)
-    }
-}
-
-/// A camera on the +Z side of the bounds looking towards -Z at their centre, far enough that the
-/// bounding sphere fits the vertical field of view.
-pub fn framing_camera(scene: &Scene, fov_deg: f32) -> Camera {
-    let c = scene.bounds.center();
-    let r = scene.bounds.radius().max(1e-6);
-    let half = (fov_deg.clamp(1.0, 170.0).to_radians() * 0.5).sin();
-    Camera {
-        position: [c.x, c.y, c.z + r / half],
-        look_at: c.to_array(),
-        up: [0.0, 1.0, 0.0],
-        fov_deg,
     }
 }
 
@@ -124,6 +111,17 @@ pub fn default_light(scene: &Scene, unit: LengthUnit, eye: [f32; 3]) -> Light {
     let d_m = (reach * unit.metres_per_unit()).max(1e-6);
     let intensity = 100.0 * std::f32::consts::PI * d_m * d_m / 0.7;
     Light::point(position.to_array(), round_2_significant(intensity))
+}
+
+/// Whether the scene is a room seen into from `eye`: a ceiling just above its top centre, open
+/// space below it, and nothing between there and `eye` (a closed mesh, whose inside looks like
+/// a room, is not one: its inside is hidden from an eye outside).
+pub(super) fn is_room_seen_from(scene: &Scene, eye: glam::Vec3) -> bool {
+    let b = scene.bounds;
+    let height = b.extent().y;
+    let c = b.center();
+    let under_top = glam::Vec3::new(c.x, b.max.y - 0.02 * height, c.z);
+    is_room(scene, under_top, height) && sees(scene, under_top, eye)
 }
 
 /// Whether `p`, just under the top centre, is under a ceiling with open space below (a room or

@@ -69,13 +69,14 @@ impl PassContext<'_> {
         self.rays.fetch_add(rays, Ordering::Relaxed);
         self.commit(tile, |film| {
             for (rect, s) in &blocks {
-                film.fill_preview(rect, s.rgb, s.illuminance_lx);
+                film.fill_preview(rect, s);
             }
         });
     }
 
     fn full_tile(&self, tile: &Tile, index: u32) {
         let mut sums = Vec::with_capacity(tile.pixel_count());
+        let mut missed = Vec::with_capacity(tile.pixel_count());
         let mut splats = Vec::new();
         let mut rays = 0u64;
         for y in tile.y0..tile.y1 {
@@ -83,16 +84,18 @@ impl PassContext<'_> {
                 return;
             }
             for x in tile.x0..tile.x1 {
+                let sample = self.frame.sample(x, y, index, &mut splats);
+                rays += u64::from(sample.rays);
                 let mut sum = PixelSum::default();
-                rays += self
-                    .frame
-                    .add_samples(x, y, index..index + 1, &mut sum, &mut splats);
+                sum.add(&sample);
                 sums.push(sum);
+                missed.push(sample.missed);
             }
         }
         self.rays.fetch_add(rays, Ordering::Relaxed);
         self.commit(tile, |film| {
             film.add_tile(tile, &sums);
+            film.add_misses(tile, &missed);
             film.add_splats(&splats);
         });
         if !splats.is_empty() {
