@@ -2,10 +2,10 @@
 //! the viewport draw in their own modules.
 
 use crate::document::Document;
-use crate::file_ops::{DialogPurpose, PendingDialog, PendingLoad, PendingWrite};
+use crate::file_ops::{DialogPurpose, PendingDialog, PendingLoad, PendingWrite, start_write};
 use crate::history::History;
 use crate::prefs::{PREFS_KEY, Prefs};
-use crate::render_worker::{RenderKey, RenderWorker, map_rect};
+use crate::render_worker::{RenderKey, RenderWorker, exposure_stops, map_rect};
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -265,7 +265,7 @@ impl RaygineApp {
 
     /// Starts loading a scene in the background; the current scene stays until it succeeds.
     pub fn open_path(&mut self, path: &Path) {
-        self.loading = Some(PendingLoad::start(path, &self.ctx));
+        self.loading = Some(PendingLoad::start(path, None, &self.ctx));
     }
 
     /// Shows another scene: fresh history, no selection, and rendering resumed, so the new scene
@@ -284,7 +284,7 @@ impl RaygineApp {
 
     /// [`RaygineApp::open_path`] with the scene's length unit given.
     pub fn open_path_in_unit(&mut self, path: &Path, unit: Option<tracer_core::scene::LengthUnit>) {
-        self.loading = Some(PendingLoad::start_in_unit(path, unit, &self.ctx));
+        self.loading = Some(PendingLoad::start(path, unit, &self.ctx));
     }
 
     /// Reads the scene again in another length unit: distances, the default light and camera
@@ -440,11 +440,19 @@ impl RaygineApp {
                 Err(e) => self.error = Some(e),
             }
         }
-        if let Some(picked) = self.dialog.as_ref().and_then(PendingDialog::poll) {
+        if let Some(result) = self.dialog.as_ref().and_then(PendingDialog::poll) {
             let quick = self.dialog.as_ref().is_some_and(|d| {
                 d.started.elapsed().as_secs_f32() < crate::file_ops::NO_DIALOG_SECS
             });
             let purpose = self.dialog.take().map(|d| d.purpose);
+            // A dialog that could not run is an error, not "cancelled".
+            let (picked, quick) = match result {
+                Ok(picked) => (picked, quick),
+                Err(e) => {
+                    self.error = Some(e);
+                    (None, false)
+                }
+            };
             if picked.is_none()
                 && quick
                 && let Some(p) = &mut self.prompt
@@ -506,7 +514,7 @@ impl RaygineApp {
         let display = job.display;
         let path = job.path;
         let secs = job.started.elapsed().as_secs_f64();
-        self.writes.push(PendingWrite::start(&self.ctx, move || {
+        self.writes.push(start_write(&self.ctx, move || {
             let rgba = display.map_film(&film);
             tracer_core::export::write_png(&path, rgba, film.width, film.height)
                 .map(|()| {
@@ -567,12 +575,7 @@ impl RaygineApp {
         let display = self.effective_display();
         let image = self.worker.with_film(|f| {
             f.map(|f| {
-                let exposure = if display.auto_exposure {
-                    tracer_core::display::auto_exposure_stops(&f.shown())
-                } else {
-                    display.exposure_stops
-                };
-                let img = map_rect(f, &display, exposure, None);
+                let img = map_rect(f, &display, exposure_stops(&display, f), None);
                 (img, f.width(), f.height())
             })
         });
@@ -581,7 +584,7 @@ impl RaygineApp {
             return;
         };
         let rgba: Vec<u8> = img.pixels.iter().flat_map(|c| c.to_array()).collect();
-        self.writes.push(PendingWrite::start(ctx, move || {
+        self.writes.push(start_write(ctx, move || {
             tracer_core::export::write_png(&path, rgba, w, h)
                 .map(|()| format!("exported {w}x{h} PNG to {}", path.display()))
                 .map_err(|e| e.to_string())
@@ -594,7 +597,7 @@ impl RaygineApp {
             self.error = Some("nothing rendered yet".to_owned());
             return;
         };
-        self.writes.push(PendingWrite::start(ctx, move || {
+        self.writes.push(start_write(ctx, move || {
             tracer_core::export::write_exr(&path, &film)
                 .map(|()| format!("exported linear EXR (cd/m²) to {}", path.display()))
                 .map_err(|e| e.to_string())
@@ -606,7 +609,7 @@ impl RaygineApp {
         let text = Sidecar::from_setup(&self.doc.scene, &self.doc.setup).to_toml();
         // A failed write shows its error; the edits then count as saved all the same.
         self.saved_setup = self.doc.setup.clone();
-        self.writes.push(PendingWrite::start(ctx, move || {
+        self.writes.push(start_write(ctx, move || {
             tracer_core::export::write_text(&path, &text)
                 .map(|()| format!("saved scene settings to {}", path.display()))
                 .map_err(|e| e.to_string())
