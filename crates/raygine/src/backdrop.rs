@@ -3,7 +3,7 @@
 //! black). Display only: the film keeps 0 cd/m² there, and exports and the CLI are unchanged.
 
 use egui::{Color32, ColorImage};
-use tracer_core::display::DisplaySettings;
+use tracer_core::display::DisplayMapper;
 use tracer_core::render::{ProgressiveFilm, Tile};
 
 /// The backdrop's colour at the top and at the bottom of the picture (sRGB).
@@ -24,14 +24,13 @@ fn lerp(a: [u8; 3], b: [u8; 3], t: f32) -> [u8; 3] {
     })
 }
 
-/// Draws the backdrop into `image`, the display mapping of `rect` of `film` (all of it for
-/// `None`): pixels that saw only background become the backdrop; a pixel that saw some of it
-/// (an edge) blends the backdrop with its surface, mapped at the surface's own mean.
+/// Draws the backdrop into `image`, the display mapping (by `mapper`) of `rect` of `film` (all
+/// of it for `None`): pixels that saw only background become the backdrop; a pixel that saw some
+/// of it (an edge) blends the backdrop with its surface, mapped at the surface's own mean.
 pub fn draw(
     image: &mut ColorImage,
     film: &ProgressiveFilm,
-    display: &DisplaySettings,
-    exposure: f32,
+    mapper: &DisplayMapper,
     rect: Option<Tile>,
 ) {
     let rect = rect.unwrap_or(Tile {
@@ -40,7 +39,6 @@ pub fn draw(
         x1: film.width(),
         y1: film.height(),
     });
-    let scale = DisplaySettings::scale_for(exposure);
     for ((x, y), out) in rect.pixels().zip(image.pixels.iter_mut()) {
         let i = film.accum.index(x, y);
         let background = film.background_fraction(i);
@@ -55,11 +53,7 @@ pub fn draw(
         // The film's mean counts the background's samples as 0 cd/m²; the surface's own mean
         // is that over the share of samples that hit it.
         let hit = 1.0 - background;
-        let [r, g, b, _] = display.map_pixel(
-            film.shown_rgb(i) / hit,
-            film.shown_illuminance(i) / hit,
-            scale,
-        );
+        let [r, g, b, _] = mapper.map(film.shown_rgb(i) / hit, film.shown_illuminance(i) / hit);
         let [br, bg, bb, _] = backdrop.to_array();
         let [r, g, b] = lerp([r, g, b], [br, bg, bb], background);
         *out = Color32::from_rgb(r, g, b);

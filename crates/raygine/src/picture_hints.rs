@@ -108,7 +108,7 @@ pub fn picture_hint(
     Some(format!(
         "Black at this exposure: the brightest pixels are about {} cd/m². Raise the exposure \
          by about {stops:.0} stops, or turn on auto exposure.",
-        crate::viewport_ui::format_value(bright)
+        crate::format::format_value(bright)
     ))
 }
 

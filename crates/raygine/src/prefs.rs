@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+use tracer_core::integrator::IntegratorKind;
 
 /// Storage key of the preferences.
 pub const PREFS_KEY: &str = "raygine-prefs";
@@ -31,14 +32,18 @@ impl Default for Prefs {
             exposure_stops: 0.0,
             auto_exposure: false,
             tone_map: "filmic".to_owned(),
-            integrator: crate::app::RaygineApp::default_integrator()
-                .name()
-                .to_owned(),
+            integrator: default_integrator().name().to_owned(),
             max_depth: tracer_core::render::DEFAULT_MAX_DEPTH,
             target_spp: 64,
             resolution_scale: 1.0,
         }
     }
+}
+
+/// The light transport a new user starts with: global illumination, bidirectional (lamps close
+/// to surfaces converge in seconds, as in the built-in Cornell box).
+pub fn default_integrator() -> IntegratorKind {
+    IntegratorKind::Bidirectional
 }
 
 impl Prefs {

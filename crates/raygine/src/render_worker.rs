@@ -6,7 +6,7 @@
 use egui::{ColorImage, TextureHandle, TextureOptions};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use tracer_core::display::{ChannelLut, DisplaySettings};
+use tracer_core::display::{DisplayMapper, DisplaySettings};
 use tracer_core::render::{
     ProgressiveFilm, RenderSession, RenderSettings, SessionStats, Snapshot, Tile,
 };
@@ -39,8 +39,8 @@ pub struct RenderWorker {
     shown_display: Option<DisplaySettings>,
     shown_exposure: f32,
     shown_passes: u32,
-    /// The lookup table of the display mapping in force (settings and exposure it was made for).
-    lut: Option<(DisplaySettings, f32, Option<ChannelLut>)>,
+    /// The display mapping in force (made again when the settings or the exposure change).
+    mapper: Option<DisplayMapper>,
     /// When the current generation was started (for change-to-pixels latency).
     started_at: Option<Instant>,
     /// Seconds from the last restart to the first texture upload of the new generation.
@@ -75,7 +75,7 @@ impl RenderWorker {
             shown_display: None,
             shown_exposure: 0.0,
             shown_passes: 0,
-            lut: None,
+            mapper: None,
             started_at: None,
             last_change_to_pixels: None,
             scene_first_generation: 0,
@@ -184,32 +184,30 @@ impl RenderWorker {
         let exposure_stale = display.auto_exposure && stats.passes_done != self.shown_passes;
         let mut exposure = self.shown_exposure;
         if new_generation || exposure_stale || self.shown_display.as_ref() != Some(display) {
-            exposure = if display.auto_exposure {
-                self.session
-                    .with_film(|f| f.map(|f| tracer_core::display::auto_exposure_stops(&f.shown())))
-                    .unwrap_or(0.0)
-            } else {
-                display.exposure_stops
-            };
+            exposure = self
+                .session
+                .with_film(|f| f.map(|f| exposure_stops(display, f)))
+                .unwrap_or(0.0);
         }
         let full = new_generation
             || self.shown_display.as_ref() != Some(display)
             || (exposure - self.shown_exposure).abs() > 0.02
             || self.texture.is_none();
         self.shown_passes = stats.passes_done;
-        let lut_stale = self
-            .lut
+        if !self
+            .mapper
             .as_ref()
-            .is_none_or(|(d, e, _)| d != display || *e != exposure);
-        if lut_stale {
-            let lut = ChannelLut::new(display, DisplaySettings::scale_for(exposure));
-            self.lut = Some((*display, exposure, lut));
+            .is_some_and(|m| m.is_for(display, exposure))
+        {
+            self.mapper = Some(DisplayMapper::new(display, exposure));
         }
-        let lut = self.lut.as_ref().and_then(|(_, _, l)| l.as_ref());
+        let Some(mapper) = &self.mapper else {
+            return;
+        };
         if full {
             let image = self
                 .session
-                .with_film(|f| f.map(|f| texture_rect(f, display, exposure, None, None)));
+                .with_film(|f| f.map(|f| texture_rect(f, display, exposure, None, Some(mapper))));
             let Some(image) = image else {
                 return;
             };
@@ -229,9 +227,9 @@ impl RenderWorker {
             }
         } else if let Some(texture) = &mut self.texture {
             for rect in merge_rows(dirty) {
-                let image = self
-                    .session
-                    .with_film(|f| f.map(|f| texture_rect(f, display, exposure, Some(rect), lut)));
+                let image = self.session.with_film(|f| {
+                    f.map(|f| texture_rect(f, display, exposure, Some(rect), Some(mapper)))
+                });
                 if let Some(image) = image {
                     texture.set_partial(
                         [rect.x0 as usize, rect.y0 as usize],
@@ -258,42 +256,55 @@ impl RenderWorker {
     }
 }
 
+/// The exposure (stops) the film is shown at: the automatic one when enabled.
+pub fn exposure_stops(display: &DisplaySettings, film: &ProgressiveFilm) -> f32 {
+    if display.auto_exposure {
+        tracer_core::display::auto_exposure_stops(&film.shown())
+    } else {
+        display.exposure_stops
+    }
+}
+
 /// What the viewport shows of a rectangle of the film (all of it for `None`): its display
-/// mapping with the backdrop where the camera saw nothing. Exports use [`map_rect`] instead.
+/// mapping (through `mapper` when one made for `display` at `exposure` is at hand) with the
+/// backdrop where the camera saw nothing. Exports use [`map_rect`] instead.
 pub fn texture_rect(
     film: &ProgressiveFilm,
     display: &DisplaySettings,
     exposure: f32,
     rect: Option<Tile>,
-    lut: Option<&ChannelLut>,
+    mapper: Option<&DisplayMapper>,
 ) -> ColorImage {
-    let mut image = match lut {
-        Some(_) => map_rect_with(film, display, exposure, rect, lut),
-        None => map_rect(film, display, exposure, rect),
+    let made;
+    let mapper = match mapper {
+        Some(m) => m,
+        None => {
+            made = DisplayMapper::new(display, exposure);
+            &made
+        }
     };
-    crate::backdrop::draw(&mut image, film, display, exposure, rect);
+    let mut image = map_rect_with(film, mapper, rect);
+    crate::backdrop::draw(&mut image, film, mapper, rect);
     image
 }
 
-/// Maps a rectangle of the film (all of it for `None`) to display pixels, as exports write them
-/// (no backdrop).
+/// Maps a rectangle of the film (all of it for `None`) to display pixels at `exposure` stops,
+/// as exports write them (no backdrop).
 pub fn map_rect(
     film: &ProgressiveFilm,
     display: &DisplaySettings,
     exposure: f32,
     rect: Option<Tile>,
 ) -> ColorImage {
-    let lut = ChannelLut::new(display, DisplaySettings::scale_for(exposure));
-    map_rect_with(film, display, exposure, rect, lut.as_ref())
+    map_rect_with(film, &DisplayMapper::new(display, exposure), rect)
 }
 
-/// [`map_rect`] with a lookup table made for the same display settings and exposure.
+/// [`map_rect`] through a mapping already made: the one display path of
+/// [`tracer_core::display`], which the CLI and the exports use too.
 pub fn map_rect_with(
     film: &ProgressiveFilm,
-    display: &DisplaySettings,
-    exposure: f32,
+    mapper: &DisplayMapper,
     rect: Option<Tile>,
-    lut: Option<&ChannelLut>,
 ) -> ColorImage {
     let rect = rect.unwrap_or(Tile {
         x0: 0,
@@ -301,20 +312,14 @@ pub fn map_rect_with(
         x1: film.width(),
         y1: film.height(),
     });
-    let scale = DisplaySettings::scale_for(exposure);
-    let mut pixels = Vec::with_capacity(rect.pixel_count());
-    for (x, y) in rect.pixels() {
-        let i = film.accum.index(x, y);
-        let rgb = film.shown_rgb(i);
-        let [r, g, b] = match lut {
-            Some(lut) => [lut.code(rgb.x), lut.code(rgb.y), lut.code(rgb.z)],
-            None => {
-                let [r, g, b, _] = display.map_pixel(rgb, film.shown_illuminance(i), scale);
-                [r, g, b]
-            }
-        };
-        pixels.push(egui::Color32::from_rgb(r, g, b));
-    }
+    let pixels = rect
+        .pixels()
+        .map(|(x, y)| {
+            let i = film.accum.index(x, y);
+            let [r, g, b, _] = mapper.map(film.shown_rgb(i), film.shown_illuminance(i));
+            egui::Color32::from_rgb(r, g, b)
+        })
+        .collect();
     ColorImage::new([rect.width() as usize, rect.height() as usize], pixels)
 }
 

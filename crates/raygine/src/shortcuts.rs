@@ -4,6 +4,9 @@
 //! keyboard focus, plain keys (F, P) and undo / redo belong to the field. Commands with Ctrl
 //! (open, save, export, quit) still work, as they type nothing.
 
+use crate::command::{Command, Commands};
+use crate::file_ops::DialogPurpose;
+use crate::unsaved::Switch;
 use egui::{Key, KeyboardShortcut, Modifiers};
 
 pub const SHORTCUT_OPEN: KeyboardShortcut = KeyboardShortcut::new(Modifiers::COMMAND, Key::O);
@@ -48,5 +51,34 @@ impl Pressed {
                 toggle_pause: !typing && i.consume_key(Modifiers::NONE, Key::P),
             }
         })
+    }
+
+    /// What the keys pressed ask for, in the order they act.
+    pub fn commands(self) -> Commands {
+        let mut out = Commands::new();
+        if self.quit {
+            out.push(Command::Switch(Switch::Quit));
+        }
+        if self.open {
+            out.push(Command::PromptPath(DialogPurpose::Open));
+        }
+        if self.save {
+            out.push(Command::SaveSidecar);
+        }
+        if self.export {
+            out.push(Command::PromptPath(DialogPurpose::ExportPng));
+        }
+        if self.redo {
+            out.push(Command::Redo);
+        } else if self.undo {
+            out.push(Command::Undo);
+        }
+        if self.frame_scene {
+            out.push(Command::FrameScene);
+        }
+        if self.toggle_pause {
+            out.push(Command::TogglePause);
+        }
+        out
     }
 }

@@ -1,11 +1,13 @@
 //! Camera: position, look-at, vertical field of view; reset to framing.
 
-use crate::app::RaygineApp;
+use crate::command::{Command, Commands};
+use crate::document::Document;
 
-pub fn camera_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
-    let unit = app.doc.setup.unit.symbol();
-    let speed = (app.doc.scene.bounds.radius() * 0.005).max(1e-4);
-    let cam = &mut app.doc.setup.camera;
+/// The camera's numbers, edited in place; Frame scene is asked for.
+pub fn camera_ui(ui: &mut egui::Ui, doc: &mut Document, out: &mut Commands) {
+    let unit = doc.setup.unit.symbol();
+    let speed = (doc.scene.bounds.radius() * 0.005).max(1e-4);
+    let cam = &mut doc.setup.camera;
     vec3_row(ui, "position", &mut cam.position, speed, unit);
     vec3_row(ui, "look at", &mut cam.look_at, speed, unit);
     ui.add(
@@ -20,7 +22,7 @@ pub fn camera_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             .on_hover_text("Look at the whole scene from +Z (F)")
             .clicked()
         {
-            app.frame_scene();
+            out.push(Command::FrameScene);
         }
         ui.label("drag: orbit · shift/middle: pan · wheel: dolly");
     });

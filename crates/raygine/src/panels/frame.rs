@@ -1,11 +1,11 @@
 //! The scene's frame: its length unit (reads the scene again) and handedness (a setup edit).
 
-use crate::app::RaygineApp;
-use tracer_core::scene::{Handedness, LengthUnit};
+use tracer_core::scene::{Handedness, LengthUnit, Setup};
 
-/// Draws the unit and handedness choices; returns the unit the user picked, if it changed.
-pub fn frame_ui(ui: &mut egui::Ui, app: &mut RaygineApp) -> Option<LengthUnit> {
-    let mut unit = app.doc.setup.unit;
+/// Draws the unit and handedness choices; returns the unit the user picked, if it changed (and
+/// no scene is being loaded).
+pub fn frame_ui(ui: &mut egui::Ui, setup: &mut Setup, loading: bool) -> Option<LengthUnit> {
+    let mut unit = setup.unit;
     ui.horizontal(|ui| {
         egui::ComboBox::from_label("unit")
             .selected_text(unit.symbol())
@@ -19,7 +19,7 @@ pub fn frame_ui(ui: &mut egui::Ui, app: &mut RaygineApp) -> Option<LengthUnit> {
                 "The unit of the file's coordinates. Changing it reads the scene again (the \
                  default light and camera follow; unsaved edits are dropped)",
             );
-        let h = &mut app.doc.setup.handedness;
+        let h = &mut setup.handedness;
         egui::ComboBox::from_label("handedness")
             .selected_text(handedness_name(*h))
             .show_ui(ui, |ui| {
@@ -33,7 +33,7 @@ pub fn frame_ui(ui: &mut egui::Ui, app: &mut RaygineApp) -> Option<LengthUnit> {
                  the left. Right-handed: +X on the right. Only the camera's picture changes",
             );
     });
-    (unit != app.doc.setup.unit && app.loading.is_none()).then_some(unit)
+    (unit != setup.unit && !loading).then_some(unit)
 }
 
 fn handedness_name(h: Handedness) -> &'static str {

@@ -3,21 +3,29 @@
 //! a fraction of itself), spot axis and angles, colour; add (beside the lights already there)
 //! and remove. Emissive surfaces are edited with their material.
 
-use crate::app::RaygineApp;
+use crate::command::{Command, Commands};
+use crate::document::Document;
 use tracer_core::scene::{Light, LightKind, default_light};
 
-pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
-    let b = app.doc.scene.bounds;
+/// The lights, edited in place. `luminaire_path` is the panel's own text field for "Add
+/// luminaire"; a luminaire file that cannot be read is reported as an error.
+pub fn lights_ui(
+    ui: &mut egui::Ui,
+    doc: &mut Document,
+    luminaire_path: &mut String,
+    out: &mut Commands,
+) {
+    let b = doc.scene.bounds;
     // The sliders span the scene's bounds (a flat scene gets some height); typed values may go
     // anywhere.
     let pad = glam::Vec3::splat(b.extent().max_element().max(1e-3) * 0.25);
     let flat = b.extent().cmple(glam::Vec3::splat(1e-6));
     let lo = glam::Vec3::select(flat, b.min - pad, b.min);
     let hi = glam::Vec3::select(flat, b.max + pad, b.max);
-    let unit = app.doc.setup.unit.symbol();
+    let unit = doc.setup.unit.symbol();
     let mut remove = None;
-    let count = app.doc.setup.lights.len();
-    for (i, light) in app.doc.setup.lights.iter_mut().enumerate() {
+    let count = doc.setup.lights.len();
+    for (i, light) in doc.setup.lights.iter_mut().enumerate() {
         ui.push_id(i, |ui| {
             ui.horizontal(|ui| {
                 ui.strong(format!("Light {}", i + 1));
@@ -88,22 +96,18 @@ pub fn lights_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         });
     }
     if let Some(i) = remove {
-        app.doc.setup.lights.remove(i);
+        doc.setup.lights.remove(i);
     }
     if ui
         .button("Add light")
         .on_hover_text("A new point light where a scene without a sidecar gets its light")
         .clicked()
     {
-        let mut light: Light = default_light(
-            &app.doc.scene,
-            app.doc.setup.unit,
-            app.doc.setup.camera.position,
-        );
-        light.position = beside_lights(light.position, &app.doc.setup.lights, &b);
-        app.doc.setup.lights.push(light);
+        let mut light: Light = default_light(&doc.scene, doc.setup.unit, doc.setup.camera.position);
+        light.position = beside_lights(light.position, &doc.setup.lights, &b);
+        doc.setup.lights.push(light);
     }
-    add_luminaire_ui(ui, app);
+    add_luminaire_ui(ui, doc, luminaire_path, out);
 }
 
 /// Intensity in candela: a drag changes it by about 0.5 % a point (a 20-point drag about 10 %),
@@ -180,14 +184,11 @@ pub fn beside_lights(
 }
 
 /// A typed path and a button that add a luminaire from an IES or EULUMDAT file.
-fn add_luminaire_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
-    // A fixed id: the text must survive from frame to frame wherever the panel is drawn.
-    let id = egui::Id::unique("raygine-luminaire-path");
-    let mut text: String = ui.data_mut(|d| d.get_temp::<String>(id).unwrap_or_default());
+fn add_luminaire_ui(ui: &mut egui::Ui, doc: &mut Document, text: &mut String, out: &mut Commands) {
     ui.horizontal(|ui| {
         let label = ui.label("luminaire file");
         ui.add(
-            egui::TextEdit::singleline(&mut text)
+            egui::TextEdit::singleline(text)
                 .hint_text("lamp.ies or .ldt")
                 .desired_width(140.0),
         )
@@ -200,20 +201,17 @@ fn add_luminaire_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         {
             let path = std::path::PathBuf::from(text.trim());
             if text.trim().is_empty() {
-                app.error =
-                    Some("type the path of an IES (.ies) or EULUMDAT (.ldt) file first".into());
+                out.push(Command::Error(
+                    "type the path of an IES (.ies) or EULUMDAT (.ldt) file first".into(),
+                ));
                 return;
             }
             match tracer_core::formats::read_photometry(&path) {
                 Ok(photometry) => {
-                    let base = default_light(
-                        &app.doc.scene,
-                        app.doc.setup.unit,
-                        app.doc.setup.camera.position,
-                    );
+                    let base = default_light(&doc.scene, doc.setup.unit, doc.setup.camera.position);
                     let position =
-                        beside_lights(base.position, &app.doc.setup.lights, &app.doc.scene.bounds);
-                    app.doc.setup.lights.push(Light {
+                        beside_lights(base.position, &doc.setup.lights, &doc.scene.bounds);
+                    doc.setup.lights.push(Light {
                         kind: LightKind::Luminaire,
                         position,
                         luminaire: Some(std::sync::Arc::new(tracer_core::light::Luminaire::new(
@@ -221,13 +219,12 @@ fn add_luminaire_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                         ))),
                         ..base
                     });
-                    app.error = None;
+                    out.push(Command::DismissError);
                 }
-                Err(e) => app.error = Some(e.to_string()),
+                Err(e) => out.push(Command::Error(e.to_string())),
             }
         }
     });
-    ui.data_mut(|d| d.insert_temp(id, text));
 }
 
 /// A luminaire's multiplier, aim, rotation and polar intensity diagram.

@@ -1,7 +1,8 @@
 //! Materials per brep and part: Kd colour, Ks colour, glossiness; hide or isolate breps; the
 //! surface clicked in the viewport is selected here.
 
-use crate::app::RaygineApp;
+use crate::command::{Command, Commands};
+use crate::document::Document;
 use tracer_core::light::EmissionSides;
 
 /// A part's name in the list: its own name when the format gives one, else its number.
@@ -13,8 +14,15 @@ fn part_label(brep: &tracer_core::scene::Brep, part: u32) -> String {
     }
 }
 
-pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
-    let scene = std::sync::Arc::clone(&app.doc.scene);
+/// The breps' visibility and the selected slot's material, edited in place; a selection is asked
+/// for.
+pub fn materials_ui(
+    ui: &mut egui::Ui,
+    doc: &mut Document,
+    selected_slot: Option<u32>,
+    out: &mut Commands,
+) {
+    let scene = std::sync::Arc::clone(&doc.scene);
     egui::ScrollArea::vertical()
         .id_salt("breps")
         .max_height(220.0)
@@ -22,19 +30,19 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             for (bi, brep) in scene.breps.iter().enumerate() {
                 let slots = brep.first_slot..brep.first_slot + brep.part_count;
                 ui.horizontal(|ui| {
-                    let mut visible = slots.clone().any(|s| !app.doc.setup.is_hidden(s));
+                    let mut visible = slots.clone().any(|s| !doc.setup.is_hidden(s));
                     if ui
                         .checkbox(&mut visible, "")
                         .on_hover_text("Show or hide this brep")
                         .changed()
                     {
                         for s in slots.clone() {
-                            app.doc.setup.hidden[s as usize] = !visible;
+                            doc.setup.hidden[s as usize] = !visible;
                         }
                     }
-                    let selected = app.selected_slot.is_some_and(|s| slots.contains(&s));
+                    let selected = selected_slot.is_some_and(|s| slots.contains(&s));
                     if ui.selectable_label(selected, brep.name.as_str()).clicked() {
-                        app.selected_slot = Some(brep.first_slot);
+                        out.push(Command::Select(Some(brep.first_slot)));
                     }
                     if ui
                         .small_button("isolate")
@@ -42,14 +50,14 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                         .clicked()
                     {
                         for (s, owner) in scene.slots.iter().enumerate() {
-                            app.doc.setup.hidden[s] = owner.brep as usize != bi;
+                            doc.setup.hidden[s] = owner.brep as usize != bi;
                         }
                     }
                 });
                 // Parts the format names (an Integra room's 20 materials) are always listed;
                 // numbered parts when their brep is selected.
                 let named = !brep.part_names.is_empty();
-                let selected = app.selected_slot.is_some_and(|s| slots.contains(&s));
+                let selected = selected_slot.is_some_and(|s| slots.contains(&s));
                 if brep.part_count > 1 && (named || selected) {
                     ui.indent(bi, |ui| {
                         ui.horizontal_wrapped(|ui| {
@@ -57,12 +65,12 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                                 let part = s - brep.first_slot;
                                 if ui
                                     .selectable_label(
-                                        app.selected_slot == Some(s),
+                                        selected_slot == Some(s),
                                         part_label(brep, part),
                                     )
                                     .clicked()
                                 {
-                                    app.selected_slot = Some(s);
+                                    out.push(Command::Select(Some(s)));
                                 }
                             }
                         });
@@ -70,16 +78,16 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 }
             }
         });
-    if app.doc.setup.hidden.iter().any(|&h| h) && ui.button("Show all").clicked() {
-        app.doc.setup.hidden.iter_mut().for_each(|h| *h = false);
+    if doc.setup.hidden.iter().any(|&h| h) && ui.button("Show all").clicked() {
+        doc.setup.hidden.iter_mut().for_each(|h| *h = false);
     }
     ui.separator();
-    let Some(slot) = app.selected_slot else {
+    let Some(slot) = selected_slot else {
         ui.label("Click a surface or a brep name to edit its material.");
         return;
     };
     let label = scene.slot_label(slot);
-    let Some(m) = app.doc.setup.materials.get_mut(slot as usize) else {
+    let Some(m) = doc.setup.materials.get_mut(slot as usize) else {
         return;
     };
     ui.strong(format!("Material of {label}"))
@@ -129,11 +137,11 @@ pub fn materials_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             .map(|c| ["red", "green", "blue"][c])
             .collect();
         if !over.is_empty() {
-            app.notice = Some(format!(
+            out.push(Command::Notice(format!(
                 "{label}: Kd + Ks was above 1 in {} ({}); both were scaled down so they add to 1",
                 over.join(", "),
                 sums.map(|v| format!("{v:.2}")).join(" ")
-            ));
+            )));
         }
         *m = clamped;
     }

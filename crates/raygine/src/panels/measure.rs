@@ -1,19 +1,39 @@
 //! The Measure panel: the scene's calculation grids, a work plane to add, their statistics as
 //! they refine, and export of the readings to CSV and JSON beside the scene.
 
-use crate::app::RaygineApp;
+use crate::command::{Command, Commands};
+use crate::document::Document;
 use crate::measure_cmd::{csv, json_report};
+use crate::measure_worker::Readings;
+use tracer_core::integrator::IntegratorKind;
 use tracer_core::scene::{GridContext, GridSpec};
 
-pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
-    let readings = app.measure.readings();
-    let unit = app.doc.setup.unit.symbol();
+/// What the Measure panel shows besides the document.
+#[derive(Debug)]
+pub struct MeasureView {
+    /// The grids' latest readings (None while the first refinement runs).
+    pub readings: Option<Readings>,
+    pub selected_slot: Option<u32>,
+    /// The light transport the readings were measured with (named in the JSON).
+    pub integrator: IntegratorKind,
+}
+
+/// The grids, edited in place; exports and the report are asked for.
+pub fn measure_ui(
+    ui: &mut egui::Ui,
+    doc: &mut Document,
+    view: MeasureView,
+    show_grids: &mut bool,
+    out: &mut Commands,
+) {
+    let readings = view.readings;
+    let unit = doc.setup.unit.symbol();
     let mut remove = None;
-    if app.doc.setup.grids.is_empty() {
+    if doc.setup.grids.is_empty() {
         ui.label("No calculation grids. Add a work plane, or [[grids]] in the sidecar.");
     }
     let mut edited = None;
-    for (i, grid) in app.doc.setup.grids.iter().enumerate() {
+    for (i, grid) in doc.setup.grids.iter().enumerate() {
         ui.push_id(i, |ui| {
             if let Some(g) = edit_ui(ui, grid, unit) {
                 edited = Some((i, g));
@@ -54,20 +74,20 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         });
     }
     if let Some((i, g)) = edited {
-        app.doc.setup.grids[i] = g;
+        doc.setup.grids[i] = g;
     }
     if let Some(i) = remove {
-        app.doc.setup.grids.remove(i);
+        doc.setup.grids.remove(i);
     }
     if let Some(r) = &readings
-        && !app.doc.setup.grids.is_empty()
+        && !doc.setup.grids.is_empty()
     {
         let state = if r.finished { "done" } else { "refining" };
         ui.label(format!(
             "{} samples a point ({state}){}",
             r.samples,
-            if app.doc.setup.maintenance_factor != 1.0 {
-                format!(", maintenance factor {}", app.doc.setup.maintenance_factor)
+            if doc.setup.maintenance_factor != 1.0 {
+                format!(", maintenance factor {}", doc.setup.maintenance_factor)
             } else {
                 String::new()
             }
@@ -79,11 +99,11 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
             .on_hover_text("0.75 m over the floor, 0.5 m from the walls, EN 12464-1 spacing")
             .clicked()
         {
-            add_work_plane(app);
+            add_work_plane(doc, out);
         }
-        ui.checkbox(&mut app.show_grids, "show on picture");
+        ui.checkbox(show_grids, "show on picture");
     });
-    let selected = app.selected_slot;
+    let selected = view.selected_slot;
     if ui
         .add_enabled(
             selected.is_some(),
@@ -93,7 +113,7 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         .clicked()
         && let Some(slot) = selected
     {
-        add_surface_grid(app, slot);
+        add_surface_grid(doc, slot, out);
     }
     ui.add_enabled_ui(
         readings.as_ref().is_some_and(|r| !r.results.is_empty()),
@@ -102,15 +122,14 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 if ui.button("Export CSV").clicked()
                     && let Some(r) = &readings
                 {
-                    export(app, "grids.csv", &csv(&r.results));
+                    out.push(export(doc, "grids.csv", csv(&r.results)));
                 }
                 if ui.button("Export JSON").clicked()
                     && let Some(r) = &readings
                 {
-                    let unit = app.doc.setup.unit.symbol();
-                    let text =
-                        json_report(&r.results, unit, app.render.integrator.name(), r.samples);
-                    export(app, "grids.json", &text);
+                    let unit = doc.setup.unit.symbol();
+                    let text = json_report(&r.results, unit, view.integrator.name(), r.samples);
+                    out.push(export(doc, "grids.json", text));
                 }
             });
             if ui
@@ -120,16 +139,13 @@ pub fn measure_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                      CSV beside it",
                 )
                 .clicked()
-                && let (Some(r), Some(rect)) = (&readings, app.viewport_rect)
+                && let Some(r) = &readings
             {
-                let png = report_path(app, "report.png");
-                let csv_path = report_path(app, "grids.csv");
-                app.show_grids = true;
-                // The report shows the picture and the grids, not this session's banners.
-                app.notice = None;
-                app.error = None;
-                let text = csv(&r.results);
-                app.report = Some(crate::report::save(ui.ctx(), rect, png, csv_path, &text));
+                out.push(Command::SaveReport {
+                    png: report_path(doc, "report.png"),
+                    csv: report_path(doc, "grids.csv"),
+                    csv_text: csv(&r.results),
+                });
             }
         },
     );
@@ -234,9 +250,9 @@ fn profile_ui(
 
 /// A grid over the plane of material slot `slot`'s largest triangle, covering the slot's
 /// triangles in that plane, 0.1 % of the scene's size in front of it (towards the camera).
-fn add_surface_grid(app: &mut RaygineApp, slot: u32) {
+fn add_surface_grid(doc: &mut Document, slot: u32, out: &mut Commands) {
     use glam::Vec3;
-    let scene = &app.doc.scene;
+    let scene = &doc.scene;
     let tris: Vec<usize> = (0..scene.triangles.len())
         .filter(|&t| scene.triangle_slots[t] == slot)
         .collect();
@@ -249,10 +265,10 @@ fn add_surface_grid(app: &mut RaygineApp, slot: u32) {
     };
     let [a, b, c] = scene.triangles[largest];
     let Some(mut n) = (b - a).cross(c - a).try_normalize() else {
-        app.error = Some("the selected surface has no area".into());
+        out.push(Command::Error("the selected surface has no area".into()));
         return;
     };
-    let eye = Vec3::from(app.doc.setup.camera.position);
+    let eye = Vec3::from(doc.setup.camera.position);
     if n.dot(eye - a) < 0.0 {
         n = -n;
     }
@@ -296,9 +312,9 @@ fn add_surface_grid(app: &mut RaygineApp, slot: u32) {
         .collect();
     let name = (1..)
         .map(|k| format!("{label}{k}"))
-        .find(|name| app.doc.setup.grids.iter().all(|g| &g.name != name))
+        .find(|name| doc.setup.grids.iter().all(|g| &g.name != name))
         .unwrap_or(label);
-    let mpu = app.doc.setup.unit.metres_per_unit();
+    let mpu = doc.setup.unit.metres_per_unit();
     let p = tracer_core::scene::en12464_spacing_m(size.max_element() * mpu) / mpu;
     let count = |l: f32| ((l / p).ceil() as u32).clamp(1, 1000);
     match tracer_core::measure::Grid::new(
@@ -310,29 +326,29 @@ fn add_surface_grid(app: &mut RaygineApp, slot: u32) {
         count(size.y),
         Some(n.to_array()),
     ) {
-        Ok(g) => app.doc.setup.grids.push(g),
-        Err(e) => app.error = Some(e.to_string()),
+        Ok(g) => doc.setup.grids.push(g),
+        Err(e) => out.push(Command::Error(e.to_string())),
     }
 }
 
-fn add_work_plane(app: &mut RaygineApp) {
+fn add_work_plane(doc: &mut Document, out: &mut Commands) {
     let n = (1..)
         .map(|k| format!("workplane{k}"))
-        .find(|name| app.doc.setup.grids.iter().all(|g| &g.name != name))
+        .find(|name| doc.setup.grids.iter().all(|g| &g.name != name))
         .unwrap_or_else(|| "workplane".into());
     // 0.75 m up and 0.5 m in, unless the scene is smaller than that (a model box): then half
     // its height and a tenth of its shorter side, and say so.
-    let b = app.doc.scene.bounds;
-    let per_m = 1.0 / app.doc.setup.unit.metres_per_unit();
+    let b = doc.scene.bounds;
+    let per_m = 1.0 / doc.setup.unit.metres_per_unit();
     let (height, margin) = (0.75 * per_m, 0.5 * per_m);
     let fit_height = height.min(0.5 * b.extent().y);
     let fit_margin = margin.min(0.1 * b.extent().x.min(b.extent().z));
     if fit_height < height || fit_margin < margin {
-        let unit = app.doc.setup.unit.symbol();
-        app.notice = Some(format!(
+        let unit = doc.setup.unit.symbol();
+        out.push(Command::Notice(format!(
             "the scene is small for a 0.75 m work plane 0.5 m from the walls: placed at \
              {fit_height:.0} {unit}, {fit_margin:.0} {unit} from the walls"
-        ));
+        )));
     }
     let spec = GridSpec {
         name: n,
@@ -343,28 +359,28 @@ fn add_work_plane(app: &mut RaygineApp) {
     };
     let context = GridContext {
         bounds: b,
-        metres_per_unit: app.doc.setup.unit.metres_per_unit(),
+        metres_per_unit: doc.setup.unit.metres_per_unit(),
     };
     match spec.to_grid(Some(context)) {
-        Ok(Some(grid)) => app.doc.setup.grids.push(grid),
+        Ok(Some(grid)) => doc.setup.grids.push(grid),
         Ok(None) => {}
-        Err(e) => app.error = Some(e),
+        Err(e) => out.push(Command::Error(e)),
     }
 }
 
 /// NAME.`suffix` beside the scene (the current folder for the built-in scene).
-fn report_path(app: &RaygineApp, suffix: &str) -> std::path::PathBuf {
-    match &app.doc.path {
+fn report_path(doc: &Document, suffix: &str) -> std::path::PathBuf {
+    match &doc.path {
         Some(p) => p.with_extension(suffix),
         None => std::path::PathBuf::from(format!("cornell_box.{suffix}")),
     }
 }
 
-/// Writes `text` beside the scene as NAME.`suffix` (the current folder for the built-in scene).
-fn export(app: &mut RaygineApp, suffix: &str, text: &str) {
-    let path = report_path(app, suffix);
-    match tracer_core::export::write_text(&path, text) {
-        Ok(()) => app.notice = Some(format!("wrote {}", path.display())),
-        Err(e) => app.error = Some(format!("{}: {e}", path.display())),
+/// Asks for `text` to be written beside the scene as NAME.`suffix` (the current folder for the
+/// built-in scene).
+fn export(doc: &Document, suffix: &str, text: String) -> Command {
+    Command::WriteText {
+        path: report_path(doc, suffix),
+        text,
     }
 }

@@ -1,12 +1,67 @@
 //! Render settings (restart the render) and display settings (re-map only).
 
-use crate::app::RaygineApp;
-use tracer_core::display::{FalseColourQuantity, FalseColourScale, ToneMap};
+use tracer_core::display::{
+    DisplaySettings, FalseColour, FalseColourQuantity, FalseColourScale, ToneMap,
+};
 use tracer_core::integrator::IntegratorKind;
 
-pub fn render_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
+/// Render preferences that restart the render when changed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderPrefs {
+    /// Light transport: global illumination by default in the viewer.
+    pub integrator: IntegratorKind,
+    pub max_depth: u32,
+    pub target_spp: u32,
+    /// Film pixels per screen pixel (0.25 ..= 1).
+    pub resolution_scale: f32,
+    pub threads: usize,
+}
+
+/// The false-colour view as edited in the panel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FalseColourUi {
+    pub enabled: bool,
+    pub quantity: FalseColourQuantity,
+    pub scale: FalseColourScale,
+    pub min: f32,
+    pub max: f32,
+}
+
+impl Default for FalseColourUi {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            quantity: FalseColourQuantity::Illuminance,
+            scale: FalseColourScale::Log,
+            min: 1.0,
+            max: 10_000.0,
+        }
+    }
+}
+
+impl FalseColourUi {
+    /// `display` with this false-colour view over it (when enabled).
+    pub fn over(&self, display: &DisplaySettings) -> DisplaySettings {
+        DisplaySettings {
+            false_colour: self.enabled.then_some(FalseColour {
+                quantity: self.quantity,
+                scale: self.scale,
+                min: self.min,
+                max: self.max,
+            }),
+            ..*display
+        }
+    }
+}
+
+/// The render settings, the display settings and the false-colour view, edited in place.
+pub fn render_ui(
+    ui: &mut egui::Ui,
+    r: &mut RenderPrefs,
+    d: &mut DisplaySettings,
+    fc: &mut FalseColourUi,
+) {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let r = &mut app.render;
     egui::ComboBox::from_label("light transport")
         .selected_text(r.integrator.label())
         .show_ui(ui, |ui| {
@@ -36,7 +91,6 @@ pub fn render_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
         .on_hover_text("Film pixels per screen pixel: lower is faster while you explore");
     ui.add(egui::Slider::new(&mut r.threads, 1..=cores.max(1)).text("render threads"));
     ui.separator();
-    let d = &mut app.display;
     ui.horizontal(|ui| {
         ui.add_enabled(
             !d.auto_exposure,
@@ -53,7 +107,6 @@ pub fn render_ui(ui: &mut egui::Ui, app: &mut RaygineApp) {
                 ui.selectable_value(&mut d.tone_map, t, t.name());
             }
         });
-    let fc = &mut app.false_colour;
     ui.checkbox(&mut fc.enabled, "false colour");
     ui.add_enabled_ui(fc.enabled, |ui| {
         ui.horizontal(|ui| {

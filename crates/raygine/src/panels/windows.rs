@@ -1,14 +1,60 @@
 //! Floating windows: the path prompt (typed path plus the native dialog), "Render image...",
-//! and the help window.
+//! and the help window. Each owns the values it edits; what the user confirms is a command.
 
-use crate::app::RaygineApp;
-use crate::file_ops::{DialogPurpose, PendingDialog};
+use crate::command::{Command, Commands};
+use crate::file_ops::DialogPurpose;
+use crate::render_image::RenderImageJob;
 use std::path::PathBuf;
 
-pub fn windows_ui(ctx: &egui::Context, app: &mut RaygineApp) {
-    path_prompt_ui(ctx, app);
-    render_image_ui(ctx, app);
-    help_ui(ctx, app);
+/// What the path window (typed path, with a Browse... button for the native dialog) is for.
+#[derive(Clone, Debug)]
+pub struct PathPrompt {
+    pub purpose: DialogPurpose,
+    pub text: String,
+    /// Set when the file exists and the user must confirm overwriting it.
+    pub confirm_overwrite: bool,
+    /// The path field takes keyboard focus on the next frame (set when the window opens).
+    pub focus_field: bool,
+    /// Why Browse… did not help (no desktop file dialog), shown in the window.
+    pub note: Option<String>,
+}
+
+impl PathPrompt {
+    /// A path window for `purpose` with `text` typed in; its field takes the focus.
+    pub fn new(purpose: DialogPurpose, text: String) -> Self {
+        Self {
+            purpose,
+            text,
+            confirm_overwrite: false,
+            focus_field: true,
+            note: None,
+        }
+    }
+}
+
+/// Values the "Render image..." window edits.
+#[derive(Clone, Debug)]
+pub struct RenderImageForm {
+    pub width: u32,
+    pub height: u32,
+    pub samples: u32,
+    pub path: String,
+}
+
+/// The floating windows' state: each is shown while its value is there (or its flag is set).
+#[derive(Debug)]
+pub struct Windows<'a> {
+    pub prompt: &'a mut Option<PathPrompt>,
+    pub render_image_form: &'a mut Option<RenderImageForm>,
+    /// The running "Render image..." job, whose progress is shown instead of the form.
+    pub render_image_job: Option<&'a RenderImageJob>,
+    pub show_help: &'a mut bool,
+}
+
+pub fn windows_ui(ctx: &egui::Context, w: Windows<'_>, out: &mut Commands) {
+    path_prompt_ui(ctx, w.prompt, out);
+    render_image_ui(ctx, w.render_image_form, w.render_image_job, out);
+    help_ui(ctx, w.show_help);
 }
 
 fn title(purpose: DialogPurpose) -> &'static str {
@@ -21,8 +67,8 @@ fn title(purpose: DialogPurpose) -> &'static str {
     }
 }
 
-fn path_prompt_ui(ctx: &egui::Context, app: &mut RaygineApp) {
-    let Some(mut prompt) = app.prompt.take() else {
+fn path_prompt_ui(ctx: &egui::Context, shown: &mut Option<PathPrompt>, out: &mut Commands) {
+    let Some(mut prompt) = shown.take() else {
         return;
     };
     let mut open = true;
@@ -61,9 +107,11 @@ fn path_prompt_ui(ctx: &egui::Context, app: &mut RaygineApp) {
                     .on_hover_text("Native file dialog (if the desktop has one)")
                     .clicked()
                 {
-                    let suggested = PathBuf::from(&prompt.text);
                     prompt.note = None;
-                    app.dialog = Some(PendingDialog::start(prompt.purpose, Some(&suggested), ctx));
+                    out.push(Command::Browse {
+                        purpose: prompt.purpose,
+                        suggested: PathBuf::from(&prompt.text),
+                    });
                 }
             });
             if let Some(note) = &prompt.note {
@@ -97,14 +145,19 @@ fn path_prompt_ui(ctx: &egui::Context, app: &mut RaygineApp) {
         open = false;
     }
     match confirmed {
-        Some(path) => app.run_path_action(ctx, prompt.purpose, path),
-        None if open => app.prompt = Some(prompt),
+        Some(path) => out.push(Command::RunPathAction(prompt.purpose, path)),
+        None if open => *shown = Some(prompt),
         None => {}
     }
 }
 
-fn render_image_ui(ctx: &egui::Context, app: &mut RaygineApp) {
-    if let Some(job) = &app.render_image_job {
+fn render_image_ui(
+    ctx: &egui::Context,
+    shown: &mut Option<RenderImageForm>,
+    job: Option<&RenderImageJob>,
+    out: &mut Commands,
+) {
+    if let Some(job) = job {
         let stats = job.worker.stats();
         let mut cancel = false;
         egui::Window::new("Rendering image")
@@ -121,12 +174,11 @@ fn render_image_ui(ctx: &egui::Context, app: &mut RaygineApp) {
                 cancel = ui.button("Cancel").clicked();
             });
         if cancel {
-            app.render_image_job = None;
-            app.notice = Some("render cancelled".to_owned());
+            out.push(Command::CancelRenderImage);
         }
         return;
     }
-    let Some(mut form) = app.render_image_form.take() else {
+    let Some(mut form) = shown.take() else {
         return;
     };
     let mut open = true;
@@ -154,16 +206,16 @@ fn render_image_ui(ctx: &egui::Context, app: &mut RaygineApp) {
         });
     if start && !form.path.trim().is_empty() {
         let path = PathBuf::from(form.path.trim());
-        app.render_image_form = Some(form);
-        app.start_render_image(path);
+        *shown = Some(form);
+        out.push(Command::StartRenderImage(path));
     } else if open {
-        app.render_image_form = Some(form);
+        *shown = Some(form);
     }
 }
 
-fn help_ui(ctx: &egui::Context, app: &mut RaygineApp) {
+fn help_ui(ctx: &egui::Context, show_help: &mut bool) {
     egui::Window::new("Controls and shortcuts")
-        .open(&mut app.show_help)
+        .open(show_help)
         .show(ctx, |ui| {
             egui::Grid::new("keys").striped(true).show(ui, |ui| {
                 for (k, what) in [

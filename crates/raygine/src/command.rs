@@ -1,0 +1,65 @@
+//! What the user asked the viewer for. Panels, windows, the viewport and the keyboard shortcuts
+//! return these values; the app's `apply` carries them out, in one place.
+//!
+//! Plain value edits (a light's position slider, a material's colour) go straight into the
+//! document's setup, as egui widgets edit the value they are given; the app turns each finished
+//! interaction into one undo step. Everything else — files, history, the render, messages, the
+//! selection — is a command.
+
+use crate::file_ops::DialogPurpose;
+use crate::unsaved::Switch;
+use std::path::PathBuf;
+
+/// One thing the user asked for.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Command {
+    /// Open another scene or quit; asks first when that would drop unsaved edits.
+    Switch(Switch),
+    /// Open the path window for `purpose` (a typed path; Browse… runs the native dialog).
+    PromptPath(DialogPurpose),
+    /// Run the native file dialog for the path window, starting at `suggested`.
+    Browse {
+        purpose: DialogPurpose,
+        suggested: PathBuf,
+    },
+    /// Carry out `purpose` with a path the user confirmed.
+    RunPathAction(DialogPurpose, PathBuf),
+    /// Save the scene settings beside the scene (the built-in scene asks where).
+    SaveSidecar,
+    Undo,
+    Redo,
+    /// Reset the camera to frame the scene (keeps the field of view).
+    FrameScene,
+    /// Pause or resume rendering.
+    TogglePause,
+    /// Open the "Render image…" form for the current view.
+    OpenRenderImageForm,
+    /// Start the "Render image…" job with the form's values, writing `path`.
+    StartRenderImage(PathBuf),
+    CancelRenderImage,
+    /// Stop waiting for the scene being loaded (the current scene stays).
+    CancelLoad,
+    /// Select a material slot (the surface clicked, or a name in the Materials panel).
+    Select(Option<u32>),
+    /// Write `text` to `path` in the background (the grid readings' CSV and JSON).
+    WriteText {
+        path: PathBuf,
+        text: String,
+    },
+    /// Save the measurement report: the grids' CSV now, the viewport's picture as `png` when
+    /// the window's screenshot arrives.
+    SaveReport {
+        png: PathBuf,
+        csv: PathBuf,
+        csv_text: String,
+    },
+    /// Show an error in the viewport's banner.
+    Error(String),
+    /// Show a notice in the viewport's banner.
+    Notice(String),
+    DismissError,
+    DismissNotice,
+}
+
+/// Commands collected during a frame, applied once the panels have drawn.
+pub type Commands = Vec<Command>;

@@ -1,0 +1,90 @@
+//! The status bar: the render's progress, the scene's figures, the viewport's size, a load in
+//! progress (with Cancel) and the UI's frame time.
+
+use crate::command::{Command, Commands};
+use crate::document::Document;
+use crate::file_ops::PendingLoad;
+use tracer_core::integrator::IntegratorKind;
+use tracer_core::render::SessionStats;
+
+/// What the status bar shows.
+#[derive(Debug)]
+pub struct StatusBar<'a> {
+    pub stats: SessionStats,
+    pub paused: bool,
+    pub integrator: IntegratorKind,
+    pub doc: &'a Document,
+    pub viewport_px: [u32; 2],
+    pub loading: Option<&'a PendingLoad>,
+    /// The 95th percentile of recent frame intervals while rendering, ms.
+    pub p95_frame_ms: Option<f32>,
+}
+
+/// One line at the bottom; what does not fit is cut off at the window's edge. It never wraps:
+/// a second line would shrink the viewport, whose new size restarts the render, whose new
+/// figures could unwrap it again (a narrow window restarted the render every frame).
+pub fn status_bar(ui: &mut egui::Ui, s: StatusBar<'_>, out: &mut Commands) {
+    egui::Panel::bottom("status").show(ui, |ui| {
+        ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
+        ui.horizontal(|ui| {
+            let state = if s.paused {
+                "paused"
+            } else if s.stats.finished {
+                "converged"
+            } else {
+                "rendering"
+            };
+            ui.label(format!(
+                "{state} · {} · {}/{} spp · {} · {:.1} Mrays/s · {:.1} s",
+                s.integrator.label(),
+                s.stats.samples_per_pixel,
+                s.stats.target_spp,
+                s.stats.pass,
+                s.stats.mrays_per_sec(),
+                s.stats.elapsed_secs
+            ));
+            if let Some(noise) = s.stats.relative_noise {
+                ui.label(format!("noise ±{:.1} %", noise * 100.0))
+                    .on_hover_text(
+                        "Remaining noise: RMS standard error of the pixels' luminance over the \
+                     mean luminance, from the summed squares of the samples",
+                    );
+            }
+            ui.separator();
+            ui.label(format!(
+                "{} tris · BVH {:.0} ms · parse {:.0} ms",
+                s.doc.scene.triangle_count(),
+                s.doc.scene.bvh_build_secs * 1e3,
+                s.doc.parse_secs * 1e3
+            ));
+            ui.separator();
+            ui.label(format!(
+                "{}x{} px · {} threads",
+                s.viewport_px[0], s.viewport_px[1], s.stats.threads
+            ));
+            if let Some(l) = s.loading {
+                ui.separator();
+                ui.spinner();
+                ui.label(format!(
+                    "loading {} ({:.1} s)",
+                    l.path.file_name().map_or_else(
+                        || l.path.display().to_string(),
+                        |n| n.to_string_lossy().into_owned()
+                    ),
+                    l.started.elapsed().as_secs_f32()
+                ));
+                if ui
+                    .button("Cancel")
+                    .on_hover_text("Keep the current scene")
+                    .clicked()
+                {
+                    out.push(Command::CancelLoad);
+                }
+            }
+            if let Some(p95) = s.p95_frame_ms {
+                ui.separator();
+                ui.label(format!("UI p95 {p95:.0} ms"));
+            }
+        });
+    });
+}

@@ -1,0 +1,259 @@
+//! What the viewport draws over the picture: light markers, the grids' readings, the axis
+//! triad, the false-colour legend, and the text overlays (load, hint, banners, read-out).
+
+use crate::banners::BannerKind;
+use crate::command::{Command, Commands};
+use crate::document::Document;
+use crate::file_ops::PendingLoad;
+use crate::format::format_value;
+use crate::measure_worker::Readings;
+use egui::{Align2, Color32, FontId, Pos2, Rect, Stroke, Vec2};
+use glam::Vec3;
+use tracer_core::measure::Grid;
+use tracer_core::scene::{CameraBasis, LightKind, Setup};
+
+/// What the mouse points at in the viewport.
+#[derive(Clone, Debug, Default)]
+pub struct HoverInfo {
+    pub luminance: f32,
+    pub illuminance: f32,
+    pub surface: Option<String>,
+    pub pixel: [u32; 2],
+}
+
+/// The text drawn over the picture.
+#[derive(Debug)]
+pub struct Overlays<'a> {
+    pub loading: Option<&'a PendingLoad>,
+    pub picture_hint: Option<&'a str>,
+    pub error: Option<&'a str>,
+    pub notice: Option<&'a str>,
+    pub hover: Option<&'a HoverInfo>,
+}
+
+fn to_screen(rect: Rect, basis: &CameraBasis, p: Vec3) -> Option<Pos2> {
+    let (x, y) = basis.project(p)?;
+    Some(Pos2::new(
+        rect.min.x + x / basis.width as f32 * rect.width(),
+        rect.min.y + y / basis.height as f32 * rect.height(),
+    ))
+}
+
+/// Each light as a dot in its colour with its label; spots and luminaires with their aim.
+pub fn draw_light_markers(ui: &egui::Ui, doc: &Document, basis: &CameraBasis, rect: Rect) {
+    let painter = ui.painter_at(rect);
+    for (i, light) in doc.setup.lights.iter().enumerate() {
+        if let Some(pos) = to_screen(rect, basis, light.position()) {
+            let c = light.color.map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8);
+            painter.circle(
+                pos,
+                6.0,
+                Color32::from_rgb(c[0], c[1], c[2]),
+                Stroke::new(2.0, Color32::BLACK),
+            );
+            let label = match light.kind {
+                LightKind::Luminaire => format!("L{} {:.0} lm", i + 1, light.flux_lm()),
+                _ => format!("L{} {:.0} cd", i + 1, light.intensity_cd),
+            };
+            // On a dark plate, so the label reads over bright pixels.
+            let galley = painter.layout_no_wrap(label, FontId::proportional(12.0), Color32::YELLOW);
+            let at = pos + Vec2::new(9.0, -9.0 - galley.size().y);
+            painter.rect_filled(
+                Rect::from_min_size(
+                    at - Vec2::new(3.0, 1.0),
+                    galley.size() + Vec2::new(6.0, 2.0),
+                ),
+                3.0,
+                Color32::from_black_alpha(200),
+            );
+            painter.galley(at, galley, Color32::YELLOW);
+            // Spots and luminaires: their aim, a tenth of the scene's size long.
+            if light.kind != LightKind::Point {
+                let reach = doc.scene.bounds.radius() * 0.2;
+                let tip = light.position() + Vec3::from(light.aim).normalize_or_zero() * reach;
+                if let Some(end) = to_screen(rect, basis, tip) {
+                    painter.arrow(pos, end - pos, Stroke::new(2.0, Color32::YELLOW));
+                }
+            }
+        }
+    }
+}
+
+/// The grids' readings over the picture: false-colour cells, values and isolux lines.
+pub fn draw_grid_readings(
+    ui: &egui::Ui,
+    grids: &[Grid],
+    readings: &Readings,
+    basis: &CameraBasis,
+    rect: Rect,
+) {
+    let painter = ui.painter_at(rect);
+    let project = |p: Vec3| to_screen(rect, basis, p);
+    for r in &readings.results {
+        if let Some(grid) = grids.iter().find(|g| g.name == r.name) {
+            crate::grid_overlay::draw(&painter, grid, r, &project);
+        }
+    }
+    crate::grid_overlay::draw_statistics(&painter, rect, &readings.results, readings.samples);
+}
+
+/// X (red), Y (green), Z (blue) in the bottom-left corner, drawn with the camera's basis so the
+/// triad agrees with the picture (mirrored for left-handed scenes).
+pub fn draw_axis_triad(ui: &egui::Ui, setup: &Setup, rect: Rect) {
+    let basis = setup.camera.basis(setup.handedness, 1, 1);
+    let origin = Pos2::new(rect.min.x + 40.0, rect.max.y - 40.0);
+    let painter = ui.painter_at(rect);
+    for (axis, colour, name) in [
+        (Vec3::X, Color32::from_rgb(230, 60, 60), "X"),
+        (Vec3::Y, Color32::from_rgb(60, 200, 60), "Y"),
+        (Vec3::Z, Color32::from_rgb(80, 120, 255), "Z"),
+    ] {
+        let d = Vec2::new(axis.dot(basis.right), -axis.dot(basis.up)) * 28.0;
+        painter.line_segment([origin, origin + d], Stroke::new(2.0, colour));
+        painter.text(
+            origin + d * 1.25,
+            Align2::CENTER_CENTER,
+            name,
+            FontId::proportional(12.0),
+            colour,
+        );
+    }
+}
+
+/// The legend's rows, top to bottom: above the range (white), the palette's values, and below
+/// the range (black), which on a log scale includes 0.
+pub fn legend_rows(fc: &tracer_core::display::FalseColour) -> Vec<(String, [u8; 4])> {
+    let legend = fc.legend(8);
+    let mut rows = vec![(
+        format!("> {}", format_value(fc.max)),
+        fc.colour(f32::INFINITY),
+    )];
+    rows.extend(
+        legend
+            .entries
+            .iter()
+            .rev()
+            .map(|e| (format_value(e.value), e.rgba)),
+    );
+    let below = match fc.scale {
+        tracer_core::display::FalseColourScale::Log => format!("< {}, 0", format_value(fc.min)),
+        tracer_core::display::FalseColourScale::Linear => {
+            format!("< {}", format_value(fc.min))
+        }
+    };
+    rows.push((below, fc.colour(f32::NEG_INFINITY)));
+    rows
+}
+
+/// The false-colour legend in the top-right corner.
+pub fn draw_legend(ui: &egui::Ui, fc: &tracer_core::display::FalseColour, rect: Rect) {
+    let rows = legend_rows(fc);
+    let unit = fc.quantity.unit();
+    let painter = ui.painter_at(rect);
+    let (w, row) = (22.0, 18.0);
+    let top = rect.min.y + 12.0;
+    let x = rect.max.x - 130.0;
+    painter.rect_filled(
+        Rect::from_min_size(
+            Pos2::new(x - 8.0, top - 8.0),
+            Vec2::new(130.0, row * rows.len() as f32 + 30.0),
+        ),
+        4.0,
+        Color32::from_black_alpha(170),
+    );
+    for (k, (label, [r, g, b, _])) in rows.iter().enumerate() {
+        let y = top + k as f32 * row;
+        let swatch = Rect::from_min_size(Pos2::new(x, y), Vec2::new(w, row - 2.0));
+        painter.rect_filled(swatch, 0.0, Color32::from_rgb(*r, *g, *b));
+        // Black and white swatches get an outline so they read against the backdrop.
+        painter.rect_stroke(
+            swatch,
+            0.0,
+            Stroke::new(1.0, Color32::from_gray(140)),
+            egui::StrokeKind::Inside,
+        );
+        painter.text(
+            Pos2::new(x + w + 6.0, y + row * 0.5),
+            Align2::LEFT_CENTER,
+            label,
+            FontId::monospace(12.0),
+            Color32::WHITE,
+        );
+    }
+    painter.text(
+        Pos2::new(x, top + row * rows.len() as f32 + 4.0),
+        Align2::LEFT_TOP,
+        unit,
+        FontId::proportional(12.0),
+        Color32::WHITE,
+    );
+}
+
+/// Text over the picture: a load in progress, the picture hint, the error and notice banners
+/// (their ✖ asks for them to be dismissed), and the read-out under the pointer.
+pub fn draw_overlays(ui: &mut egui::Ui, v: &Overlays<'_>, rect: Rect, out: &mut Commands) {
+    let painter = ui.painter_at(rect);
+    let mut y = rect.min.y + 8.0;
+    let mut line = |text: String, colour: Color32| {
+        let galley = painter.layout(
+            text,
+            FontId::proportional(14.0),
+            colour,
+            rect.width() - 40.0,
+        );
+        let r = Rect::from_min_size(
+            Pos2::new(rect.min.x + 8.0, y),
+            galley.size() + Vec2::new(12.0, 8.0),
+        );
+        painter.rect_filled(r, 4.0, Color32::from_black_alpha(190));
+        painter.galley(r.min + Vec2::new(6.0, 4.0), galley, colour);
+        y = r.max.y + 6.0;
+    };
+    if let Some(l) = v.loading {
+        line(
+            format!(
+                "Loading {} … {:.1} s",
+                l.path.display(),
+                l.started.elapsed().as_secs_f32()
+            ),
+            Color32::LIGHT_BLUE,
+        );
+    }
+    if let Some(hint) = v.picture_hint {
+        line(hint.to_owned(), Color32::from_rgb(255, 210, 90));
+    }
+    let top = Rect::from_min_max(
+        Pos2::new(rect.min.x + 8.0, y),
+        Pos2::new(rect.max.x - 8.0, rect.max.y),
+    );
+    let dismissed = ui
+        .scope_builder(egui::UiBuilder::new().max_rect(top), |ui| {
+            crate::banners::banners_ui(ui, v.error, v.notice)
+        })
+        .inner;
+    match dismissed {
+        Some(BannerKind::Error) => out.push(Command::DismissError),
+        Some(BannerKind::Notice) => out.push(Command::DismissNotice),
+        None => {}
+    }
+    if let Some(h) = v.hover {
+        let text = format!(
+            "{} cd/m²   {} lx   {}",
+            format_value(h.luminance),
+            format_value(h.illuminance),
+            h.surface.as_deref().unwrap_or("(background)")
+        );
+        // On a dark plate, like the light labels: white text over a bright floor was lost.
+        let galley = painter.layout_no_wrap(text, FontId::monospace(13.0), Color32::WHITE);
+        let at = Pos2::new(rect.min.x + 8.0, rect.max.y - 90.0 - galley.size().y);
+        painter.rect_filled(
+            Rect::from_min_size(
+                at - Vec2::new(3.0, 1.0),
+                galley.size() + Vec2::new(6.0, 2.0),
+            ),
+            3.0,
+            Color32::from_black_alpha(200),
+        );
+        painter.galley(at, galley, Color32::WHITE);
+    }
+}
