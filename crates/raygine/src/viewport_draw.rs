@@ -58,15 +58,7 @@ pub fn draw_light_markers(ui: &egui::Ui, doc: &Document, basis: &CameraBasis, re
             // On a dark plate, so the label reads over bright pixels.
             let galley = painter.layout_no_wrap(label, FontId::proportional(12.0), Color32::YELLOW);
             let at = pos + Vec2::new(9.0, -9.0 - galley.size().y);
-            painter.rect_filled(
-                Rect::from_min_size(
-                    at - Vec2::new(3.0, 1.0),
-                    galley.size() + Vec2::new(6.0, 2.0),
-                ),
-                3.0,
-                Color32::from_black_alpha(200),
-            );
-            painter.galley(at, galley, Color32::YELLOW);
+            text_on_plate(&painter, at, galley, Color32::YELLOW);
             // Spots and luminaires: their aim, a tenth of the scene's size long.
             if light.kind != LightKind::Point {
                 let reach = doc.scene.bounds.radius() * 0.2;
@@ -246,14 +238,24 @@ pub fn draw_overlays(ui: &mut egui::Ui, v: &Overlays<'_>, rect: Rect, out: &mut 
         // On a dark plate, like the light labels: white text over a bright floor was lost.
         let galley = painter.layout_no_wrap(text, FontId::monospace(13.0), Color32::WHITE);
         let at = Pos2::new(rect.min.x + 8.0, rect.max.y - 90.0 - galley.size().y);
-        painter.rect_filled(
-            Rect::from_min_size(
-                at - Vec2::new(3.0, 1.0),
-                galley.size() + Vec2::new(6.0, 2.0),
-            ),
-            3.0,
-            Color32::from_black_alpha(200),
-        );
-        painter.galley(at, galley, Color32::WHITE);
+        text_on_plate(&painter, at, galley, Color32::WHITE);
     }
+}
+
+/// Laid-out text at `at` on a dark, rounded plate, so it reads over bright pixels.
+fn text_on_plate(
+    painter: &egui::Painter,
+    at: Pos2,
+    galley: std::sync::Arc<egui::Galley>,
+    colour: Color32,
+) {
+    painter.rect_filled(
+        Rect::from_min_size(
+            at - Vec2::new(3.0, 1.0),
+            galley.size() + Vec2::new(6.0, 2.0),
+        ),
+        3.0,
+        Color32::from_black_alpha(200),
+    );
+    painter.galley(at, galley, colour);
 }
