@@ -13,7 +13,7 @@ pub const PATH_DEFAULT_SAMPLES: u32 = 64;
 /// The scene and sampling options every command shares.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
-    /// Scene file (Lumicept .shp, an Integra bundle's .shp, .brs). Without it, the built-in
+    /// Scene file (Lumicept .shp, an Integra bundle's .shp, .brs, .obj, .gltf, .glb). Without it, the built-in
     /// Cornell box.
     #[arg(
         short = 'S',

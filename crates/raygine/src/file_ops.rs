@@ -198,7 +198,12 @@ fn run_dialog(purpose: DialogPurpose, suggested: Option<&Path>) -> Option<PathBu
         dialog = dialog.set_file_name(name.to_string_lossy());
     }
     match purpose {
-        DialogPurpose::Open => dialog.add_filter("Lumicept scene", &["shp"]).pick_file(),
+        DialogPurpose::Open => dialog
+            .add_filter("Scenes", &tracer_core::formats::SCENE_EXTENSIONS)
+            .add_filter("Lumicept scene", &["shp", "brs"])
+            .add_filter("Wavefront OBJ", &["obj"])
+            .add_filter("glTF 2.0", &["gltf", "glb"])
+            .pick_file(),
         DialogPurpose::ExportPng | DialogPurpose::RenderImage => {
             dialog.add_filter("PNG image", &["png"]).save_file()
         }

@@ -85,6 +85,7 @@ fn replay(data: &[u8], scene: &Scene) {
         }
     }
     replay_integra(data);
+    replay_obj_gltf(data);
     if let Ok(text) = std::str::from_utf8(data)
         && let Ok(sidecar) = Sidecar::parse(text, Path::new("fuzz.raygine.toml"))
     {
@@ -99,6 +100,20 @@ fn replay(data: &[u8], scene: &Scene) {
         };
         let _ = render(scene, &setup, &settings);
         let _ = Sidecar::from_setup(scene, &setup).to_toml();
+    }
+}
+
+/// What the `obj` and `gltf` targets do with `data`.
+fn replay_obj_gltf(data: &[u8]) {
+    use tracer_core::formats::{ReadOptions, gltf, obj};
+    let libraries = |_: &str| Some((PathBuf::from("fuzz.mtl"), data.to_vec()));
+    let options = ReadOptions::default();
+    if let Ok(desc) = obj::parse(data, Path::new("fuzz.obj"), &libraries, &options) {
+        let _ = Scene::build(&desc, "fuzz");
+    }
+    let external = |_: &Path| Err("no files while fuzzing".to_owned());
+    if let Ok(desc) = gltf::parse(data, Path::new("fuzz.gltf"), &external, &options) {
+        let _ = Scene::build(&desc, "fuzz");
     }
 }
 
@@ -160,7 +175,7 @@ fn saved_fuzz_inputs_never_panic_or_hang() {
 #[test]
 fn every_target_has_a_corpus() {
     for target in [
-        "shp", "brs", "sidecar", "ies", "ldt", "atr", "prb", "lgt", "cam",
+        "shp", "brs", "sidecar", "ies", "ldt", "atr", "prb", "lgt", "cam", "obj", "gltf",
     ] {
         let dir = fuzz_dir().join("corpus").join(target);
         let count = fs::read_dir(&dir).map(|d| d.count()).unwrap_or(0);

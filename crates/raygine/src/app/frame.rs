@@ -229,18 +229,17 @@ impl RaygineApp {
     }
 }
 
-/// A file dropped on the window: a `.shp` scene is opened (asking first about unsaved edits);
-/// anything else is an error.
+/// A file dropped on the window: a scene (`.shp`, `.brs`, `.obj`, `.gltf`, `.glb`) is opened
+/// (asking first about unsaved edits); anything else is an error.
 fn dropped_file(ctx: &egui::Context) -> Option<Command> {
     let path = ctx.input(|i| i.raw.dropped_files.first().map(|f| f.path().to_path_buf()))?;
-    Some(
-        if path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("shp"))
-        {
-            Command::Switch(crate::unsaved::Switch::Open(path))
-        } else {
-            Command::Error(format!("{}: not a .shp scene", path.display()))
-        },
-    )
+    Some(if tracer_core::formats::is_scene_file(&path) {
+        Command::Switch(crate::unsaved::Switch::Open(path))
+    } else {
+        Command::Error(format!(
+            "{}: not a scene (raygine opens .{})",
+            path.display(),
+            tracer_core::formats::SCENE_EXTENSIONS.join(", .")
+        ))
+    })
 }

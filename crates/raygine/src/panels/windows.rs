@@ -219,7 +219,10 @@ fn help_ui(ctx: &egui::Context, show_help: &mut bool) {
         .show(ctx, |ui| {
             egui::Grid::new("keys").striped(true).show(ui, |ui| {
                 for (k, what) in [
-                    ("Ctrl+O", "open a .shp scene (or drop one on the window)"),
+                    (
+                        "Ctrl+O",
+                        "open a scene: .shp, .obj, .gltf/.glb (or drop one on the window)",
+                    ),
                     (
                         "Ctrl+S",
                         "save materials, lights, camera (NAME.raygine.toml)",

@@ -22,6 +22,10 @@ pub enum SceneFormat {
     /// An Integra bundle: `.shp` + `NAME.brs` + `NAME.prb` + folder `NAME/` (`.atr`, `.prb`,
     /// `.lgt`, `.cam`).
     Integra,
+    /// Wavefront OBJ (with the MTL files it names).
+    Obj,
+    /// glTF 2.0 (`.gltf` with its buffers, or binary `.glb`).
+    Gltf,
 }
 
 /// Everything a reader found in a scene file (and the files it pulled in).
@@ -73,6 +77,9 @@ pub struct PartDescription {
     pub name: Option<String>,
     /// Index into [`SceneDescription::materials`] (None: the default material).
     pub material: Option<usize>,
+    /// What the format says of shading: `Some(false)` flat (Integra `shading flat`),
+    /// `Some(true)` smooth, None when it does not say (smooth, as raygine's default).
+    pub smooth: Option<bool>,
 }
 
 /// The matrix taking a mesh's local coordinates to scene coordinates, and where it was written.
@@ -143,6 +150,12 @@ pub struct LightDescription {
 pub enum LightDistribution {
     /// The same intensity everywhere: `flux_lm / 4π` candela.
     Isotropic { flux_lm: f32 },
+    /// A spot: `intensity_cd` on the axis, full out to `cone_deg`, zero from `falloff_deg`.
+    Spot {
+        intensity_cd: f32,
+        cone_deg: f32,
+        falloff_deg: f32,
+    },
     /// A tabulated distribution already in candela; `label` names it (file, diagram).
     Goniometric {
         photometry: Photometry,

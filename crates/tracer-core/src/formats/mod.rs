@@ -5,11 +5,16 @@
 //! - [`integra`]: the Integra bundle beside a `.shp` (`.atr`, `.prb`, `.lgt`, `.cam`).
 //! - [`ies`]: IES LM-63 photometric files (1986/1991, 1995, 2002, 2019).
 //! - [`ldt`]: EULUMDAT photometric files.
+//! - [`obj`]: Wavefront OBJ with MTL materials.
+//! - [`gltf`]: glTF 2.0 (`.gltf`, `.glb`) with punctual lights and cameras.
 
 pub mod description;
+pub mod error;
+pub mod gltf;
 pub mod ies;
 pub mod integra;
 pub mod ldt;
+pub mod obj;
 mod scene_file;
 pub mod shp;
 
@@ -18,7 +23,26 @@ pub use description::{
     MaterialDescription, MeshDescription, PartDescription, PlacementDescription, SceneDescription,
     SceneFormat, TransmissionDescription,
 };
-pub use scene_file::{SceneFileError, read_scene};
+pub use error::FormatError;
+pub use scene_file::{
+    SCENE_EXTENSIONS, SceneFileError, is_scene_file, read_scene, read_scene_with,
+};
+
+/// What the sidecar says about reading a file (before the scene is built).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ReadOptions {
+    /// cd/m² per unit of OBJ `Ke` and glTF emissive (None: 1).
+    pub emission_scale: Option<f32>,
+}
+
+impl ReadOptions {
+    /// The emission scale in use (1 cd/m² per unit unless the sidecar says otherwise).
+    pub fn emission_scale(&self) -> f32 {
+        self.emission_scale
+            .filter(|s| s.is_finite() && *s >= 0.0)
+            .unwrap_or(1.0)
+    }
+}
 
 use crate::light::Photometry;
 use std::path::{Path, PathBuf};

@@ -1,8 +1,11 @@
 //! Picking the scene reader for a file, by extension and content: `.shp` (with its `.brs` files,
-//! and the Integra bundle when one sits beside it), a bare `.brs`; other extensions are read as
-//! a `.brs` when the first line with data is `vertices N`, else as a `.shp`.
+//! and the Integra bundle when one sits beside it), a bare `.brs`, `.obj`, `.gltf` and `.glb`;
+//! other extensions are read as a `.brs` when the first line with data is `vertices N`, else as
+//! a `.shp`.
 
+use super::ReadOptions;
 use super::description::{SceneDescription, SceneFormat};
+use super::error::FormatError;
 use super::integra::{self, IntegraError};
 use super::shp::{self, ShpDescription, ShpError};
 use std::path::Path;
@@ -14,14 +17,40 @@ pub enum SceneFileError {
     Shp(#[from] ShpError),
     #[error(transparent)]
     Integra(#[from] IntegraError),
+    #[error(transparent)]
+    Format(#[from] FormatError),
+}
+
+/// The extensions raygine opens as scenes (lower case), for dialogs and drag-and-drop.
+pub const SCENE_EXTENSIONS: [&str; 5] = ["shp", "brs", "obj", "gltf", "glb"];
+
+/// Whether `path` has one of [`SCENE_EXTENSIONS`] (any case).
+pub fn is_scene_file(path: &Path) -> bool {
+    path.extension().is_some_and(|e| {
+        let e = e.to_string_lossy().to_ascii_lowercase();
+        SCENE_EXTENSIONS.contains(&e.as_str())
+    })
+}
+
+/// Reads a scene file into the neutral description, with the default options.
+pub fn read_scene(path: &Path) -> Result<SceneDescription, SceneFileError> {
+    read_scene_with(path, &ReadOptions::default())
 }
 
 /// Reads a scene file into the neutral description.
-pub fn read_scene(path: &Path) -> Result<SceneDescription, SceneFileError> {
+pub fn read_scene_with(
+    path: &Path,
+    options: &ReadOptions,
+) -> Result<SceneDescription, SceneFileError> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
+    match ext.as_str() {
+        "obj" => return Ok(super::obj::read(path, options)?),
+        "gltf" | "glb" => return Ok(super::gltf::read(path, options)?),
+        _ => {}
+    }
     let bare_brs = match ext.as_str() {
         "shp" => false,
         "brs" => true,

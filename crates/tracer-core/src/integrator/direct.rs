@@ -9,7 +9,7 @@
 use super::Sample;
 use crate::geometry::Ray;
 use crate::sampling::SampleRng;
-use crate::shading::{Prepared, PreparedMaterial, facing_normal};
+use crate::shading::{Prepared, PreparedMaterial, Surface};
 use glam::Vec3;
 
 /// Luminance arriving along the camera ray `ray`, with the first hit's direct illuminance.
@@ -25,14 +25,15 @@ pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
             break;
         };
         let p = ray.at(hit.t);
-        let n = facing_normal(prep, &hit, ray.dir);
+        let surface = Surface::at(prep, &hit, p, ray.dir);
+        let n = surface.ns;
         let mat = prep.material_of(hit.prim);
         let view = -ray.dir.normalize();
         if mat.emission.max_element() > 0.0 {
             sample.rgb += weight * prep.emitters.radiance(hit.prim, view);
         }
-        let origin = p + n * prep.epsilon;
-        let (direct, e_total, rays) = direct_light(prep, mat, p, n, view, origin, rng);
+        let origin = surface.origin;
+        let (direct, e_total, rays) = direct_light(prep, mat, &surface, view, rng);
         sample.rays += rays;
         if depth == 0 {
             sample.illuminance_lx = e_total;
@@ -44,6 +45,10 @@ pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
         }
         let d = ray.dir.normalize();
         let reflected = d - n * (2.0 * d.dot(n));
+        if surface.ng.dot(reflected) <= 0.0 {
+            // The shading normal bent the mirror direction into the mesh: it ends here.
+            break;
+        }
         ray = Ray::new(origin, reflected);
     }
     sample
@@ -53,12 +58,11 @@ pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
 fn direct_light(
     prep: &Prepared<'_>,
     mat: &PreparedMaterial,
-    p: Vec3,
-    n: Vec3,
+    surface: &Surface,
     view: Vec3,
-    origin: Vec3,
     rng: &mut SampleRng,
 ) -> (Vec3, f32, u32) {
+    let (p, n, origin) = (surface.p, surface.ns, surface.origin);
     let brdf = |wi: Vec3| {
         let mut f = mat.kd_over_pi;
         if mat.glossiness > 0.0 {
@@ -76,6 +80,9 @@ fn direct_light(
         let Some((wi, e)) = prep.light_at(light, p, n) else {
             continue;
         };
+        if !surface.lit_from(wi) {
+            continue;
+        }
         rays += 1;
         if prep.occluded(origin, light.position - origin) {
             continue;
@@ -88,7 +95,7 @@ fn direct_light(
         let (u, v) = rng.next_2d();
         if let Some(s) = prep.emitters.sample(p, u_pick, u, v) {
             let cos_theta = n.dot(s.wi);
-            if cos_theta > 0.0 && s.radiance.max_element() > 0.0 {
+            if surface.lit_from(s.wi) && s.radiance.max_element() > 0.0 {
                 rays += 1;
                 if !prep.occluded(origin, s.point - origin) {
                     // dE = L cos θ dω: the sample estimates ∫ L cos θ dω over the emitters.

@@ -21,7 +21,7 @@ use super::Sample;
 use crate::geometry::Ray;
 use crate::light::luminance;
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
-use crate::shading::{Bsdf, Prepared, bsdf_at, facing_normal};
+use crate::shading::{Bsdf, Prepared, Surface, bsdf_at};
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -39,8 +39,10 @@ struct Vertex {
     point: Vec3,
     /// Origin for rays leaving the facing side.
     origin: Vec3,
-    /// Unit normal facing `wo`.
+    /// Unit shading normal facing `wo`.
     n: Vec3,
+    /// Unit geometric normal facing `wo`.
+    ng: Vec3,
     /// Unit direction back along the arriving ray.
     wo: Vec3,
 }
@@ -88,13 +90,13 @@ impl PathTracer<'_, '_> {
         }
         let p = v.point;
         if mat.ks.max_element() <= 0.0 && mat.kt.max_element() <= 0.0 {
-            let e = self.irradiance(p, v.n, rng, &mut rays);
+            let e = self.irradiance_from(p, v.n, v.ng, v.origin, rng, &mut rays);
             sample.rgb = le + mat.kd_over_pi * e;
             sample.illuminance_lx = luminance(e);
         } else {
             let reflected = self.continue_at(v, 0, rng, &mut rays);
             sample.rgb = le + reflected;
-            let e = self.irradiance(p, v.n, &mut rng.split(1), &mut rays);
+            let e = self.irradiance_from(p, v.n, v.ng, v.origin, &mut rng.split(1), &mut rays);
             sample.illuminance_lx = luminance(e);
         }
         sample.rays = rays;
@@ -105,16 +107,34 @@ impl PathTracer<'_, '_> {
     /// the side of unit normal `n`, counting this point as one bounce. Blocks no light; rays
     /// leave from just above `p` so a surface at `p` does not shadow it.
     pub fn irradiance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
+        let origin = p + n * self.prep.epsilon;
+        self.irradiance_from(p, n, n, origin, rng, rays)
+    }
+
+    /// [`PathTracer::irradiance`] on a surface with shading normal `n`, geometric normal `ng`
+    /// (both facing the same side) and ray origin `origin`.
+    fn irradiance_from(
+        &self,
+        p: Vec3,
+        n: Vec3,
+        ng: Vec3,
+        origin: Vec3,
+        rng: &mut SampleRng,
+        rays: &mut u32,
+    ) -> Vec3 {
         let prep = self.prep;
         let mut e = Vec3::ZERO;
         if self.max_bounces == 0 {
             return e;
         }
-        let origin = p + n * prep.epsilon;
+        let above = |wi: Vec3| ng.dot(wi) > 0.0;
         for light in &prep.lights {
-            let Some((_, lx)) = prep.light_at(light, p, n) else {
+            let Some((wi, lx)) = prep.light_at(light, p, n) else {
                 continue;
             };
+            if !above(wi) {
+                continue;
+            }
             *rays += 1;
             if !prep.occluded(origin, light.position - origin) {
                 e += light.tint * lx;
@@ -125,7 +145,7 @@ impl PathTracer<'_, '_> {
             let (u, v) = rng.next_2d();
             if let Some(s) = prep.emitters.sample(origin, u_pick, u, v) {
                 let cos = n.dot(s.wi);
-                if cos > 0.0 && s.radiance.max_element() > 0.0 {
+                if cos > 0.0 && above(s.wi) && s.radiance.max_element() > 0.0 {
                     *rays += 1;
                     if !prep.occluded(origin, s.point - origin) {
                         let w = power_heuristic(s.pdf_solid_angle, cos / PI);
@@ -137,7 +157,7 @@ impl PathTracer<'_, '_> {
         let (u, v) = rng.next_2d();
         let wi = to_world(cosine_hemisphere(u, v), n);
         let cos = n.dot(wi);
-        if cos > 0.0 {
+        if cos > 0.0 && above(wi) {
             // cos θ / pdf = π for cosine sampling.
             let l_in = self.incoming(&Ray::new(origin, wi), Came::Pdf(cos / PI), 1, rng, rays);
             e += l_in * PI;
@@ -169,7 +189,7 @@ impl PathTracer<'_, '_> {
         let hit = prep.closest_visible(ray)?;
         let dir = ray.dir.normalize();
         let p = ray.at(hit.t);
-        let n = facing_normal(prep, &hit, dir);
+        let surface = Surface::at(prep, &hit, p, dir);
         let wo = -dir;
         let mat = prep.material_of(hit.prim);
         let mut le = Vec3::ZERO;
@@ -187,8 +207,9 @@ impl PathTracer<'_, '_> {
         let v = Vertex {
             prim: hit.prim,
             point: p,
-            origin: p + n * prep.epsilon,
-            n,
+            origin: surface.origin,
+            n: surface.ns,
+            ng: surface.ng,
             wo,
         };
         Some((v, le))
@@ -214,6 +235,10 @@ impl PathTracer<'_, '_> {
             let Some(s) = bsdf.sample(v.n, v.wo, rng) else {
                 break;
             };
+            if v.ng.dot(s.wi) * v.n.dot(s.wi) < 0.0 {
+                // The shading normal sent the path through the mesh: it ends (no leak).
+                break;
+            }
             if !s.delta {
                 if !smooth_allowed {
                     break;
@@ -238,10 +263,10 @@ impl PathTracer<'_, '_> {
                 Came::Pdf(s.pdf)
             };
             // Refracted rays leave from behind the surface.
-            let origin = if v.n.dot(s.wi) >= 0.0 {
+            let origin = if v.ng.dot(s.wi) >= 0.0 {
                 v.origin
             } else {
-                v.point - v.n * prep.epsilon
+                v.point - v.ng * prep.epsilon
             };
             let Some((next, le)) = self.arrive(&Ray::new(origin, s.wi), came, rays) else {
                 break;
@@ -260,6 +285,9 @@ impl PathTracer<'_, '_> {
             let Some((wi, lx)) = prep.light_at(light, v.point, v.n) else {
                 continue;
             };
+            if v.ng.dot(wi) <= 0.0 {
+                continue;
+            }
             let f = bsdf.eval(v.n, v.wo, wi);
             if f.max_element() <= 0.0 {
                 continue;
@@ -274,7 +302,7 @@ impl PathTracer<'_, '_> {
             let (a, b) = rng.next_2d();
             if let Some(s) = prep.emitters.sample(v.origin, u_pick, a, b) {
                 let cos = v.n.dot(s.wi);
-                if cos > 0.0 && s.radiance.max_element() > 0.0 {
+                if cos > 0.0 && v.ng.dot(s.wi) > 0.0 && s.radiance.max_element() > 0.0 {
                     let f = bsdf.eval(v.n, v.wo, s.wi);
                     if f.max_element() > 0.0 {
                         *rays += 1;

@@ -4,7 +4,7 @@
 
 use super::camera::Camera;
 use super::material::Material;
-use super::units::LengthUnit;
+use super::units::{Handedness, LengthUnit};
 use crate::formats::{LightDescription, LightDistribution, MaterialDescription, SceneDescription};
 use crate::light::{Light, LightKind, Luminaire};
 use std::sync::Arc;
@@ -18,6 +18,8 @@ pub struct Design {
     pub lights: Option<Vec<Light>>,
     pub camera: Option<Camera>,
     pub unit: Option<LengthUnit>,
+    /// The handedness of the file's frame, when the format fixes it (OBJ, glTF: right).
+    pub handedness: Option<Handedness>,
     /// The image size the camera was designed for (width, height), pixels.
     pub resolution: Option<[u32; 2]>,
     /// Non-fatal findings (the reader's and the mapping's), for the user.
@@ -77,6 +79,12 @@ impl Design {
             lights,
             camera,
             unit,
+            handedness: match desc.format {
+                crate::formats::SceneFormat::Obj | crate::formats::SceneFormat::Gltf => {
+                    Some(Handedness::Right)
+                }
+                _ => None,
+            },
             resolution: desc.camera.and_then(|c| c.resolution),
             notes,
         }
@@ -139,7 +147,7 @@ pub fn material_from_description(m: &MaterialDescription, notes: &mut Vec<String
 }
 
 /// A described light as a model light: isotropic sources become point lights of
-/// `flux / 4π` cd, tabulated ones luminaires (multiplier 1: the table is already in candela).
+/// `flux / 4π` cd, spots spots, tabulated ones luminaires (multiplier 1: the table is already in candela).
 pub fn light_from_description(l: &LightDescription) -> Light {
     let base = Light {
         position: l.position,
@@ -151,6 +159,17 @@ pub fn light_from_description(l: &LightDescription) -> Light {
     match &l.distribution {
         LightDistribution::Isotropic { flux_lm } => Light {
             intensity_cd: flux_lm / (4.0 * std::f32::consts::PI),
+            ..base
+        },
+        LightDistribution::Spot {
+            intensity_cd,
+            cone_deg,
+            falloff_deg,
+        } => Light {
+            kind: LightKind::Spot,
+            intensity_cd: *intensity_cd,
+            cone_deg: *cone_deg,
+            falloff_deg: falloff_deg.max(*cone_deg),
             ..base
         },
         LightDistribution::Goniometric { photometry, label } => Light {

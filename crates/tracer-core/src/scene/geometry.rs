@@ -42,6 +42,11 @@ pub struct Scene {
     pub triangles: Vec<[Vec3; 3]>,
     /// Unit geometric normal per triangle, `(v1 - v0) × (v2 - v0)` normalised (zero when degenerate).
     pub normals: Vec<Vec3>,
+    /// Vertex normals per triangle corner for smooth shading (unit, scene coordinates); zero
+    /// for a triangle shaded flat. Empty when every triangle is flat.
+    pub corner_normals: Vec<[Vec3; 3]>,
+    /// The crease angle the vertex normals were averaged with, degrees (0: all flat).
+    pub smooth_angle_deg: f32,
     /// Material slot of each triangle.
     pub triangle_slots: Vec<u32>,
     /// Owner of each material slot.
@@ -57,13 +62,25 @@ pub struct Scene {
 impl Scene {
     /// Places the meshes, builds the BVH and turns what the description says about materials,
     /// lights, camera and unit into the scene's [`Design`]. Takes a neutral description (or
-    /// anything a reader converts into one, such as a `ShpDescription`). Vertex normals in the
-    /// description are not used yet: shading takes the geometric normal (issue #14 adds them).
+    /// anything a reader converts into one, such as a `ShpDescription`). Curved meshes are
+    /// shaded smooth with the default crease angle (see [`Scene::build_with`]).
     pub fn build<'a>(
         desc: impl Into<Cow<'a, SceneDescription>>,
         name: &str,
     ) -> Result<Scene, SceneError> {
+        Self::build_with(desc, name, super::smoothing::DEFAULT_SMOOTH_ANGLE_DEG)
+    }
+
+    /// [`Scene::build`] with vertex normals averaged within `smooth_angle_deg` where the file
+    /// has none (the sidecar's `smooth_angle_deg`); 0 shades every triangle flat.
+    pub fn build_with<'a>(
+        desc: impl Into<Cow<'a, SceneDescription>>,
+        name: &str,
+        smooth_angle_deg: f32,
+    ) -> Result<Scene, SceneError> {
         let desc: Cow<'a, SceneDescription> = desc.into();
+        let mut corner_normals: Vec<[Vec3; 3]> = Vec::new();
+        let mut any_smooth = false;
         let mut breps = Vec::with_capacity(desc.meshes.len());
         let mut slots = Vec::new();
         let total = desc.triangle_count();
@@ -91,6 +108,32 @@ impl Scene {
                     });
                 }
                 world.push(p);
+            }
+            // Normals go through the inverse transpose of the placement.
+            let normal_matrix = glam::DMat3::from_mat4(m).inverse().transpose();
+            let mesh_normals = super::smoothing::corner_normals(mesh, smooth_angle_deg);
+            let first_triangle = triangles.len();
+            for (t, corners) in mesh_normals.iter().enumerate() {
+                let face = mesh.triangles[t].map(|i| world.get(i as usize).copied());
+                let face_normal = match face {
+                    [Some(a), Some(b), Some(c)] => (b - a).cross(c - a).normalize_or_zero(),
+                    _ => Vec3::ZERO,
+                };
+                let world = corners.and_then(|c| {
+                    let out = c.map(|n| (normal_matrix * n).normalize_or_zero().as_vec3());
+                    let usable = out.iter().all(|n| n.is_finite() && *n != Vec3::ZERO);
+                    // Corners that all lie along the face normal (a plane) are shaded flat:
+                    // the same picture, without the cost.
+                    let planar = out.iter().all(|n| n.dot(face_normal).abs() >= 1.0 - 1e-6);
+                    (usable && !planar).then_some(out)
+                });
+                if world.is_some() && !any_smooth {
+                    any_smooth = true;
+                    corner_normals.resize(first_triangle, [Vec3::ZERO; 3]);
+                }
+                if any_smooth {
+                    corner_normals.push(world.unwrap_or([Vec3::ZERO; 3]));
+                }
             }
             let first_slot = slots.len() as u32;
             let part_count = (mesh.parts.len() as u32).max(1);
@@ -139,6 +182,9 @@ impl Scene {
                 path: desc.path.clone(),
             });
         }
+        if any_smooth {
+            corner_normals.resize(triangles.len(), [Vec3::ZERO; 3]);
+        }
         let normals = triangles
             .iter()
             .map(|[a, b, c]| (*b - *a).cross(*c - *a).normalize_or_zero())
@@ -158,6 +204,8 @@ impl Scene {
             breps,
             triangles,
             normals,
+            corner_normals,
+            smooth_angle_deg: smooth_angle_deg.max(0.0),
             triangle_slots,
             slots,
             bvh,

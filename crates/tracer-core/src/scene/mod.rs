@@ -13,6 +13,7 @@ mod material;
 mod pick;
 mod setup;
 mod sidecar;
+mod smoothing;
 mod units;
 
 pub use builtin::{BUILTIN_NAME, builtin_cornell_box};
@@ -26,6 +27,7 @@ pub use light_spec::{GridContext, GridSpec, LightKindSpec, LightSpec, en12464_sp
 pub use material::Material;
 pub use setup::{DEFAULT_FOV_DEG, Setup, default_light};
 pub use sidecar::{Sidecar, sidecar_path};
+pub use smoothing::{DEFAULT_SMOOTH_ANGLE_DEG, corner_normals};
 pub use units::{Handedness, LengthUnit};
 
 use std::path::Path;
@@ -56,13 +58,7 @@ pub struct LoadOptions<'a> {
 /// and applies its sidecar, which overrides what the file designed.
 pub fn load(path: &Path, options: &LoadOptions<'_>) -> Result<LoadedScene, SceneError> {
     let started = Instant::now();
-    let desc = crate::formats::read_scene(path)?;
-    let parse_secs = started.elapsed().as_secs_f64();
-    let name = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "scene".to_owned());
-    let scene = Scene::build(&desc, &name)?;
+    // The sidecar first: its crease angle and emission scale shape how the file is read.
     let sidecar_file = options
         .sidecar
         .map(Path::to_path_buf)
@@ -78,6 +74,20 @@ pub fn load(path: &Path, options: &LoadOptions<'_>) -> Result<LoadedScene, Scene
         None => Sidecar::read_if_present(&sidecar_file)?,
     }
     .unwrap_or_default();
+    let read_options = crate::formats::ReadOptions {
+        emission_scale: sidecar.emission_scale,
+    };
+    let desc = crate::formats::read_scene_with(path, &read_options)?;
+    let parse_secs = started.elapsed().as_secs_f64();
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".to_owned());
+    let smooth_angle_deg = sidecar
+        .smooth_angle_deg
+        .filter(|a| a.is_finite())
+        .unwrap_or(DEFAULT_SMOOTH_ANGLE_DEG);
+    let scene = Scene::build_with(&desc, &name, smooth_angle_deg)?;
     let mut warnings = scene.design.notes.clone();
     let setup = sidecar.apply(&scene, options.unit, &mut warnings);
     if let Some(hint) = setup.unit.size_hint(scene.bounds.extent().length()) {

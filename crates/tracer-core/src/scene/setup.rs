@@ -53,7 +53,7 @@ impl Setup {
             .collect();
         Setup {
             unit,
-            handedness: Handedness::Left,
+            handedness: design.handedness.unwrap_or(Handedness::Left),
             camera,
             lights,
             materials,

@@ -3,7 +3,9 @@
 //!
 //! ```toml
 //! unit = "mm"            # mm, cm or m
-//! handedness = "left"    # left (Lumicept files) or right
+//! handedness = "left"    # left (Lumicept files) or right (OBJ, glTF)
+//! smooth_angle_deg = 45  # crease angle of averaged vertex normals; 0: flat shading
+//! emission_scale = 1.0   # cd/m² per unit of OBJ Ke / glTF emissive
 //!
 //! [camera]
 //! position = [278.0, 273.0, 800.0]
@@ -59,6 +61,14 @@ pub struct Sidecar {
     /// Calculation grids (sensor rectangles).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub grids: Vec<GridSpec>,
+    /// Crease angle for vertex normals averaged where the file has none, degrees (default
+    /// 45); 0 shades every triangle flat, the file's own normals included.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub smooth_angle_deg: Option<f32>,
+    /// Luminance of OBJ `Ke` and glTF emissive (times its strength) per unit, cd/m² (default
+    /// 1: glTF's emissive read as nits). Those formats give emission no photometric unit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub emission_scale: Option<f32>,
     /// Maintenance factor of measured illuminance (0 < MF <= 1; default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub maintenance_factor: Option<f32>,
@@ -314,6 +324,10 @@ impl Sidecar {
             grids: setup.grids.iter().map(GridSpec::from_grid).collect(),
             maintenance_factor: (setup.maintenance_factor != 1.0)
                 .then_some(setup.maintenance_factor),
+            smooth_angle_deg: (scene.smooth_angle_deg
+                != super::smoothing::DEFAULT_SMOOTH_ANGLE_DEG)
+                .then_some(scene.smooth_angle_deg),
+            emission_scale: None,
             base_dir: None,
         }
     }

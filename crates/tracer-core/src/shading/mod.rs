@@ -5,19 +5,14 @@
 mod bsdf;
 mod dielectric;
 mod prepared;
+mod surface;
 
 pub use bsdf::{Bsdf, BsdfSample};
 pub use dielectric::{fresnel, refract};
 pub use prepared::{Prepared, PreparedLight, PreparedMaterial, Profile};
+pub use surface::Surface;
 
-use crate::bvh::Hit;
 use glam::Vec3;
-
-/// The geometric normal turned to face the incoming ray (surfaces are two-sided).
-pub fn facing_normal(prep: &Prepared<'_>, hit: &Hit, dir: Vec3) -> Vec3 {
-    let n = prep.scene.normals[hit.prim as usize];
-    if n.dot(dir) > 0.0 { -n } else { n }
-}
 
 /// The scattering at triangle `prim` for light leaving along unit `wo` (glass knows whether
 /// `wo` is outside, in front of the front face, or inside).

@@ -170,7 +170,6 @@ fn assign_parts(
         ));
     }
     let atr_path = atr_path.map_or_else(|| prb_path.with_extension("atr"), Path::to_path_buf);
-    let mut smooth = Vec::new();
     let mut material_of_attr: Vec<(usize, usize)> = Vec::new();
     for part in 0..part_count {
         let name = prb.parts.get(part).map(|p| p.name.clone());
@@ -192,9 +191,6 @@ fn assign_parts(
                 return Some(mi);
             }
             let attr = &attrs[ai];
-            if attr.smooth == Some(true) {
-                smooth.push(attr.name.clone());
-            }
             if !attr.textures.is_empty() {
                 desc.notes.push(format!(
                     "{}:{}: attribute {}: texture keys are not supported; drawn untextured",
@@ -209,14 +205,18 @@ fn assign_parts(
             material_of_attr.push((ai, mi));
             Some(mi)
         });
-        desc.meshes[mesh_index].parts[part] = crate::formats::PartDescription { name, material };
-    }
-    if !smooth.is_empty() {
-        desc.notes.push(format!(
-            "{}: `shading smooth` ({}) needs vertex normals the .brs does not hold; drawn flat",
-            atr_path.display(),
-            smooth.join(", ")
-        ));
+        // `shading flat|smooth` of the part's attribute; smooth parts get vertex normals
+        // averaged within the crease angle (the .brs holds none).
+        let smooth = prb
+            .attrs
+            .get(part)
+            .and_then(|id| attrs.iter().find(|a| a.name.eq_ignore_ascii_case(&id.name)))
+            .and_then(|a| a.smooth);
+        desc.meshes[mesh_index].parts[part] = crate::formats::PartDescription {
+            name,
+            material,
+            smooth,
+        };
     }
     let mapped: Vec<String> = prb
         .mapp

@@ -80,7 +80,7 @@ fn gigabytes(bytes: u64) -> String {
 
 /// `MemAvailable` of `/proc/meminfo` on Linux: memory that can be had without swapping.
 /// `None` elsewhere, or when the file cannot be read, which turns the check off.
-fn available_memory_bytes() -> Option<u64> {
+pub(crate) fn available_memory_bytes() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
     parse_mem_available(&text)
 }

@@ -29,7 +29,7 @@ mod brs;
 pub mod description;
 mod error;
 mod lexer;
-mod memory;
+pub(crate) mod memory;
 mod neutral;
 mod parser;
 pub mod placement;

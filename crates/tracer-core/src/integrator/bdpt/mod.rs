@@ -181,7 +181,7 @@ impl Bidirectional<'_, '_> {
         let mut camera = vec![eye];
         let pdf_dir = self.eye_direction_pdf(&eye, ray.dir);
         self.walk(*ray, Vec3::ONE, pdf_dir, false, rng, &mut camera, &mut rays);
-        let first = camera.get(1).map(|v| (v.p, v.facing(v.wo)));
+        let first = camera.get(1).map(|v| (v.p, v.shading_facing(v.wo)));
         let mut connect_rng = rng.split(CONNECT_STREAM);
         let value = self.connect_all(&camera, light_path, &mut connect_rng, splats, &mut rays);
         (EyeEstimate { value, rays }, first)

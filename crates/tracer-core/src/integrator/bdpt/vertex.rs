@@ -28,6 +28,14 @@ pub struct Vertex {
     /// Unit geometric normal (surfaces, glowing triangles, the eye's axis); zero for point
     /// lights.
     pub n: Vec3,
+    /// Unit shading normal on the side of `n` (the vertex normals interpolated; `n` when flat).
+    pub ns: Vec3,
+    /// Origin for rays leaving a surface vertex on the side of `n`: lifted off a smooth mesh
+    /// against the shadow terminator (see `shading::Surface`).
+    pub origin: Vec3,
+    /// A vertex of a light subpath: its BSDF is the adjoint one (shading normals are not
+    /// symmetric, Veach §5.3).
+    pub adjoint: bool,
     /// Unit direction towards the previous vertex of the subpath (zero for the first).
     pub wo: Vec3,
     /// Throughput of the subpath up to here (camera: 1 at the eye; light: per its start).
@@ -46,6 +54,9 @@ impl Vertex {
             kind,
             p,
             n,
+            ns: n,
+            origin: p,
+            adjoint: false,
             wo: Vec3::ZERO,
             beta,
             pdf_fwd,
@@ -92,13 +103,33 @@ impl Vertex {
         }
     }
 
+    /// The shading normal turned towards `w` (by the geometric side `w` is on).
+    pub fn shading_facing(&self, w: Vec3) -> Vec3 {
+        if self.n.dot(w) >= 0.0 {
+            self.ns
+        } else {
+            -self.ns
+        }
+    }
+
     /// The scattering (or emission) factor at this vertex from `wo` towards unit `w`, without
     /// the cosine: the BSDF at surfaces, the emitted intensity or luminance at lights, the
     /// importance at the eye.
+    ///
+    /// With a shading normal the BSDF is Veach's `f(ωl → ωc) · |ns·ωl| / |ng·ωl|` for the
+    /// direction ωl towards the light, so that geometric cosines in the geometry term give the
+    /// shading cosine: ωl is `w` on a camera subpath and `wo` on a light subpath.
     pub fn f(&self, bd: &Bidirectional<'_, '_>, w: Vec3) -> Vec3 {
         match self.kind {
             Kind::Surface(_) => match &self.bsdf {
-                Some(bsdf) => bsdf.eval(self.facing(self.wo), self.wo, w),
+                Some(bsdf) => {
+                    let f = bsdf.eval(self.shading_facing(self.wo), self.wo, w);
+                    if self.ns == self.n || self.ns == -self.n {
+                        return f;
+                    }
+                    let wl = if self.adjoint { self.wo } else { w };
+                    f * shading_correction(self.ns, self.n, wl)
+                }
                 None => Vec3::ZERO,
             },
             Kind::Light(light) => emitted(bd.prep, light, w),
@@ -125,7 +156,7 @@ impl Vertex {
                     return 0.0;
                 };
                 let wp = (prev.p - self.p).normalize_or_zero();
-                bsdf.pdf(self.facing(wp), wp, to_next)
+                bsdf.pdf(self.shading_facing(wp), wp, to_next)
             }
             Kind::Light(light) => direction_pdf(bd.prep, light, self.n, to_next),
             Kind::Eye => bd.eye_direction_pdf(self, to_next),
@@ -166,6 +197,12 @@ impl Vertex {
             _ => Vec3::ZERO,
         }
     }
+}
+
+/// `|ns·w| / |ng·w|`, 0 where `w` lies in the geometric plane.
+pub fn shading_correction(ns: Vec3, ng: Vec3, w: Vec3) -> f32 {
+    let g = ng.dot(w).abs();
+    if g > 1e-6 { ns.dot(w).abs() / g } else { 0.0 }
 }
 
 /// The cosine at the eye: its axis against the direction (0 behind).

@@ -5,7 +5,7 @@ use super::vertex::{Kind, Vertex};
 use super::{Bidirectional, MAX_SUBPATH};
 use crate::geometry::Ray;
 use crate::sampling::SampleRng;
-use crate::shading::bsdf_at;
+use crate::shading::{Surface, bsdf_at};
 use glam::Vec3;
 
 impl Bidirectional<'_, '_> {
@@ -77,8 +77,17 @@ impl Bidirectional<'_, '_> {
             };
             let prim = hit.prim;
             let p = ray.at(hit.t);
+            let surface = Surface::at(prep, &hit, p, ray.dir);
+            // `n` stays the triangle's own normal (emission sides are measured against it).
             let n = prep.scene.normals[prim as usize];
             let mut v = Vertex::new(Kind::Surface(prim), p, n, beta, 0.0);
+            v.ns = if surface.ng.dot(n) < 0.0 {
+                -surface.ns
+            } else {
+                surface.ns
+            };
+            v.origin = surface.origin;
+            v.adjoint = importance;
             v.wo = -ray.dir;
             let mut bsdf = bsdf_at(prep, prim, v.wo);
             if importance {
@@ -94,9 +103,14 @@ impl Bidirectional<'_, '_> {
                 break;
             }
             let nf = v.facing(v.wo);
-            let Some(s) = bsdf.sample(nf, v.wo, rng) else {
+            let nsf = v.shading_facing(v.wo);
+            let Some(s) = bsdf.sample(nsf, v.wo, rng) else {
                 break;
             };
+            if nf.dot(s.wi) * nsf.dot(s.wi) < 0.0 {
+                // The shading normal sent the subpath through the mesh: it ends (no leak).
+                break;
+            }
             let k = path.len() - 1;
             let pdf_rev_dir = if s.delta {
                 path[k].delta = true;
@@ -104,12 +118,21 @@ impl Bidirectional<'_, '_> {
                 0.0
             } else {
                 pdf_dir = s.pdf;
-                bsdf.pdf(nf, s.wi, v.wo)
+                bsdf.pdf(v.shading_facing(s.wi), s.wi, v.wo)
             };
             let here = path[k];
             path[k - 1].pdf_rev = here.area_density(pdf_rev_dir, &path[k - 1]);
-            beta *= s.weight;
-            relative *= s.weight;
+            // A light subpath's adjoint BSDF with a shading normal (Veach §5.3):
+            // |ns·wo| |ng·wi| / (|ng·wo| |ns·wi|).
+            let weight = if importance && nsf != nf && !s.delta {
+                s.weight
+                    * (super::vertex::shading_correction(nsf, nf, v.wo)
+                        / super::vertex::shading_correction(nsf, nf, s.wi).max(1e-6))
+            } else {
+                s.weight
+            };
+            beta *= weight;
+            relative *= weight;
             let m = relative.max_element();
             if m.is_nan() || m <= 0.0 || !m.is_finite() {
                 break;
@@ -123,8 +146,12 @@ impl Bidirectional<'_, '_> {
                 beta /= survive;
                 relative /= survive;
             }
-            let side = if nf.dot(s.wi) >= 0.0 { 1.0 } else { -1.0 };
-            ray = Ray::new(p + nf * (prep.epsilon * side), s.wi);
+            let origin = if nf.dot(s.wi) >= 0.0 {
+                v.origin
+            } else {
+                p - nf * prep.epsilon
+            };
+            ray = Ray::new(origin, s.wi);
         }
     }
 }

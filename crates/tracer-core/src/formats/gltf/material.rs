@@ -1,0 +1,112 @@
+//! glTF's metallic-roughness materials in raygine's model (also in `docs/formats.md`):
+//!
+//! - Diffuse Kd = base colour × (1 − metallic) × (1 − transmission) × (1 − F0), with the
+//!   dielectric reflectance at normal incidence F0 = 0.04.
+//! - Specular Ks = base colour × metallic + F0 × (1 − metallic), a normalised Blinn-Phong lobe
+//!   of glossiness g = 2 / α² − 2 for α = roughness² (the Beckmann-equivalent exponent); a
+//!   roughness whose g falls below 1 has no lobe (its reflection is all but diffuse and already
+//!   in Kd's budget), one above 10 000 is a mirror.
+//! - `KHR_materials_transmission`: clear transmission Kt = factor × (1 − metallic), with the
+//!   `KHR_materials_ior` index (default 1.5).
+//! - Emission: emissive factor × `KHR_materials_emissive_strength`, read as
+//!   `emission_scale` cd/m² per unit (1 by default: nits), noted once per material.
+//! - Textures, alpha blending and masks are not used (noted).
+
+use crate::formats::{EmissionDescription, MaterialDescription, TransmissionDescription};
+use crate::light::EmissionSides;
+use std::path::Path;
+
+/// Dielectric reflectance at normal incidence of glTF's metallic-roughness model.
+const F0: f32 = 0.04;
+
+pub(super) fn to_description(
+    m: &::gltf::Material<'_>,
+    path: &Path,
+    emission_scale: f32,
+    notes: &mut Vec<String>,
+) -> MaterialDescription {
+    let index = m
+        .index()
+        .map_or_else(|| "default".to_owned(), |i| i.to_string());
+    let name = m
+        .name()
+        .map_or_else(|| format!("material{index}"), str::to_owned);
+    let at = format!("{}: material {name}", path.display());
+    let pbr = m.pbr_metallic_roughness();
+    let [r, g, b, _] = pbr.base_color_factor();
+    let base = [r, g, b].map(|c| c.clamp(0.0, 1.0));
+    let metallic = pbr.metallic_factor().clamp(0.0, 1.0);
+    let roughness = pbr.roughness_factor().clamp(0.0, 1.0);
+    let transmission = m
+        .transmission()
+        .map_or(0.0, |t| t.transmission_factor().clamp(0.0, 1.0));
+    let alpha = roughness * roughness;
+    let glossiness = if alpha > 0.0 {
+        2.0 / (alpha * alpha) - 2.0
+    } else {
+        f32::INFINITY
+    };
+    let (specular, glossiness) = if glossiness < 1.0 {
+        ([0.0; 3], 0.0)
+    } else {
+        let ks = base.map(|c| c * metallic + F0 * (1.0 - metallic));
+        (
+            ks,
+            if glossiness > 10_000.0 {
+                0.0
+            } else {
+                glossiness
+            },
+        )
+    };
+    let lobe = if specular[0] > 0.0 { F0 } else { 0.0 };
+    let diffuse = base.map(|c| c * (1.0 - metallic) * (1.0 - transmission) * (1.0 - lobe));
+    let transmission = (transmission > 0.0).then(|| TransmissionDescription {
+        specular: transmission * (1.0 - metallic),
+        diffuse: 0.0,
+        ior: m.ior().unwrap_or(1.5),
+    });
+    let strength = m.emissive_strength().unwrap_or(1.0).max(0.0);
+    let emissive = m.emissive_factor().map(|c| c.max(0.0) * strength);
+    let emission = emissive.iter().any(|&c| c > 0.0).then(|| {
+        let luminance_cd_m2 = emission_scale * crate::light::luminance(glam::Vec3::from(emissive));
+        notes.push(format!(
+            "{at}: emissive ({} {} {}) has no photometric unit: glows at {luminance_cd_m2} cd/m² \
+             (emission_scale = {emission_scale} cd/m² per unit, a sidecar key)",
+            emissive[0], emissive[1], emissive[2]
+        ));
+        EmissionDescription {
+            luminance_cd_m2,
+            color: emissive,
+            sides: if m.double_sided() {
+                EmissionSides::Both
+            } else {
+                EmissionSides::Front
+            },
+        }
+    });
+    let textured = pbr.base_color_texture().is_some()
+        || pbr.metallic_roughness_texture().is_some()
+        || m.emissive_texture().is_some()
+        || m.normal_texture().is_some();
+    if textured {
+        notes.push(format!(
+            "{at}: textures are not supported; drawn untextured"
+        ));
+    }
+    if m.alpha_mode() != ::gltf::material::AlphaMode::Opaque {
+        notes.push(format!(
+            "{at}: alpha blending and masks are not supported; drawn opaque"
+        ));
+    }
+    MaterialDescription {
+        name,
+        source: path.to_owned(),
+        line: 0,
+        diffuse,
+        specular,
+        glossiness,
+        transmission,
+        emission,
+    }
+}
