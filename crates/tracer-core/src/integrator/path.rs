@@ -127,14 +127,13 @@ impl PathTracer<'_, '_> {
         if self.max_bounces == 0 {
             return e;
         }
+        // Lights count by the shading normal (the shadow ray from the lifted origin decides);
+        // a sampled continuation must also leave above the triangle.
         let above = |wi: Vec3| ng.dot(wi) > 0.0;
         for light in &prep.lights {
-            let Some((wi, lx)) = prep.light_at(light, p, n) else {
+            let Some((_, lx)) = prep.light_at(light, p, n) else {
                 continue;
             };
-            if !above(wi) {
-                continue;
-            }
             *rays += 1;
             if !prep.occluded(origin, light.position - origin) {
                 e += light.tint * lx;
@@ -145,7 +144,7 @@ impl PathTracer<'_, '_> {
             let (u, v) = rng.next_2d();
             if let Some(s) = prep.emitters.sample(origin, u_pick, u, v) {
                 let cos = n.dot(s.wi);
-                if cos > 0.0 && above(s.wi) && s.radiance.max_element() > 0.0 {
+                if cos > 0.0 && s.radiance.max_element() > 0.0 {
                     *rays += 1;
                     if !prep.occluded(origin, s.point - origin) {
                         let w = power_heuristic(s.pdf_solid_angle, cos / PI);
@@ -285,9 +284,6 @@ impl PathTracer<'_, '_> {
             let Some((wi, lx)) = prep.light_at(light, v.point, v.n) else {
                 continue;
             };
-            if v.ng.dot(wi) <= 0.0 {
-                continue;
-            }
             let f = bsdf.eval(v.n, v.wo, wi);
             if f.max_element() <= 0.0 {
                 continue;
@@ -302,7 +298,7 @@ impl PathTracer<'_, '_> {
             let (a, b) = rng.next_2d();
             if let Some(s) = prep.emitters.sample(v.origin, u_pick, a, b) {
                 let cos = v.n.dot(s.wi);
-                if cos > 0.0 && v.ng.dot(s.wi) > 0.0 && s.radiance.max_element() > 0.0 {
+                if cos > 0.0 && s.radiance.max_element() > 0.0 {
                     let f = bsdf.eval(v.n, v.wo, s.wi);
                     if f.max_element() > 0.0 {
                         *rays += 1;

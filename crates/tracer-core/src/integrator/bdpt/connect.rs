@@ -83,8 +83,9 @@ impl Bidirectional<'_, '_> {
     fn visible(&self, a: &Vertex, b: &Vertex, rays: &mut u32) -> bool {
         let d = b.p - a.p;
         let lift = |v: &Vertex, towards: Vec3| match v.kind {
-            // The side the subpath arrived on starts from the lifted origin.
-            Kind::Surface(_) if v.n.dot(towards) * v.n.dot(v.wo) > 0.0 => v.origin,
+            // Towards the side the subpath arrived on, by the shading normal (as next-event
+            // estimation decides): from the lifted origin.
+            Kind::Surface(_) if v.ns.dot(towards) * v.ns.dot(v.wo) > 0.0 => v.origin,
             Kind::Surface(_) | Kind::Light(LightRef::Area(_)) => {
                 v.p + v.facing(towards) * self.prep.epsilon
             }
