@@ -51,9 +51,28 @@ pub fn parse(
     external: &ExternalLoader<'_>,
     options: &ReadOptions,
 ) -> Result<SceneDescription, FormatError> {
-    let gltf = ::gltf::Gltf::from_slice(bytes)
-        .map_err(|e| FormatError::new(path, 0, format!("not a valid glTF file: {e}")))?;
-    let buffers = buffers::load(&gltf.document, gltf.blob.as_deref(), path, external)?;
+    let invalid = |e: String| FormatError::new(path, 0, format!("not a valid glTF file: {e}"));
+    let raw =
+        ::gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| invalid(e.to_string()))?;
+    let blob = raw.blob;
+    let json = raw.document.into_json();
+    // gltf-json 1.4's validation looks up each primitive's POSITION accessor before checking
+    // that the index exists (and panics when it does not): check that first.
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            for (semantic, index) in &primitive.attributes {
+                if index.value() >= json.accessors.len() {
+                    return Err(invalid(format!(
+                        "meshes[{m}].primitives[{p}].attributes.{semantic:?}: accessor {} \
+                         does not exist",
+                        index.value()
+                    )));
+                }
+            }
+        }
+    }
+    let gltf = ::gltf::Document::from_json(json).map_err(|e| invalid(e.to_string()))?;
+    let buffers = buffers::load(&gltf, blob.as_deref(), path, external)?;
     let mut reader = Reader {
         path,
         buffers: &buffers,
