@@ -411,3 +411,36 @@ impl Reader<'_> {
         }
     }
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used)]
+mod tests {
+    use super::*;
+
+    fn parse_text(text: &str) -> Result<SceneDescription, FormatError> {
+        let external = |_: &Path| Err("no files".to_owned());
+        parse(
+            text.as_bytes(),
+            Path::new("t.gltf"),
+            &external,
+            &ReadOptions::default(),
+        )
+    }
+
+    #[test]
+    fn an_attribute_naming_a_missing_accessor_is_an_error_not_a_panic() {
+        // The fuzz find: gltf-json's validation indexed the accessors with this index.
+        let e = parse_text(
+            r#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":5}}]}],
+               "accessors":[]}"#,
+        )
+        .expect_err("refused");
+        assert!(e.to_string().contains("accessor 5 does not exist"), "{e}");
+    }
+
+    #[test]
+    fn a_file_without_triangles_says_so() {
+        let e = parse_text(r#"{"asset":{"version":"2.0"}}"#).expect_err("refused");
+        assert_eq!(e.to_string(), "t.gltf: no triangles: nothing to draw");
+    }
+}
