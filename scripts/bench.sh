@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs raygine's benchmarks (../shared/BENCHMARK.md) in release and prints one line per figure
 # plus tables: the comparison with obvhs and Embree 3, then core (build, W1-W3, bytes/tri, L3),
-# render (the whole `raygine render` command) and interactive (L1, L2, restart storm).
+# render (the whole `raygine render` command), interactive (L1, L2, restart storm) and frames
+# (F1, F2: whole frames beside Mitsuba 3).
 #
 #   scripts/bench.sh                 # everything
 #   scripts/bench.sh compare core    # some of it
@@ -30,7 +31,21 @@ fi
 
 cargo build --release -p raygine -p raybench --features "raybench/$features"
 steps=("$@")
-[ ${#steps[@]} -gt 0 ] || steps=(compare core render interactive)
+[ ${#steps[@]} -gt 0 ] || steps=(compare core render interactive frames)
+
+# The frames step runs Mitsuba 3 beside raygine: a venv with mitsuba and numpy, and Debian's
+# libllvm19 for its llvm_ad_rgb variant (BENCHMARK.md). Installed here when missing.
+if [[ " ${steps[*]} " == *" frames "* ]] && [ -z "${MITSUBA_PYTHON:-}" ]; then
+    venv="${MITSUBA_VENV:-/work/mitsuba-venv}"
+    if [ ! -f /usr/lib/x86_64-linux-gnu/libLLVM-19.so ] && [ "$(id -u)" = 0 ]; then
+        apt-get update -qq && apt-get install -y -qq libllvm19 >/dev/null
+    fi
+    if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import mitsuba, numpy" 2>/dev/null; then
+        python3 -m venv "$venv" && "$venv/bin/pip" install -q mitsuba numpy ||
+            echo "bench.sh: could not install mitsuba into $venv: frames runs raygine alone"
+    fi
+    export MITSUBA_PYTHON="$venv/bin/python"
+fi
 for step in "${steps[@]}"; do
     echo "== raybench $step"
     ./target/release/raybench "$step"

@@ -15,6 +15,7 @@
 mod compare;
 mod contender;
 mod core;
+mod frames;
 mod interactive;
 mod meshes;
 mod peers;
@@ -70,6 +71,25 @@ enum Command {
         #[arg(long)]
         raygine: Option<PathBuf>,
     },
+    /// F1 and F2: whole frames of raygine beside Mitsuba 3 (llvm), interleaved, medians.
+    Frames {
+        /// Runs per figure; the median is reported.
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
+        runs: u32,
+        /// Render threads of both renderers.
+        #[arg(long, default_value_t = 2)]
+        threads: usize,
+        /// Python with mitsuba and numpy (default: $MITSUBA_PYTHON, else
+        /// /work/mitsuba-venv/bin/python when it exists; `none`: raygine alone).
+        #[arg(long)]
+        python: Option<PathBuf>,
+        #[arg(long, default_value_t = 1280)]
+        width: u32,
+        #[arg(long, default_value_t = 720)]
+        height: u32,
+        #[arg(long, default_value_t = 16)]
+        spp: u32,
+    },
     /// L1 and L2 after a light move, and the restart storm.
     Interactive {
         #[command(flatten)]
@@ -104,6 +124,27 @@ fn main() -> anyhow::Result<()> {
             runs: common.runs as usize,
             threads: common.threads,
             raygine,
+        }),
+        Command::Frames {
+            runs,
+            threads,
+            python,
+            width,
+            height,
+            spp,
+        } => frames::run(&frames::Options {
+            runs: runs as usize,
+            threads,
+            python: python
+                .or_else(|| std::env::var_os("MITSUBA_PYTHON").map(PathBuf::from))
+                .or_else(|| {
+                    let venv = PathBuf::from("/work/mitsuba-venv/bin/python");
+                    venv.exists().then_some(venv)
+                })
+                .filter(|p| p.as_os_str() != "none"),
+            width,
+            height,
+            spp,
         }),
         Command::Interactive {
             common,
