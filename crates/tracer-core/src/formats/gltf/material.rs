@@ -4,8 +4,9 @@
 //!   dielectric reflectance at normal incidence F0 = 0.04.
 //! - Specular Ks = base colour × metallic + F0 × (1 − metallic), a normalised Blinn-Phong lobe
 //!   of glossiness g = 2 / α² − 2 for α = roughness² (the Beckmann-equivalent exponent); a
-//!   roughness whose g falls below 1 has no lobe (its reflection is all but diffuse and already
-//!   in Kd's budget), one above 10 000 is a mirror.
+//!   roughness whose g falls below 1 (r > 0.84) reflects about diffusely: Ks joins Kd and there
+//!   is no lobe (so glTF's default material, a fully rough white metal, is white, not black);
+//!   g above 10 000 is a mirror.
 //! - `KHR_materials_transmission`: clear transmission Kt = factor × (1 − metallic), with the
 //!   `KHR_materials_ior` index (default 1.5).
 //! - Emission: emissive factor × `KHR_materials_emissive_strength`, read as
@@ -46,10 +47,16 @@ pub(super) fn to_description(
     } else {
         f32::INFINITY
     };
+    let ks = base.map(|c| c * metallic + F0 * (1.0 - metallic));
+    let mut diffuse = base.map(|c| c * (1.0 - metallic) * (1.0 - transmission) * (1.0 - F0));
     let (specular, glossiness) = if glossiness < 1.0 {
+        // So rough that the lobe reflects about as a Lambertian surface does: its reflectance
+        // joins Kd (a rough metal is not black).
+        for (d, k) in diffuse.iter_mut().zip(ks) {
+            *d += k;
+        }
         ([0.0; 3], 0.0)
     } else {
-        let ks = base.map(|c| c * metallic + F0 * (1.0 - metallic));
         (
             ks,
             if glossiness > 10_000.0 {
@@ -59,8 +66,6 @@ pub(super) fn to_description(
             },
         )
     };
-    let lobe = if specular[0] > 0.0 { F0 } else { 0.0 };
-    let diffuse = base.map(|c| c * (1.0 - metallic) * (1.0 - transmission) * (1.0 - lobe));
     let transmission = (transmission > 0.0).then(|| TransmissionDescription {
         specular: transmission * (1.0 - metallic),
         diffuse: 0.0,
@@ -108,5 +113,41 @@ pub(super) fn to_description(
         glossiness,
         transmission,
         emission,
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used)]
+mod tests {
+    use super::*;
+
+    fn material(json: &str) -> MaterialDescription {
+        let doc = ::gltf::Gltf::from_slice(
+            format!(r#"{{"asset":{{"version":"2.0"}},"materials":[{json}]}}"#).as_bytes(),
+        )
+        .expect("valid");
+        let m = doc.materials().next().expect("one material");
+        to_description(&m, Path::new("t.gltf"), 1.0, &mut Vec::new())
+    }
+
+    #[test]
+    fn metallic_roughness_maps_as_documented() {
+        // A smooth-ish dielectric: Kd = c (1 - 0.04), lobe 0.04 with g = 2 / r^4 - 2.
+        let m = material(
+            r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.5,0.5,1],"metallicFactor":0,"roughnessFactor":0.5}}"#,
+        );
+        assert!((m.diffuse[0] - 0.48).abs() < 1e-6, "{:?}", m.diffuse);
+        assert!((m.specular[0] - 0.04).abs() < 1e-6);
+        assert!((m.glossiness - 30.0).abs() < 1e-3, "{}", m.glossiness);
+        // glTF's default material (white, metallic 1, roughness 1) is a white diffuser.
+        let d = material("{}");
+        assert_eq!((d.specular, d.glossiness), ([0.0; 3], 0.0));
+        assert!((d.diffuse[0] - 1.0).abs() < 1e-6, "{:?}", d.diffuse);
+        // Roughness 0 is a mirror of the base colour for a metal.
+        let mirror = material(
+            r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.8,0.7,1],"roughnessFactor":0}}"#,
+        );
+        assert_eq!(mirror.glossiness, 0.0);
+        assert!((mirror.specular[1] - 0.8).abs() < 1e-6);
     }
 }
