@@ -194,3 +194,33 @@ impl From<SceneDescription> for Cow<'_, SceneDescription> {
         Cow::Owned(desc)
     }
 }
+
+impl EmissionDescription {
+    /// Emission a format gives as a colour without a unit (OBJ `Ke`, glTF emissive): `None` when
+    /// black, else a Lambertian emitter of `scale` cd/m² per unit of the colour's luminance, with
+    /// a note for the user naming the key (`at` names the material, `what` the format's word).
+    pub fn from_unitless(
+        rgb: [f32; 3],
+        scale: f32,
+        sides: EmissionSides,
+        at: &str,
+        what: &str,
+        notes: &mut Vec<String>,
+    ) -> Option<EmissionDescription> {
+        let rgb = rgb.map(|c| c.max(0.0));
+        if rgb.iter().all(|&c| c <= 0.0) {
+            return None;
+        }
+        let luminance_cd_m2 = scale * crate::light::luminance(glam::Vec3::from(rgb));
+        notes.push(format!(
+            "{at}: {what} ({} {} {}) has no photometric unit: glows at {luminance_cd_m2} cd/m² \
+             (emission_scale = {scale} cd/m² per unit, a sidecar key)",
+            rgb[0], rgb[1], rgb[2]
+        ));
+        Some(EmissionDescription {
+            luminance_cd_m2,
+            color: rgb,
+            sides,
+        })
+    }
+}

@@ -73,23 +73,13 @@ pub(super) fn to_description(
     });
     let strength = m.emissive_strength().unwrap_or(1.0).max(0.0);
     let emissive = m.emissive_factor().map(|c| c.max(0.0) * strength);
-    let emission = emissive.iter().any(|&c| c > 0.0).then(|| {
-        let luminance_cd_m2 = emission_scale * crate::light::luminance(glam::Vec3::from(emissive));
-        notes.push(format!(
-            "{at}: emissive ({} {} {}) has no photometric unit: glows at {luminance_cd_m2} cd/m² \
-             (emission_scale = {emission_scale} cd/m² per unit, a sidecar key)",
-            emissive[0], emissive[1], emissive[2]
-        ));
-        EmissionDescription {
-            luminance_cd_m2,
-            color: emissive,
-            sides: if m.double_sided() {
-                EmissionSides::Both
-            } else {
-                EmissionSides::Front
-            },
-        }
-    });
+    let sides = if m.double_sided() {
+        EmissionSides::Both
+    } else {
+        EmissionSides::Front
+    };
+    let emission =
+        EmissionDescription::from_unitless(emissive, emission_scale, sides, &at, "emissive", notes);
     let textured = pbr.base_color_texture().is_some()
         || pbr.metallic_roughness_texture().is_some()
         || m.emissive_texture().is_some()

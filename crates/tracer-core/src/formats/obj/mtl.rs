@@ -122,19 +122,15 @@ pub(super) fn to_description(
             .filter(|n| n.is_finite() && *n > 0.0)
             .unwrap_or(1.0),
     });
-    let emission = m.emissive.filter(|e| e.iter().any(|&c| c > 0.0)).map(|ke| {
-        let y = crate::light::luminance(glam::Vec3::from(ke).max(glam::Vec3::ZERO));
-        let luminance_cd_m2 = emission_scale * y;
-        notes.push(format!(
-            "{at}: Ke ({} {} {}) has no photometric unit: glows at {luminance_cd_m2} cd/m² \
-             (emission_scale = {emission_scale} cd/m² per unit, a sidecar key)",
-            ke[0], ke[1], ke[2]
-        ));
-        EmissionDescription {
-            luminance_cd_m2,
-            color: ke,
-            sides: EmissionSides::Both,
-        }
+    let emission = m.emissive.and_then(|ke| {
+        EmissionDescription::from_unitless(
+            ke,
+            emission_scale,
+            EmissionSides::Both,
+            &at,
+            "Ke",
+            notes,
+        )
     });
     let textures = [
         &m.diffuse_texture,
