@@ -90,18 +90,29 @@ impl PixelSum {
             to_fixed(y * y, SQUARE_SCALE),
         );
         let (Some(r), Some(g), Some(b), Some(e), Some(q)) = fixed else {
-            self.rejected += 1;
+            self.rejected = self.rejected.saturating_add(1);
             return false;
         };
-        let sum = PixelSum {
-            rgb: [r, g, b],
-            illuminance: e,
-            luminance_sq: q,
-            splat_rgb: [0; 3],
-            count: 1,
-            rejected: 0,
+        // The five sums a sample adds to, without the splat sums `merge` would add zeros to.
+        let sums = (|| {
+            Some((
+                self.rgb[0].checked_add(r)?,
+                self.rgb[1].checked_add(g)?,
+                self.rgb[2].checked_add(b)?,
+                self.illuminance.checked_add(e)?,
+                self.luminance_sq.checked_add(q)?,
+                self.count.checked_add(1)?,
+            ))
+        })();
+        let Some((r, g, b, e, q, count)) = sums else {
+            self.rejected = self.rejected.saturating_add(1);
+            return false;
         };
-        self.merge(&sum)
+        self.rgb = [r, g, b];
+        self.illuminance = e;
+        self.luminance_sq = q;
+        self.count = count;
+        true
     }
 
     /// Adds a splat (luminance per channel); false (and counted as rejected) when it cannot be
