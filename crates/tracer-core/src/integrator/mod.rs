@@ -15,7 +15,7 @@ pub use bdpt::{
     BDPT_RR_THRESHOLD, Bidirectional, Eye, LightPicker, MAX_SUBPATH, Splat, Strategies,
 };
 
-pub use direct::trace as trace_direct;
+pub use direct::{DirectBatch, trace as trace_direct, trace_batch as trace_direct_batch};
 pub use path::{MAX_VERTICES, PathTracer, RR_THRESHOLD};
 
 use crate::geometry::Ray;

@@ -12,7 +12,7 @@ mod tiles;
 
 pub use film::{Film, FilmError, PixelSum, SQUARE_SCALE, VALUE_SCALE};
 pub use passes::{PREVIEW_BLOCKS, Pass};
-pub use pixel::FrameSampler;
+pub use pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler, SampleJob};
 pub use progressive_film::ProgressiveFilm;
 pub use sampler::{pixel_sample_offset, sample_hash};
 pub use session::{Notify, RenderSession, SessionStats, Snapshot};
@@ -149,18 +149,24 @@ pub fn render_samples(
         .map(|(band, pixels)| {
             let y0 = band as u32 * BAND_ROWS;
             let rows = (pixels.len() / width.max(1)) as u32;
-            let mut band_rays = 0u64;
             let mut splats = Vec::new();
-            for x0 in (0..settings.width).step_by(TILE_SIZE as usize) {
-                let x1 = (x0 + TILE_SIZE).min(settings.width);
-                for y in y0..y0 + rows {
-                    let row = (y - y0) as usize * width;
-                    for x in x0..x1 {
-                        let sum = &mut pixels[row + x as usize];
-                        band_rays += frame.add_samples(x, y, samples.clone(), sum, &mut splats);
-                    }
-                }
-            }
+            let mut scratch = BatchScratch::default();
+            let order = (0..settings.width)
+                .step_by(TILE_SIZE as usize)
+                .flat_map(|x0| {
+                    let x1 = (x0 + TILE_SIZE).min(settings.width);
+                    (y0..y0 + rows).flat_map(move |y| (x0..x1).map(move |x| (x, y)))
+                });
+            let band_rays = frame.for_each_sample(
+                order,
+                samples.clone(),
+                &mut scratch,
+                &mut splats,
+                |job, sample| {
+                    let row = (job.y - y0) as usize * width;
+                    pixels[row + job.x as usize].add(sample);
+                },
+            );
             (band_rays, splats)
         })
         .fold(

@@ -6,7 +6,10 @@
 use super::RenderSettings;
 use super::film::PixelSum;
 use super::sampler::pixel_sample_offset;
-use crate::integrator::{Integrator, Sample, Splat};
+use crate::geometry::Ray;
+use crate::integrator::{
+    DirectBatch, Integrator, IntegratorKind, Sample, Splat, trace_direct_batch,
+};
 use crate::sampling::SampleRng;
 use crate::scene::{CameraBasis, Scene, Setup};
 use crate::shading::Prepared;
@@ -14,6 +17,27 @@ use std::ops::Range;
 
 /// Stream key of preview samples (never accumulated), apart from every pixel's.
 const PREVIEW_STREAM: u64 = 1 << 62;
+
+/// Camera samples traced together: at most this many per batch. Big enough for the wavefront
+/// to keep the CPU busy, small enough for its working set to stay in the first-level caches.
+pub const BATCH_SAMPLES: usize = 256;
+
+/// Sample `s` of pixel (`x`, `y`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SampleJob {
+    pub x: u32,
+    pub y: u32,
+    pub s: u32,
+}
+
+/// Working memory for [`FrameSampler::sample_batch`], reused from batch to batch.
+#[derive(Debug, Default)]
+pub struct BatchScratch {
+    jobs: Vec<SampleJob>,
+    samples: Vec<Sample>,
+    rays: Vec<(Ray, SampleRng)>,
+    direct: DirectBatch,
+}
 
 /// An integrator and a camera for one image.
 #[derive(Debug)]
@@ -38,13 +62,47 @@ impl<'a> FrameSampler<'a> {
     /// Sample `s` of pixel (`x`, `y`); contributions it makes to other pixels (bidirectional
     /// mode) go to `splats`.
     pub fn sample(&self, x: u32, y: u32, s: u32, splats: &mut Vec<Splat>) -> Sample {
+        let (ray, mut rng) = self.camera_ray(SampleJob { x, y, s });
+        self.integrator
+            .sample_camera(&self.basis, &ray, &mut rng, s, splats)
+    }
+
+    /// The camera ray of a sample and its random stream.
+    #[inline]
+    fn camera_ray(&self, SampleJob { x, y, s }: SampleJob) -> (Ray, SampleRng) {
         let width = self.basis.width;
         let (dx, dy) = pixel_sample_offset(x, y, width, s);
         let ray = self.basis.ray(x as f32 + dx, y as f32 + dy);
         let key = u64::from(y) * u64::from(width) + u64::from(x);
-        let mut rng = SampleRng::new(key, s);
-        self.integrator
-            .sample_camera(&self.basis, &ray, &mut rng, s, splats)
+        (ray, SampleRng::new(key, s))
+    }
+
+    /// The samples `jobs` (at most [`BATCH_SAMPLES`] is best), written to `out` in the same
+    /// order: equal, bit for bit, to calling [`FrameSampler::sample`] for each. Direct light is
+    /// traced as a wavefront; the other integrators go sample by sample.
+    pub fn sample_batch(
+        &self,
+        jobs: &[SampleJob],
+        scratch: &mut BatchScratch,
+        splats: &mut Vec<Splat>,
+        out: &mut Vec<Sample>,
+    ) {
+        out.clear();
+        if self.integrator.kind != IntegratorKind::Direct {
+            out.extend(jobs.iter().map(|j| self.sample(j.x, j.y, j.s, splats)));
+            return;
+        }
+        scratch.rays.clear();
+        scratch
+            .rays
+            .extend(jobs.iter().map(|&job| self.camera_ray(job)));
+        out.resize(jobs.len(), Sample::default());
+        trace_direct_batch(
+            &self.integrator.prep,
+            &scratch.rays,
+            &mut scratch.direct,
+            out,
+        );
     }
 
     /// Adds samples `samples` of pixel (`x`, `y`) to `sum` (and their splats to `splats`);
@@ -63,6 +121,44 @@ impl<'a> FrameSampler<'a> {
             rays += u64::from(sample.rays);
             sum.add(&sample);
         }
+        rays
+    }
+
+    /// Samples `samples` of each pixel of `pixels`, traced in batches of [`BATCH_SAMPLES`];
+    /// `add` receives each sample with its job (in no promised order). Returns the rays traced.
+    pub fn for_each_sample(
+        &self,
+        pixels: impl IntoIterator<Item = (u32, u32)>,
+        samples: Range<u32>,
+        scratch: &mut BatchScratch,
+        splats: &mut Vec<Splat>,
+        mut add: impl FnMut(SampleJob, &Sample),
+    ) -> u64 {
+        let mut rays = 0u64;
+        let mut jobs = std::mem::take(&mut scratch.jobs);
+        let mut out = std::mem::take(&mut scratch.samples);
+        let mut flush = |jobs: &mut Vec<SampleJob>, scratch: &mut BatchScratch| {
+            self.sample_batch(jobs, scratch, splats, &mut out);
+            for (&job, sample) in jobs.iter().zip(&out) {
+                rays += u64::from(sample.rays);
+                add(job, sample);
+            }
+            jobs.clear();
+        };
+        jobs.clear();
+        for (x, y) in pixels {
+            for s in samples.clone() {
+                jobs.push(SampleJob { x, y, s });
+                if jobs.len() == BATCH_SAMPLES {
+                    flush(&mut jobs, scratch);
+                }
+            }
+        }
+        if !jobs.is_empty() {
+            flush(&mut jobs, scratch);
+        }
+        scratch.jobs = jobs;
+        scratch.samples = out;
         rays
     }
 

@@ -3,7 +3,7 @@
 
 use super::super::film::PixelSum;
 use super::super::passes::Pass;
-use super::super::pixel::FrameSampler;
+use super::super::pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler, SampleJob};
 use super::super::progressive_film::ProgressiveFilm;
 use super::super::tiles::Tile;
 use super::shared::Shared;
@@ -79,15 +79,25 @@ impl PassContext<'_> {
         let mut missed = Vec::with_capacity(tile.pixel_count());
         let mut splats = Vec::new();
         let mut rays = 0u64;
-        for y in tile.y0..tile.y1 {
+        let mut scratch = BatchScratch::default();
+        let (mut jobs, mut samples) = (Vec::new(), Vec::new());
+        let width = (tile.x1 - tile.x0).max(1);
+        // Whole rows per batch, so staleness is still checked every few rows.
+        let rows_per_batch = (BATCH_SAMPLES as u32 / width).max(1);
+        for y0 in (tile.y0..tile.y1).step_by(rows_per_batch as usize) {
             if !self.shared.is_current(self.generation) {
                 return;
             }
-            for x in tile.x0..tile.x1 {
-                let sample = self.frame.sample(x, y, index, &mut splats);
+            jobs.clear();
+            for y in y0..(y0 + rows_per_batch).min(tile.y1) {
+                jobs.extend((tile.x0..tile.x1).map(|x| SampleJob { x, y, s: index }));
+            }
+            self.frame
+                .sample_batch(&jobs, &mut scratch, &mut splats, &mut samples);
+            for sample in &samples {
                 rays += u64::from(sample.rays);
                 let mut sum = PixelSum::default();
-                sum.add(&sample);
+                sum.add(sample);
                 sums.push(sum);
                 missed.push(sample.missed);
             }

@@ -1,0 +1,76 @@
+//! The wavefront: a batch of camera samples walks its mirror chains in lockstep, one stage at a
+//! time over every walk still going (closest hits, shading, shadow rays, adding up).
+
+use super::super::Sample;
+use super::walk::{Contribution, Shadow, Walk};
+use crate::bvh::Hit;
+use crate::geometry::Ray;
+use crate::sampling::SampleRng;
+use crate::shading::Prepared;
+
+/// Working memory of [`trace_batch`], kept between batches so a render allocates it once per
+/// thread.
+#[derive(Debug, Default)]
+pub struct DirectBatch {
+    walks: Vec<Walk>,
+    /// Indices of the walks still going.
+    active: Vec<u32>,
+    hits: Vec<Option<Hit>>,
+    shadows: Vec<Shadow>,
+    contributions: Vec<Contribution>,
+    blocked: Vec<bool>,
+}
+
+impl DirectBatch {
+    /// The random stream of walk `i` of the last batch, as the walk left it.
+    pub fn final_rng(&self, i: usize) -> SampleRng {
+        self.walks[i].rng.clone()
+    }
+}
+
+/// Traces the camera samples `rays` (each ray with its random stream) and writes what each sees
+/// to `out` (as long as `rays`): the same samples, bit for bit, as tracing them one by one.
+pub fn trace_batch(
+    prep: &Prepared<'_>,
+    rays: &[(Ray, SampleRng)],
+    batch: &mut DirectBatch,
+    out: &mut [Sample],
+) {
+    debug_assert_eq!(rays.len(), out.len());
+    batch.walks.clear();
+    batch
+        .walks
+        .extend(rays.iter().map(|(ray, rng)| Walk::new(*ray, rng.clone())));
+    batch.active.clear();
+    batch.active.extend(0..rays.len() as u32);
+    while !batch.active.is_empty() {
+        let walks = &mut batch.walks;
+        batch.hits.clear();
+        batch.hits.extend(
+            batch
+                .active
+                .iter()
+                .map(|&i| prep.closest_visible(&walks[i as usize].ray)),
+        );
+        batch.shadows.clear();
+        batch.contributions.clear();
+        for (&i, &hit) in batch.active.iter().zip(&batch.hits) {
+            walks[i as usize].shade(prep, hit, &mut batch.shadows, &mut batch.contributions);
+        }
+        batch.blocked.clear();
+        batch.blocked.extend(
+            batch
+                .shadows
+                .iter()
+                .map(|s| prep.occluded(s.origin, s.to_target)),
+        );
+        batch.active.retain(|&i| {
+            let walk = &mut walks[i as usize];
+            walk.resolve(&batch.contributions, &batch.blocked);
+            walk.advance()
+        });
+    }
+    for (o, walk) in out.iter_mut().zip(&batch.walks) {
+        *o = walk.sample;
+    }
+}

@@ -1,0 +1,35 @@
+//! The coursework's model, extended to every light kind: direct light with hard shadows,
+//! `L = Σ E · (Kd/π + Ks (g+8)/(8π) (n·h)^g) + Ks · L_reflected`, mirrors traced to a depth
+//! limit, and emissive surfaces seen directly or sampled as lights.
+//!
+//! - Point and spot lights: `E = I(ω) cos θ / R²`, exact, one shadow ray each.
+//! - Emissive triangles: one light sample per shading point (an unbiased estimate of their
+//!   direct illuminance), picked by flux.
+//!
+//! Rays are traced as a wavefront ([`trace_batch`]): every camera ray of a batch finds its
+//! hit, every hit is shaded and asks for its shadow rays, all shadow rays are traced, and the
+//! answers are added in the order a single ray would add them. Independent rays side by side
+//! keep the CPU busy where one ray's chain of divisions, square roots and tree steps would
+//! stall it, and give the tree rays to trace together. One ray ([`trace`]) is a batch of one,
+//! so both give the same samples bit for bit.
+
+mod batch;
+mod walk;
+
+pub use batch::{DirectBatch, trace_batch};
+
+use super::Sample;
+use crate::geometry::Ray;
+use crate::sampling::SampleRng;
+use crate::shading::Prepared;
+
+/// Luminance arriving along the camera ray `ray`, with the first hit's direct illuminance.
+pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
+    let mut batch = DirectBatch::default();
+    let mut out = [Sample::default()];
+    trace_batch(prep, &[(*ray, rng.clone())], &mut batch, &mut out);
+    // The stream's state after the sample is not used by any caller; keep it advanced the way
+    // the batch advanced its copy for the sake of callers that draw more from it.
+    *rng = batch.final_rng(0);
+    out[0]
+}

@@ -1,0 +1,201 @@
+//! One camera sample's walk along its mirror chain, in steps a wavefront can interleave:
+//! [`Walk::shade`] at a hit asks for shadow rays and keeps each light's contribution aside,
+//! [`Walk::resolve`] adds those whose shadow ray was free, [`Walk::advance`] turns to the mirror
+//! direction. The arithmetic and its order are the model's, whatever the batch.
+
+use super::super::Sample;
+use crate::bvh::Hit;
+use crate::geometry::Ray;
+use crate::sampling::SampleRng;
+use crate::shading::{Prepared, PreparedMaterial, Surface};
+use glam::Vec3;
+
+/// A shadow ray: blocked when a drawn surface lies on `origin .. origin + to_target`.
+#[derive(Clone, Copy, Debug)]
+pub struct Shadow {
+    pub origin: Vec3,
+    pub to_target: Vec3,
+}
+
+/// What one light adds at a hit when its shadow ray is free: illuminance (lx) and reflected
+/// luminance per channel (before the mirror chain's weight).
+#[derive(Clone, Copy, Debug)]
+pub struct Contribution {
+    pub illuminance_lx: f32,
+    pub rgb: Vec3,
+}
+
+/// One camera sample on its way.
+#[derive(Clone, Debug)]
+pub struct Walk {
+    pub ray: Ray,
+    pub rng: SampleRng,
+    pub sample: Sample,
+    /// Throughput: the product of Ks along the mirror chain so far.
+    weight: Vec3,
+    depth: u32,
+    /// The contributions of the current hit: `pending .. pending + pending_len` of the batch's
+    /// shadow rays.
+    pub pending: u32,
+    pub pending_len: u32,
+    /// Where the walk goes after this hit and its weight there (None: it ends).
+    next: Option<(Ray, Vec3)>,
+}
+
+impl Walk {
+    pub fn new(ray: Ray, rng: SampleRng) -> Self {
+        Self {
+            ray,
+            rng,
+            sample: Sample::default(),
+            weight: Vec3::ONE,
+            depth: 0,
+            pending: 0,
+            pending_len: 0,
+            next: None,
+        }
+    }
+
+    /// Shades the closest hit `hit` of `self.ray` (None: a miss): emission seen, the lights'
+    /// shadow rays pushed to `shadows` with their contributions to `contributions`, and the
+    /// mirror ray to follow.
+    pub fn shade(
+        &mut self,
+        prep: &Prepared<'_>,
+        hit: Option<Hit>,
+        shadows: &mut Vec<Shadow>,
+        contributions: &mut Vec<Contribution>,
+    ) {
+        self.pending = shadows.len() as u32;
+        self.pending_len = 0;
+        self.next = None;
+        self.sample.rays += 1;
+        let Some(hit) = hit else {
+            self.sample.missed = self.depth == 0;
+            return;
+        };
+        let ray = self.ray;
+        let p = ray.at(hit.t);
+        let surface = Surface::at(prep, &hit, p, ray.dir);
+        let n = surface.ns;
+        let mat = prep.material_of(hit.prim);
+        let view = -ray.dir.normalize();
+        if mat.emission.max_element() > 0.0 {
+            self.sample.rgb += self.weight * prep.emitters.radiance(hit.prim, view);
+        }
+        let before = shadows.len();
+        direct_light(
+            prep,
+            mat,
+            &surface,
+            view,
+            &mut self.rng,
+            shadows,
+            contributions,
+        );
+        self.pending_len = (shadows.len() - before) as u32;
+        self.sample.rays += self.pending_len;
+        if self.depth == prep.max_depth {
+            return;
+        }
+        let weight = self.weight * mat.ks;
+        if weight.max_element() <= 0.0 {
+            return;
+        }
+        let d = ray.dir.normalize();
+        let reflected = d - n * (2.0 * d.dot(n));
+        if surface.ng.dot(reflected) <= 0.0 {
+            // The shading normal bent the mirror direction into the mesh: it ends here.
+            return;
+        }
+        self.next = Some((Ray::new(surface.origin, reflected), weight));
+    }
+
+    /// Adds the contributions of the current hit whose shadow rays were not `blocked` (both
+    /// indexed like the batch's shadow rays), in the order the lights were visited.
+    pub fn resolve(&mut self, contributions: &[Contribution], blocked: &[bool]) {
+        let range = self.pending as usize..(self.pending + self.pending_len) as usize;
+        let mut direct = Vec3::ZERO;
+        let mut e_total = 0.0;
+        for (c, &b) in contributions[range.clone()].iter().zip(&blocked[range]) {
+            if !b {
+                e_total += c.illuminance_lx;
+                direct += c.rgb;
+            }
+        }
+        if self.depth == 0 {
+            self.sample.illuminance_lx = e_total;
+        }
+        self.sample.rgb += self.weight * direct;
+    }
+
+    /// Turns to the mirror ray after [`Walk::resolve`]; false when the walk has ended.
+    pub fn advance(&mut self) -> bool {
+        let Some((ray, weight)) = self.next.take() else {
+            return false;
+        };
+        self.ray = ray;
+        self.weight = weight;
+        self.depth += 1;
+        true
+    }
+}
+
+/// The lights' shadow rays at a hit and what each adds when free: point-like lights in order,
+/// then one sample of the emissive triangles.
+fn direct_light(
+    prep: &Prepared<'_>,
+    mat: &PreparedMaterial,
+    surface: &Surface,
+    view: Vec3,
+    rng: &mut SampleRng,
+    shadows: &mut Vec<Shadow>,
+    contributions: &mut Vec<Contribution>,
+) {
+    let (p, n, origin) = (surface.p, surface.ns, surface.origin);
+    let brdf = |wi: Vec3| {
+        let mut f = mat.kd_over_pi;
+        if mat.glossiness > 0.0 {
+            let h = (wi + view).normalize_or_zero();
+            let n_dot_h = n.dot(h).max(0.0);
+            f += mat.ks * (mat.highlight_norm * n_dot_h.powf(mat.glossiness));
+        }
+        f
+    };
+    for light in &prep.lights {
+        // E = I cos θ / R², R converted to metres.
+        let Some((wi, e)) = prep.light_at(light, p, n) else {
+            continue;
+        };
+        if !surface.lit_from(wi) {
+            continue;
+        }
+        shadows.push(Shadow {
+            origin,
+            to_target: light.position - origin,
+        });
+        contributions.push(Contribution {
+            illuminance_lx: e,
+            rgb: light.tint * e * brdf(wi),
+        });
+    }
+    if !prep.emitters.is_empty() {
+        let u_pick = rng.next_f32();
+        let (u, v) = rng.next_2d();
+        if let Some(s) = prep.emitters.sample(p, u_pick, u, v) {
+            let cos_theta = n.dot(s.wi);
+            if surface.lit_from(s.wi) && s.radiance.max_element() > 0.0 {
+                // dE = L cos θ dω: the sample estimates ∫ L cos θ dω over the emitters.
+                let e_rgb = s.radiance * (cos_theta / s.pdf_solid_angle);
+                shadows.push(Shadow {
+                    origin,
+                    to_target: s.point - origin,
+                });
+                contributions.push(Contribution {
+                    illuminance_lx: crate::light::luminance(e_rgb),
+                    rgb: e_rgb * brdf(s.wi),
+                });
+            }
+        }
+    }
+}
