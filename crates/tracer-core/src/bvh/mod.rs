@@ -26,6 +26,7 @@
 
 mod binary;
 mod build;
+mod packet;
 mod pages;
 mod simd;
 mod sphere;
@@ -37,6 +38,7 @@ mod wide;
 
 use crate::geometry::Aabb;
 
+pub use packet::PACKET;
 pub use sphere::uv_sphere;
 pub use traverse::Kernel;
 pub use triangle::{intersect_brute_force, occluded_brute_force};

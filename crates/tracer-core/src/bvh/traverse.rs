@@ -10,19 +10,46 @@ use super::simd::{Avx2, Slabs8};
 use std::mem::MaybeUninit;
 
 use super::stack::Stack;
-use super::triangle::RayTriangles;
+use super::triangle::{RayTriangles, closer};
 use super::wide::{EMPTY, GROUPS, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit};
 use crate::geometry::Ray;
 
 /// Levels handled by the fixed-size stack (almost always enough); deeper trees use a `Vec`.
-const STACK_LEVELS: usize = 24;
-const STACK_SIZE: usize = STACK_LEVELS * (WIDTH - 1) + 1;
+pub(super) const STACK_LEVELS: usize = 24;
+pub(super) const STACK_SIZE: usize = STACK_LEVELS * (WIDTH - 1) + 1;
 
 /// Scales each slab's exit distance up so rounding never culls a box the ray touches: 2 gamma(4)
 /// covers the subtraction, the product and the rounded reciprocal and its scaling (Ize, "Robust
 /// BVH Ray Traversal", 2013).
-const EXIT_SCALE: f32 = 1.0 + 2.0 * (4.0 * f32::EPSILON * 0.5) / (1.0 - 4.0 * f32::EPSILON * 0.5);
+/// How far past the best hit (relative to `t` and to the ray's origin over its direction) boxes
+/// are still opened. A triangle hit at `t` lies in boxes the ray enters no later than `t`
+/// exactly, but the rounded entry distance can come out a few ulps later than the rounded `t`;
+/// without the margin such a box could be skipped when it holds a triangle hit at the same `t`
+/// with a smaller id, and which triangle wins a tie would depend on the order boxes are opened
+/// in (node test, single ray or packet). With it every tie is seen, and every traversal returns
+/// the least (t, id), as the brute-force reference does.
+pub(super) const CULL_SLACK: f32 = 16.0 * f32::EPSILON;
+
+/// Per ray: the absolute part of the cull margin (origin over direction per axis, the scale of
+/// the rounding in slab and triangle distances; axes the ray does not move along are exact).
+pub(super) fn cull_reach(origin: [f32; 3], inv_dir: [f32; 3]) -> f32 {
+    (0..3)
+        .filter(|&a| inv_dir[a].is_finite())
+        .map(|a| (origin[a] * inv_dir[a]).abs())
+        .fold(0.0, f32::max)
+        * CULL_SLACK
+}
+
+/// The distance up to which boxes are opened when the best hit so far is at `t` (finite, as
+/// box tests need).
+#[inline(always)]
+pub(super) fn cull_limit(t: f32, reach: f32) -> f32 {
+    (t + t.abs() * CULL_SLACK + reach).min(f32::MAX)
+}
+
+pub(super) const EXIT_SCALE: f32 =
+    1.0 + 2.0 * (4.0 * f32::EPSILON * 0.5) / (1.0 - 4.0 * f32::EPSILON * 0.5);
 
 #[derive(Clone, Copy, Default)]
 struct StackEntry {
@@ -44,6 +71,8 @@ struct RayBoxes {
     near_row: [usize; 3],
     far_row: [usize; 3],
     t_min: f32,
+    /// See [`cull_reach`].
+    reach: f32,
 }
 
 impl RayBoxes {
@@ -57,6 +86,7 @@ impl RayBoxes {
             near_row: std::array::from_fn(|a| if negative[a] { 3 + a } else { a }),
             far_row: std::array::from_fn(|a| if negative[a] { a } else { 3 + a }),
             t_min: ray.t_min,
+            reach: cull_reach(ray.origin.to_array(), inv),
         }
     }
 }
@@ -269,36 +299,40 @@ impl Bvh {
     fn intersect_with<T: NodeTest>(&self, test: T, ray: &Ray) -> Option<Hit> {
         // Rays that miss everything (most primary rays of a small object) cost one node test:
         // no stack, no triangle set-up.
-        let boxes = test.prepare(&RayBoxes::new(ray));
-        let root = test.enter(&boxes, self.nodes.first()?, ray.t_max.min(f32::MAX));
+        let ray_boxes = RayBoxes::new(ray);
+        let reach = ray_boxes.reach;
+        let boxes = test.prepare(&ray_boxes);
+        let root = test.enter(&boxes, self.nodes.first()?, cull_limit(ray.t_max, reach));
         if root.0 == 0 {
             return None;
         }
         if self.depth <= STACK_LEVELS {
             let buf = &mut [MaybeUninit::uninit(); STACK_SIZE];
-            self.closest(test, ray, &boxes, root, Stack::new(buf))
+            self.closest(test, ray, &boxes, reach, root, Stack::new(buf))
         } else {
             let buf = &mut vec![MaybeUninit::uninit(); self.depth * (WIDTH - 1) + 1];
-            self.closest(test, ray, &boxes, root, Stack::new(buf))
+            self.closest(test, ray, &boxes, reach, root, Stack::new(buf))
         }
     }
 
     #[inline(always)]
     fn occluded_with<T: NodeTest>(&self, test: T, ray: &Ray) -> bool {
-        let boxes = test.prepare(&RayBoxes::new(ray));
+        let ray_boxes = RayBoxes::new(ray);
+        let limit = cull_limit(ray.t_max, ray_boxes.reach);
+        let boxes = test.prepare(&ray_boxes);
         let Some(root) = self.nodes.first() else {
             return false;
         };
-        let root = test.enter(&boxes, root, ray.t_max.min(f32::MAX)).0;
+        let root = test.enter(&boxes, root, limit).0;
         if root == 0 {
             return false;
         }
         if self.depth <= STACK_LEVELS {
             let buf = &mut [MaybeUninit::uninit(); STACK_SIZE];
-            self.any(test, ray, &boxes, root, Stack::new(buf))
+            self.any(test, ray, &boxes, limit, root, Stack::new(buf))
         } else {
             let buf = &mut vec![MaybeUninit::uninit(); self.depth * (WIDTH - 1) + 1];
-            self.any(test, ray, &boxes, root, Stack::new(buf))
+            self.any(test, ray, &boxes, limit, root, Stack::new(buf))
         }
     }
 
@@ -309,11 +343,14 @@ impl Bvh {
         test: T,
         ray: &Ray,
         boxes: &T::Prepared,
+        reach: f32,
         root: (u32, [f32; WIDTH]),
         mut stack: Stack<StackEntry>,
     ) -> Option<Hit> {
         let tri_ray = RayTriangles::new(ray);
         let mut best_t = ray.t_max;
+        let mut cull_t = cull_limit(best_t, reach);
+        let mut best_id = u32::MAX;
         let mut best: Option<(u32, f32, f32)> = None;
         let mut next = visit_sorted(&self.nodes[0], root, &mut stack);
         loop {
@@ -328,22 +365,25 @@ impl Bvh {
                             prim,
                         });
                     };
-                    if entry.t_enter <= best_t {
+                    if entry.t_enter <= cull_t {
                         break entry.child;
                     }
                 },
             };
             if current & LEAF_BIT == 0 {
                 let node = &self.nodes[current as usize];
-                // Box tests need a finite limit; no hit lies at t = inf.
-                let hits = test.enter(boxes, node, best_t.min(f32::MAX));
+                let hits = test.enter(boxes, node, cull_t);
                 next = visit_sorted(node, hits, &mut stack);
             } else {
                 let (first, count) = leaf_range(current);
                 for pack in &self.triangles[first..first + count] {
-                    if let Some((lane, t, u, v)) = pack.intersect(&tri_ray, best_t) {
+                    if let Some((lane, t, u, v)) = pack.intersect(&tri_ray, best_t)
+                        && closer(t, pack.ids[lane], best_t, best_id)
+                    {
                         best_t = t;
-                        best = Some((pack.ids[lane], u, v));
+                        cull_t = cull_limit(t, reach);
+                        best_id = pack.ids[lane];
+                        best = Some((best_id, u, v));
                     }
                 }
                 next = None;
@@ -358,11 +398,11 @@ impl Bvh {
         test: T,
         ray: &Ray,
         boxes: &T::Prepared,
+        limit: f32,
         root: u32,
         mut stack: Stack<u32>,
     ) -> bool {
         let tri_ray = RayTriangles::new(ray);
-        let limit = ray.t_max.min(f32::MAX);
         let mut next = visit_any(&self.nodes[0], root, &mut stack);
         loop {
             let Some(current) = next.or_else(|| stack.pop()) else {

@@ -112,7 +112,8 @@ impl Tri4 {
         (hit.bits(), [t, v, w, inv_det])
     }
 
-    /// The nearest hit lane with `t` in `[t_min, t_max]`: `(lane, t, u, v)`.
+    /// The nearest hit lane with `t` in `[t_min, t_max]`: `(lane, t, u, v)`; of lanes at the
+    /// same `t`, the one with the smallest id (see [`closer`]).
     #[inline(always)]
     pub fn intersect(&self, r: &RayTriangles, t_max: f32) -> Option<(usize, f32, f32, f32)> {
         let (mut bits, [t, v, w, inv_det]) = self.lanes(r, t_max);
@@ -124,7 +125,7 @@ impl Tri4 {
         bits &= bits - 1;
         while bits != 0 {
             let lane = bits.trailing_zeros() as usize;
-            if t[lane] < t[best] {
+            if closer(t[lane], self.ids[lane], t[best], self.ids[best]) {
                 best = lane;
             }
             bits &= bits - 1;
@@ -145,14 +146,24 @@ impl Tri4 {
     }
 }
 
+/// Whether a hit on triangle `id` at `t` beats the best so far (`best_t`, `best_id`): nearer,
+/// or as near with a smaller id. The closest hit is then the least (t, id) of all triangles
+/// hit, whatever order they are met in, so single rays, packets and the brute-force reference
+/// (which keeps the first of equal hits in index order) agree bit for bit even on ties at
+/// shared edges.
+#[inline(always)]
+pub(crate) fn closer(t: f32, id: u32, best_t: f32, best_id: u32) -> bool {
+    t < best_t || (t == best_t && id < best_id)
+}
+
 /// A ray prepared for the watertight test: `kz` is the dominant direction axis, `kx`, `ky` the
 /// other two; the shear maps the direction onto the `+kz` unit axis.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RayTriangles {
-    origin: Vec3,
-    k: [usize; 3],
-    shear: [f32; 3],
-    t_min: f32,
+    pub origin: Vec3,
+    pub k: [usize; 3],
+    pub shear: [f32; 3],
+    pub t_min: f32,
 }
 
 impl RayTriangles {

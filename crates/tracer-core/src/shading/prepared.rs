@@ -2,13 +2,17 @@
 //! conversions: light tints scaled to luminance 1, spot profiles, Kd / π, highlight
 //! normalisation, emission, the emitter table, the unit factor and the front side.
 
-use crate::bvh::Hit;
+use crate::bvh::{Hit, PACKET};
 use crate::geometry::Ray;
 use crate::light::LightKind;
 use crate::light::{EmissiveTriangle, EmitterTable, Luminaire, LuminaireFrame, SpotProfile};
 use crate::scene::{Handedness, Scene, Setup};
 use glam::Vec3;
 use std::sync::Arc;
+
+/// Whether batches of rays go through the tree as packets of eight (else one by one; the hits
+/// are the same either way). Off until the packet kernel beats single rays.
+const USE_PACKETS: bool = false;
 
 #[derive(Clone, Debug)]
 pub struct PreparedLight {
@@ -163,11 +167,58 @@ impl<'a> Prepared<'a> {
         }
     }
 
+    /// [`Prepared::closest_visible`] of each of `rays` into `out` (as long), eight at a time
+    /// through the tree (the same hits bit for bit).
+    pub fn closest_visible_many(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+        if self.any_hidden {
+            for (o, r) in out.iter_mut().zip(rays) {
+                *o = self.closest_visible(r);
+            }
+            return;
+        }
+        if !USE_PACKETS {
+            for (o, r) in out.iter_mut().zip(rays) {
+                *o = self.scene.bvh.intersect(r);
+            }
+            return;
+        }
+        for (r, o) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
+            self.scene.bvh.intersect_packet(r, o);
+        }
+    }
+
+    /// The ray of a shadow test from `origin` towards `origin + to_target`, stopping just short
+    /// of the end point.
+    pub fn shadow_ray(origin: Vec3, to_target: Vec3) -> Ray {
+        let mut ray = Ray::new(origin, to_target);
+        ray.t_max = 1.0 - 1e-4;
+        ray
+    }
+
+    /// [`Prepared::occluded`] of each shadow ray (see [`Prepared::shadow_ray`]) into `out`,
+    /// eight at a time through the tree.
+    pub fn occluded_many(&self, rays: &[Ray], out: &mut [bool]) {
+        if self.any_hidden {
+            for (o, r) in out.iter_mut().zip(rays) {
+                *o = self.closest_visible(r).is_some();
+            }
+            return;
+        }
+        if !USE_PACKETS {
+            for (o, r) in out.iter_mut().zip(rays) {
+                *o = self.scene.bvh.occluded(r);
+            }
+            return;
+        }
+        for (r, o) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
+            self.scene.bvh.occluded_packet(r, o);
+        }
+    }
+
     /// Whether a drawn surface blocks the segment `origin .. origin + to_target` (exclusive of
     /// the end point).
     pub fn occluded(&self, origin: Vec3, to_target: Vec3) -> bool {
-        let mut ray = Ray::new(origin, to_target);
-        ray.t_max = 1.0 - 1e-4;
+        let ray = Self::shadow_ray(origin, to_target);
         if !self.any_hidden {
             return self.scene.bvh.occluded(&ray);
         }

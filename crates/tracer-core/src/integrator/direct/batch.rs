@@ -2,7 +2,7 @@
 //! time over every walk still going (closest hits, shading, shadow rays, adding up).
 
 use super::super::Sample;
-use super::walk::{Contribution, Shadow, Walk};
+use super::walk::{Contribution, Walk};
 use crate::bvh::Hit;
 use crate::geometry::Ray;
 use crate::sampling::SampleRng;
@@ -15,8 +15,10 @@ pub struct DirectBatch {
     walks: Vec<Walk>,
     /// Indices of the walks still going.
     active: Vec<u32>,
+    /// The active walks' rays, and their closest hits.
+    rays: Vec<Ray>,
     hits: Vec<Option<Hit>>,
-    shadows: Vec<Shadow>,
+    shadows: Vec<Ray>,
     contributions: Vec<Contribution>,
     blocked: Vec<bool>,
 }
@@ -45,25 +47,21 @@ pub fn trace_batch(
     batch.active.extend(0..rays.len() as u32);
     while !batch.active.is_empty() {
         let walks = &mut batch.walks;
+        batch.rays.clear();
+        batch
+            .rays
+            .extend(batch.active.iter().map(|&i| walks[i as usize].ray));
         batch.hits.clear();
-        batch.hits.extend(
-            batch
-                .active
-                .iter()
-                .map(|&i| prep.closest_visible(&walks[i as usize].ray)),
-        );
+        batch.hits.resize(batch.rays.len(), None);
+        prep.closest_visible_many(&batch.rays, &mut batch.hits);
         batch.shadows.clear();
         batch.contributions.clear();
         for (&i, &hit) in batch.active.iter().zip(&batch.hits) {
             walks[i as usize].shade(prep, hit, &mut batch.shadows, &mut batch.contributions);
         }
         batch.blocked.clear();
-        batch.blocked.extend(
-            batch
-                .shadows
-                .iter()
-                .map(|s| prep.occluded(s.origin, s.to_target)),
-        );
+        batch.blocked.resize(batch.shadows.len(), false);
+        prep.occluded_many(&batch.shadows, &mut batch.blocked);
         batch.active.retain(|&i| {
             let walk = &mut walks[i as usize];
             walk.resolve(&batch.contributions, &batch.blocked);

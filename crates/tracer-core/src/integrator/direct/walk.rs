@@ -10,13 +10,6 @@ use crate::sampling::SampleRng;
 use crate::shading::{Prepared, PreparedMaterial, Surface};
 use glam::Vec3;
 
-/// A shadow ray: blocked when a drawn surface lies on `origin .. origin + to_target`.
-#[derive(Clone, Copy, Debug)]
-pub struct Shadow {
-    pub origin: Vec3,
-    pub to_target: Vec3,
-}
-
 /// What one light adds at a hit when its shadow ray is free: illuminance (lx) and reflected
 /// luminance per channel (before the mirror chain's weight).
 #[derive(Clone, Copy, Debug)]
@@ -63,7 +56,7 @@ impl Walk {
         &mut self,
         prep: &Prepared<'_>,
         hit: Option<Hit>,
-        shadows: &mut Vec<Shadow>,
+        shadows: &mut Vec<Ray>,
         contributions: &mut Vec<Contribution>,
     ) {
         self.pending = shadows.len() as u32;
@@ -149,7 +142,7 @@ fn direct_light(
     surface: &Surface,
     view: Vec3,
     rng: &mut SampleRng,
-    shadows: &mut Vec<Shadow>,
+    shadows: &mut Vec<Ray>,
     contributions: &mut Vec<Contribution>,
 ) {
     let (p, n, origin) = (surface.p, surface.ns, surface.origin);
@@ -170,10 +163,7 @@ fn direct_light(
         if !surface.lit_from(wi) {
             continue;
         }
-        shadows.push(Shadow {
-            origin,
-            to_target: light.position - origin,
-        });
+        shadows.push(Prepared::shadow_ray(origin, light.position - origin));
         contributions.push(Contribution {
             illuminance_lx: e,
             rgb: light.tint * e * brdf(wi),
@@ -187,10 +177,7 @@ fn direct_light(
             if surface.lit_from(s.wi) && s.radiance.max_element() > 0.0 {
                 // dE = L cos θ dω: the sample estimates ∫ L cos θ dω over the emitters.
                 let e_rgb = s.radiance * (cos_theta / s.pdf_solid_angle);
-                shadows.push(Shadow {
-                    origin,
-                    to_target: s.point - origin,
-                });
+                shadows.push(Prepared::shadow_ray(origin, s.point - origin));
                 contributions.push(Contribution {
                     illuminance_lx: crate::light::luminance(e_rgb),
                     rgb: e_rgb * brdf(s.wi),
