@@ -26,6 +26,7 @@
 
 mod binary;
 mod build;
+mod lanes8;
 mod packet;
 mod pages;
 mod simd;

@@ -17,9 +17,12 @@
 
 use std::mem::MaybeUninit;
 
+#[cfg(target_arch = "x86_64")]
+use super::lanes8::Avx8;
+use super::lanes8::{Lanes8, Mask8, Scalar8};
 use super::stack::Stack;
 use super::traverse::{EXIT_SCALE, Kernel, STACK_LEVELS, STACK_SIZE, cull_limit, cull_reach};
-use super::triangle::{PACK, RayTriangles, Tri4, closer};
+use super::triangle::{PACK, Tri4, closer};
 use super::wide::{EMPTY, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit, PADDING};
 use crate::geometry::Ray;
@@ -35,55 +38,146 @@ const PACKET_STACK: usize = STACK_SIZE + WIDTH;
 /// Eight rays prepared for box and triangle tests. Lanes past the rays given repeat the first
 /// ray and are never active.
 #[derive(Clone, Copy)]
-struct Rays8 {
+struct Rays8<L: Lanes8> {
     /// Bit per lane holding a ray.
     active: u32,
-    origin: [F8; 3],
-    inv_dir: [F8; 3],
-    inv_dir_exit: [F8; 3],
-    /// Per axis and lane: the direction is negative (the ray enters a box through its maximum).
-    negative: [[bool; PACKET]; 3],
-    t_min: F8,
+    origin: [L; 3],
+    inv_dir: [L; 3],
+    inv_dir_exit: [L; 3],
+    /// Per axis: lanes whose direction is negative (entering a box through its maximum), and
+    /// the sign when every lane has the same (the common case: no blend per box).
+    negative: [L::Mask; 3],
+    uniform_negative: [Option<bool>; 3],
+    t_min: L,
     t_max: F8,
     /// See `cull_reach`.
     reach: F8,
-    /// The triangle test's frame per lane: the origin's coordinates along kx, ky, kz, the
-    /// shear, and the axes themselves.
-    origin_k: [F8; 3],
-    shear: [F8; 3],
-    axes: [[usize; 3]; PACKET],
-    /// The axes when every lane has the same (the common case), for plain broadcasts.
+    /// The triangle test's frame per lane: the origin's coordinates along kx, ky, kz and the
+    /// shear; which lanes take x (`axis_is[j][0]`) or y (`axis_is[j][1]`) as axis j (else z),
+    /// and the axes when every lane has the same (the common case: plain broadcasts).
+    origin_k: [L; 3],
+    shear: [L; 3],
+    axis_is: [[L::Mask; 2]; 3],
     uniform_axes: Option<[usize; 3]>,
 }
 
-impl Rays8 {
+impl<L: Lanes8> Rays8<L> {
+    /// (Plain loops and straight-line lane calls: a closure would not inherit the caller's
+    /// AVX target feature, and each intrinsic in it would become a call.)
+    #[inline(always)]
     fn new(rays: &[Ray]) -> Self {
         debug_assert!((1..=PACKET).contains(&rays.len()));
-        let ray = |i: usize| rays.get(i).unwrap_or(&rays[0]);
-        let tri: [RayTriangles; PACKET] = std::array::from_fn(|i| RayTriangles::new(ray(i)));
-        let inv: [[f32; 3]; PACKET] = std::array::from_fn(|i| {
-            let d = ray(i).dir;
-            [1.0 / d.x, 1.0 / d.y, 1.0 / d.z]
-        });
-        let axes: [[usize; 3]; PACKET] = std::array::from_fn(|i| tri[i].k);
-        let uniform_axes = axes[1..rays.len()]
-            .iter()
-            .all(|k| *k == axes[0])
-            .then_some(axes[0]);
+        let n = rays.len();
+        let mut dir = [[0.0f32; PACKET]; 3];
+        let mut origin = [[0.0f32; PACKET]; 3];
+        let mut t_min = [0.0f32; PACKET];
+        let mut t_max = [0.0f32; PACKET];
+        for i in 0..PACKET {
+            let r = rays.get(i).unwrap_or(&rays[0]);
+            for a in 0..3 {
+                dir[a][i] = r.dir[a];
+                origin[a][i] = r.origin[a];
+            }
+            t_min[i] = r.t_min;
+            t_max[i] = r.t_max;
+        }
+        let one = L::splat(1.0);
+        let inv_dir = [
+            one.div(L::from_array(dir[0])),
+            one.div(L::from_array(dir[1])),
+            one.div(L::from_array(dir[2])),
+        ];
+        let inv = [
+            inv_dir[0].to_array(),
+            inv_dir[1].to_array(),
+            inv_dir[2].to_array(),
+        ];
+        let mut negative = [[false; PACKET]; 3];
+        let mut uniform_negative = [None; 3];
+        for a in 0..3 {
+            for i in 0..PACKET {
+                negative[a][i] = inv[a][i].is_sign_negative();
+            }
+            if negative[a][1..n].iter().all(|&x| x == negative[a][0]) {
+                uniform_negative[a] = Some(negative[a][0]);
+            }
+        }
+        // The watertight test's frame (`RayTriangles::new`, per lane): kz the dominant axis,
+        // kx, ky the next two, the shear from one division.
+        let mut axes = [[0usize; 3]; PACKET];
+        let mut dir_k = [[0.0f32; PACKET]; 3];
+        let mut origin_k = [[0.0f32; PACKET]; 3];
+        let mut axis_is = [[[false; PACKET]; 2]; 3];
+        let mut reach = [0.0f32; PACKET];
+        for i in 0..PACKET {
+            let (x, y, z) = (dir[0][i].abs(), dir[1][i].abs(), dir[2][i].abs());
+            let kz = if x >= y && x >= z {
+                0
+            } else if y >= z {
+                1
+            } else {
+                2
+            };
+            axes[i] = [(kz + 1) % 3, (kz + 2) % 3, kz];
+            for j in 0..3 {
+                let k = axes[i][j];
+                dir_k[j][i] = dir[k][i];
+                origin_k[j][i] = origin[k][i];
+                axis_is[j][0][i] = k == 0;
+                axis_is[j][1][i] = k == 1;
+            }
+            let o = [origin[0][i], origin[1][i], origin[2][i]];
+            reach[i] = cull_reach(o, [inv[0][i], inv[1][i], inv[2][i]]);
+        }
+        let uniform_axes = axes[1..n].iter().all(|k| *k == axes[0]).then_some(axes[0]);
+        let inv_z = one.div(L::from_array(dir_k[2]));
+        let exit = L::splat(EXIT_SCALE);
         Self {
-            active: (1u32 << rays.len()) - 1,
-            origin: std::array::from_fn(|a| std::array::from_fn(|i| ray(i).origin[a])),
-            inv_dir: std::array::from_fn(|a| std::array::from_fn(|i| inv[i][a])),
-            inv_dir_exit: std::array::from_fn(|a| std::array::from_fn(|i| inv[i][a] * EXIT_SCALE)),
-            negative: std::array::from_fn(|a| {
-                std::array::from_fn(|i| inv[i][a].is_sign_negative())
-            }),
-            t_min: std::array::from_fn(|i| ray(i).t_min),
-            t_max: std::array::from_fn(|i| ray(i).t_max),
-            reach: std::array::from_fn(|i| cull_reach(ray(i).origin.to_array(), inv[i])),
-            origin_k: std::array::from_fn(|j| std::array::from_fn(|i| tri[i].origin[tri[i].k[j]])),
-            shear: std::array::from_fn(|j| std::array::from_fn(|i| tri[i].shear[j])),
-            axes,
+            active: (1u32 << n) - 1,
+            origin: [
+                L::from_array(origin[0]),
+                L::from_array(origin[1]),
+                L::from_array(origin[2]),
+            ],
+            inv_dir,
+            inv_dir_exit: [
+                inv_dir[0].mul(exit),
+                inv_dir[1].mul(exit),
+                inv_dir[2].mul(exit),
+            ],
+            negative: [
+                L::Mask::from_bools(negative[0]),
+                L::Mask::from_bools(negative[1]),
+                L::Mask::from_bools(negative[2]),
+            ],
+            uniform_negative,
+            t_min: L::from_array(t_min),
+            t_max,
+            reach,
+            origin_k: [
+                L::from_array(origin_k[0]),
+                L::from_array(origin_k[1]),
+                L::from_array(origin_k[2]),
+            ],
+            shear: [
+                L::from_array(dir_k[0]).mul(inv_z),
+                L::from_array(dir_k[1]).mul(inv_z),
+                inv_z,
+            ],
+            axis_is: [
+                [
+                    L::Mask::from_bools(axis_is[0][0]),
+                    L::Mask::from_bools(axis_is[0][1]),
+                ],
+                [
+                    L::Mask::from_bools(axis_is[1][0]),
+                    L::Mask::from_bools(axis_is[1][1]),
+                ],
+                [
+                    L::Mask::from_bools(axis_is[2][0]),
+                    L::Mask::from_bools(axis_is[2][1]),
+                ],
+            ],
             uniform_axes,
         }
     }
@@ -91,104 +185,88 @@ impl Rays8 {
     /// Which lanes of `lanes` meet child `c`'s box of `node` within `[t_min, limit[lane]]`
     /// (a finite cull limit), and where each enters it (the portable slab test, per lane).
     #[inline(always)]
-    fn enter(&self, node: &WideNode, c: usize, limit: &F8, lanes: u32) -> (u32, F8) {
+    fn enter(&self, node: &WideNode, c: usize, limit: L, lanes: u32) -> (u32, L) {
         let (g, l) = (c / LANES, c % LANES);
         let mut near = self.t_min;
-        let mut far = *limit;
+        let mut far = limit;
         for axis in 0..3 {
             let lo = node.bounds[axis][g][l];
             let hi = node.bounds[3 + axis][g][l];
-            for i in 0..PACKET {
-                let neg = self.negative[axis][i];
-                let (np, fp) = if neg { (hi, lo) } else { (lo, hi) };
-                let o = self.origin[axis][i];
-                let tn = (np - o) * self.inv_dir[axis][i];
-                let tf = (fp - o) * self.inv_dir_exit[axis][i];
-                // NaN (origin on the plane, zero direction) keeps the other side.
-                near[i] = if tn > near[i] { tn } else { near[i] };
-                far[i] = if tf < far[i] { tf } else { far[i] };
-            }
+            let (np, fp) = match self.uniform_negative[axis] {
+                Some(true) => (L::splat(hi), L::splat(lo)),
+                Some(false) => (L::splat(lo), L::splat(hi)),
+                None => {
+                    let (lo, hi) = (L::splat(lo), L::splat(hi));
+                    let m = self.negative[axis];
+                    (L::select(m, hi, lo), L::select(m, lo, hi))
+                }
+            };
+            let o = self.origin[axis];
+            let tn = np.sub(o).mul(self.inv_dir[axis]);
+            let tf = fp.sub(o).mul(self.inv_dir_exit[axis]);
+            // NaN (origin on the plane, zero direction) keeps the other side.
+            near = tn.max_or(near);
+            far = tf.min_or(far);
         }
-        (lanes & lane_bits(|i| near[i] <= far[i]), near)
+        (lanes & near.le(far).bits(), near)
     }
 
     /// One vertex in every lane's ray frame: (x, y) sheared, z along the ray (the single-ray
     /// test's `frame`).
     #[inline(always)]
-    fn frame(&self, p: [f32; 3]) -> [F8; 3] {
-        let pick = |j: usize| -> F8 {
-            match self.uniform_axes {
-                Some(k) => [p[k[j]]; PACKET],
-                None => std::array::from_fn(|i| {
-                    let k = self.axes[i][j];
-                    if k == 0 {
-                        p[0]
-                    } else if k == 1 {
-                        p[1]
-                    } else {
-                        p[2]
-                    }
-                }),
-            }
+    fn frame(&self, p: [f32; 3]) -> [L; 3] {
+        let (px, py, pz) = match self.uniform_axes {
+            Some(k) => (L::splat(p[k[0]]), L::splat(p[k[1]]), L::splat(p[k[2]])),
+            None => (self.pick(p, 0), self.pick(p, 1), self.pick(p, 2)),
         };
-        let (px, py, pz) = (pick(0), pick(1), pick(2));
-        let mut x = [0.0; PACKET];
-        let mut y = [0.0; PACKET];
-        let mut z = [0.0; PACKET];
-        for i in 0..PACKET {
-            z[i] = pz[i] - self.origin_k[2][i];
-            x[i] = (px[i] - self.origin_k[0][i]) - self.shear[0][i] * z[i];
-            y[i] = (py[i] - self.origin_k[1][i]) - self.shear[1][i] * z[i];
-        }
+        let z = pz.sub(self.origin_k[2]);
+        let x = px.sub(self.origin_k[0]).sub(self.shear[0].mul(z));
+        let y = py.sub(self.origin_k[1]).sub(self.shear[1].mul(z));
         [x, y, z]
     }
 
-    /// Triangle `j` of `pack` against every lane (the watertight test, as `Tri4::lanes` does
-    /// it per triangle): lanes hit with `t` in `[t_min, t_max[lane]]`, and `t`, `u`, `v`.
+    /// Per lane the coordinate of `p` along that lane's axis `j`.
     #[inline(always)]
-    fn triangle(&self, pack: &Tri4, j: usize, t_max: &F8) -> (u32, F8, F8, F8) {
+    fn pick(&self, p: [f32; 3], j: usize) -> L {
+        let [is_x, is_y] = self.axis_is[j];
+        let yz = L::select(is_y, L::splat(p[1]), L::splat(p[2]));
+        L::select(is_x, L::splat(p[0]), yz)
+    }
+
+    /// Triangle `j` of `pack` against every lane (the watertight test, as `Tri4::lanes` does
+    /// it per triangle): lanes hit with `t` in `[t_min, t_max[lane]]`, and `t`, the
+    /// unnormalised `v`, `w` and `1 / det`.
+    #[inline(always)]
+    fn triangle(&self, pack: &Tri4, j: usize, t_max: L) -> (u32, [L; 4]) {
         let vertex = |v: usize| [pack.v[v][0][j], pack.v[v][1][j], pack.v[v][2][j]];
         let [ax, ay, az] = self.frame(vertex(0));
         let [bx, by, bz] = self.frame(vertex(1));
         let [cx, cy, cz] = self.frame(vertex(2));
-        let mut t = [0.0; PACKET];
-        let mut bu = [0.0; PACKET];
-        let mut bv = [0.0; PACKET];
-        let mut hit = [false; PACKET];
-        for i in 0..PACKET {
-            let u = cx[i] * by[i] - cy[i] * bx[i];
-            let v = ax[i] * cy[i] - ay[i] * cx[i];
-            let w = bx[i] * ay[i] - by[i] * ax[i];
-            let negative = u < 0.0 || v < 0.0 || w < 0.0;
-            let positive = u > 0.0 || v > 0.0 || w > 0.0;
-            let det = u + v + w;
-            let t_scaled = self.shear[2][i] * (u * az[i] + v * bz[i] + w * cz[i]);
-            let inv_det = 1.0 / det;
-            t[i] = t_scaled * inv_det;
-            bu[i] = v * inv_det;
-            bv[i] = w * inv_det;
-            hit[i] =
-                det != 0.0 && t[i] >= self.t_min[i] && t[i] <= t_max[i] && !(negative && positive);
-        }
-        (lane_bits(|i| hit[i]), t, bu, bv)
+        let u = cx.mul(by).sub(cy.mul(bx));
+        let v = ax.mul(cy).sub(ay.mul(cx));
+        let w = bx.mul(ay).sub(by.mul(ax));
+        let zero = L::splat(0.0);
+        let negative = u.lt(zero).or(v.lt(zero)).or(w.lt(zero));
+        let positive = u.gt(zero).or(v.gt(zero)).or(w.gt(zero));
+        let det = u.add(v).add(w);
+        let t_scaled = self.shear[2].mul(u.mul(az).add(v.mul(bz)).add(w.mul(cz)));
+        let inv_det = L::splat(1.0).div(det);
+        let t = t_scaled.mul(inv_det);
+        let hit = det
+            .ne(zero)
+            .and(t.ge(self.t_min))
+            .and(t.le(t_max))
+            .and_not(negative.and(positive));
+        (hit.bits(), [t, v, w, inv_det])
     }
-}
-
-/// Bits of the lanes where `f` holds.
-#[inline(always)]
-fn lane_bits(f: impl Fn(usize) -> bool) -> u32 {
-    let mut bits = 0;
-    for i in 0..PACKET {
-        bits |= u32::from(f(i)) << i;
-    }
-    bits
 }
 
 #[derive(Clone, Copy)]
-struct Entry {
+struct Entry<L: Lanes8> {
     child: u32,
     lanes: u32,
-    t_enter: F8,
+    /// Where each lane enters the child's box.
+    t_enter: L,
 }
 
 /// The best hit per lane so far.
@@ -219,7 +297,7 @@ impl Bvh {
             unsafe { self.closest8_avx2(rays, out) };
             return;
         }
-        self.closest8(rays, out);
+        self.closest8::<Scalar8>(rays, out);
     }
 
     /// Whether each of `rays` (at most [`PACKET`]) hits anything, into `out` (as long): what
@@ -241,31 +319,33 @@ impl Bvh {
             unsafe { self.any8_avx2(rays, out) };
             return;
         }
-        self.any8(rays, out);
+        self.any8::<Scalar8>(rays, out);
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn closest8_avx2(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
-        self.closest8(rays, out);
+        self.closest8::<Avx8>(rays, out);
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn any8_avx2(&self, rays: &[Ray], out: &mut [bool]) {
-        self.any8(rays, out);
+        self.any8::<Avx8>(rays, out);
     }
 
     #[inline(always)]
-    fn closest8(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
-        let r = Rays8::new(rays);
+    fn closest8<L: Lanes8>(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+        let r = Rays8::<L>::new(rays);
         let mut best = Best8 {
             t: r.t_max,
             id: [u32::MAX; PACKET],
             u: [0.0; PACKET],
             v: [0.0; PACKET],
         };
-        let mut cull: F8 = std::array::from_fn(|i| cull_limit(r.t_max[i], r.reach[i]));
+        let mut cull_t: F8 = std::array::from_fn(|i| cull_limit(r.t_max[i], r.reach[i]));
+        let mut best_t = L::from_array(best.t);
+        let mut cull = L::from_array(cull_t);
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
         let mut stack = Stack::new(buf);
         stack.push(Entry {
@@ -278,12 +358,12 @@ impl Bvh {
             Entry {
                 child: 0,
                 lanes: 0,
-                t_enter: [0.0; PACKET],
+                t_enter: r.t_min,
             },
         ); WIDTH];
         while let Some(e) = stack.pop() {
             // Lanes that found a hit nearer than where they enter this box need not open it.
-            let lanes = e.lanes & lane_bits(|i| e.t_enter[i] <= cull[i]);
+            let lanes = e.lanes & e.t_enter.le(cull).bits();
             if lanes == 0 {
                 continue;
             }
@@ -295,12 +375,10 @@ impl Bvh {
                     if child == EMPTY {
                         break;
                     }
-                    let (hit, near) = r.enter(node, c, &cull, lanes);
+                    let (hit, near) = r.enter(node, c, cull, lanes);
                     if hit != 0 {
-                        let key = (0..PACKET)
-                            .filter(|&i| hit & (1 << i) != 0)
-                            .map(|i| near[i])
-                            .fold(f32::INFINITY, f32::min);
+                        // Visit order: where the first of its rays enters.
+                        let key = near.to_array()[hit.trailing_zeros() as usize];
                         children[n] = (
                             key,
                             Entry {
@@ -332,18 +410,29 @@ impl Bvh {
                         if id == PADDING {
                             continue;
                         }
-                        let (hit, t, u, v) = r.triangle(pack, j, &best.t);
+                        let (hit, [t, v, w, inv_det]) = r.triangle(pack, j, best_t);
                         let mut hit = hit & lanes;
+                        if hit == 0 {
+                            continue;
+                        }
+                        let t = t.to_array();
+                        let (bu, bv) = (v.mul(inv_det).to_array(), w.mul(inv_det).to_array());
+                        let mut changed = false;
                         while hit != 0 {
                             let i = hit.trailing_zeros() as usize;
                             hit &= hit - 1;
                             if closer(t[i], id, best.t[i], best.id[i]) {
                                 best.t[i] = t[i];
                                 best.id[i] = id;
-                                best.u[i] = u[i];
-                                best.v[i] = v[i];
-                                cull[i] = cull_limit(t[i], r.reach[i]);
+                                best.u[i] = bu[i];
+                                best.v[i] = bv[i];
+                                cull_t[i] = cull_limit(t[i], r.reach[i]);
+                                changed = true;
                             }
+                        }
+                        if changed {
+                            best_t = L::from_array(best.t);
+                            cull = L::from_array(cull_t);
                         }
                     }
                 }
@@ -360,12 +449,13 @@ impl Bvh {
     }
 
     #[inline(always)]
-    fn any8(&self, rays: &[Ray], out: &mut [bool]) {
-        let r = Rays8::new(rays);
-        let limit: F8 = std::array::from_fn(|i| cull_limit(r.t_max[i], r.reach[i]));
+    fn any8<L: Lanes8>(&self, rays: &[Ray], out: &mut [bool]) {
+        let r = Rays8::<L>::new(rays);
+        let limit = L::from_array(std::array::from_fn(|i| cull_limit(r.t_max[i], r.reach[i])));
+        let t_max = L::from_array(r.t_max);
         let mut done = 0u32;
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
-        let mut stack: Stack<Entry> = Stack::new(buf);
+        let mut stack: Stack<Entry<L>> = Stack::new(buf);
         stack.push(Entry {
             child: 0,
             lanes: r.active,
@@ -383,7 +473,7 @@ impl Bvh {
                     if child == EMPTY {
                         break;
                     }
-                    let (hit, near) = r.enter(node, c, &limit, lanes);
+                    let (hit, near) = r.enter(node, c, limit, lanes);
                     if hit != 0 {
                         stack.push(Entry {
                             child,
@@ -399,7 +489,7 @@ impl Bvh {
                         if pack.ids[j] == PADDING {
                             continue;
                         }
-                        done |= r.triangle(pack, j, &r.t_max).0 & lanes;
+                        done |= r.triangle(pack, j, t_max).0 & lanes;
                         if done & lanes == lanes {
                             break 'packs;
                         }

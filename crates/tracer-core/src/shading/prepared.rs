@@ -11,8 +11,8 @@ use glam::Vec3;
 use std::sync::Arc;
 
 /// Whether batches of rays go through the tree as packets of eight (else one by one; the hits
-/// are the same either way). Off until the packet kernel beats single rays.
-const USE_PACKETS: bool = false;
+/// are the same either way).
+const USE_PACKETS: bool = true;
 
 #[derive(Clone, Debug)]
 pub struct PreparedLight {

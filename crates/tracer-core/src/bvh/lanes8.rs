@@ -1,0 +1,287 @@
+//! Eight `f32` lanes for the packet traversal: one AVX register where the CPU has AVX2 (picked
+//! at run time), plain arrays elsewhere. Every operation rounds per lane exactly as the scalar
+//! `f32` operation does (no fused multiply-add), and `max_or`/`min_or` keep the second operand
+//! when the first is NaN, as the SSE and AVX instructions do, so both kinds give the same bits.
+
+// Lane loops index arrays by lane on purpose.
+#![allow(clippy::needless_range_loop)]
+
+/// Eight lanes of `f32`.
+pub(crate) trait Lanes8: Copy {
+    type Mask: Mask8;
+    fn splat(x: f32) -> Self;
+    fn from_array(a: [f32; 8]) -> Self;
+    fn to_array(self) -> [f32; 8];
+    fn add(self, o: Self) -> Self;
+    fn sub(self, o: Self) -> Self;
+    fn mul(self, o: Self) -> Self;
+    fn div(self, o: Self) -> Self;
+    /// Per lane `if self > o { self } else { o }`.
+    fn max_or(self, o: Self) -> Self;
+    /// Per lane `if self < o { self } else { o }`.
+    fn min_or(self, o: Self) -> Self;
+    fn lt(self, o: Self) -> Self::Mask;
+    fn gt(self, o: Self) -> Self::Mask;
+    fn le(self, o: Self) -> Self::Mask;
+    fn ge(self, o: Self) -> Self::Mask;
+    /// True when either is NaN, as for `f32`.
+    fn ne(self, o: Self) -> Self::Mask;
+    /// Per lane `if m { a } else { b }`.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+}
+
+/// A per-lane condition.
+pub(crate) trait Mask8: Copy {
+    fn from_bools(b: [bool; 8]) -> Self;
+    fn and(self, o: Self) -> Self;
+    fn or(self, o: Self) -> Self;
+    /// `self && !o` per lane.
+    fn and_not(self, o: Self) -> Self;
+    /// Bit `i` set when lane `i` is true.
+    fn bits(self) -> u32;
+}
+
+/// Plain arrays, for every CPU.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Scalar8([f32; 8]);
+
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ScalarMask8([bool; 8]);
+
+impl Scalar8 {
+    #[inline(always)]
+    fn zip(self, o: Self, f: impl Fn(f32, f32) -> f32) -> Self {
+        let mut out = [0.0; 8];
+        for i in 0..8 {
+            out[i] = f(self.0[i], o.0[i]);
+        }
+        Self(out)
+    }
+
+    #[inline(always)]
+    fn test(self, o: Self, f: impl Fn(f32, f32) -> bool) -> ScalarMask8 {
+        let mut out = [false; 8];
+        for i in 0..8 {
+            out[i] = f(self.0[i], o.0[i]);
+        }
+        ScalarMask8(out)
+    }
+}
+
+impl Lanes8 for Scalar8 {
+    type Mask = ScalarMask8;
+
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        Self([x; 8])
+    }
+    #[inline(always)]
+    fn from_array(a: [f32; 8]) -> Self {
+        Self(a)
+    }
+    #[inline(always)]
+    fn to_array(self) -> [f32; 8] {
+        self.0
+    }
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        self.zip(o, |a, b| a + b)
+    }
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        self.zip(o, |a, b| a - b)
+    }
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        self.zip(o, |a, b| a * b)
+    }
+    #[inline(always)]
+    fn div(self, o: Self) -> Self {
+        self.zip(o, |a, b| a / b)
+    }
+    #[inline(always)]
+    fn max_or(self, o: Self) -> Self {
+        self.zip(o, |a, b| if a > b { a } else { b })
+    }
+    #[inline(always)]
+    fn min_or(self, o: Self) -> Self {
+        self.zip(o, |a, b| if a < b { a } else { b })
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> ScalarMask8 {
+        self.test(o, |a, b| a < b)
+    }
+    #[inline(always)]
+    fn gt(self, o: Self) -> ScalarMask8 {
+        self.test(o, |a, b| a > b)
+    }
+    #[inline(always)]
+    fn le(self, o: Self) -> ScalarMask8 {
+        self.test(o, |a, b| a <= b)
+    }
+    #[inline(always)]
+    fn ge(self, o: Self) -> ScalarMask8 {
+        self.test(o, |a, b| a >= b)
+    }
+    #[inline(always)]
+    fn ne(self, o: Self) -> ScalarMask8 {
+        self.test(o, |a, b| a != b)
+    }
+    #[inline(always)]
+    fn select(m: ScalarMask8, a: Self, b: Self) -> Self {
+        let mut out = [0.0; 8];
+        for i in 0..8 {
+            out[i] = if m.0[i] { a.0[i] } else { b.0[i] };
+        }
+        Self(out)
+    }
+}
+
+impl Mask8 for ScalarMask8 {
+    #[inline(always)]
+    fn from_bools(b: [bool; 8]) -> Self {
+        Self(b)
+    }
+    #[inline(always)]
+    fn and(self, o: Self) -> Self {
+        Self(std::array::from_fn(|i| self.0[i] && o.0[i]))
+    }
+    #[inline(always)]
+    fn or(self, o: Self) -> Self {
+        Self(std::array::from_fn(|i| self.0[i] || o.0[i]))
+    }
+    #[inline(always)]
+    fn and_not(self, o: Self) -> Self {
+        Self(std::array::from_fn(|i| self.0[i] && !o.0[i]))
+    }
+    #[inline(always)]
+    fn bits(self) -> u32 {
+        let mut bits = 0;
+        for i in 0..8 {
+            bits |= u32::from(self.0[i]) << i;
+        }
+        bits
+    }
+}
+
+/// One AVX register.
+///
+/// Soundness: the intrinsics need AVX. Values of these types are only made and used inside
+/// functions compiled with `#[target_feature(enable = "avx2")]` (the packet traversal's AVX2
+/// entry points, reached only after `is_x86_feature_detected!("avx2")`), into which these
+/// `#[inline(always)]` methods inline. Loads and stores go through `[f32; 8]` references of
+/// exactly 32 bytes (unaligned forms).
+#[cfg(target_arch = "x86_64")]
+pub(crate) use avx::Avx8;
+
+#[cfg(target_arch = "x86_64")]
+mod avx {
+    use super::{Lanes8, Mask8};
+    use std::arch::x86_64::*;
+
+    #[derive(Clone, Copy, Debug)]
+    pub(crate) struct Avx8(__m256);
+
+    #[derive(Clone, Copy, Debug)]
+    pub(crate) struct AvxMask8(__m256);
+
+    macro_rules! avx {
+        ($e:expr) => {
+            // SAFETY: see the soundness note on `Avx8` (AVX is present where this runs).
+            unsafe { $e }
+        };
+    }
+
+    impl Lanes8 for Avx8 {
+        type Mask = AvxMask8;
+
+        #[inline(always)]
+        fn splat(x: f32) -> Self {
+            Self(avx!(_mm256_set1_ps(x)))
+        }
+        #[inline(always)]
+        fn from_array(a: [f32; 8]) -> Self {
+            Self(avx!(_mm256_loadu_ps(a.as_ptr())))
+        }
+        #[inline(always)]
+        fn to_array(self) -> [f32; 8] {
+            let mut out = [0.0; 8];
+            avx!(_mm256_storeu_ps(out.as_mut_ptr(), self.0));
+            out
+        }
+        #[inline(always)]
+        fn add(self, o: Self) -> Self {
+            Self(avx!(_mm256_add_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn sub(self, o: Self) -> Self {
+            Self(avx!(_mm256_sub_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn mul(self, o: Self) -> Self {
+            Self(avx!(_mm256_mul_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn div(self, o: Self) -> Self {
+            Self(avx!(_mm256_div_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn max_or(self, o: Self) -> Self {
+            Self(avx!(_mm256_max_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn min_or(self, o: Self) -> Self {
+            Self(avx!(_mm256_min_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn lt(self, o: Self) -> AvxMask8 {
+            AvxMask8(avx!(_mm256_cmp_ps::<_CMP_LT_OQ>(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn gt(self, o: Self) -> AvxMask8 {
+            AvxMask8(avx!(_mm256_cmp_ps::<_CMP_GT_OQ>(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn le(self, o: Self) -> AvxMask8 {
+            AvxMask8(avx!(_mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn ge(self, o: Self) -> AvxMask8 {
+            AvxMask8(avx!(_mm256_cmp_ps::<_CMP_GE_OQ>(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn ne(self, o: Self) -> AvxMask8 {
+            AvxMask8(avx!(_mm256_cmp_ps::<_CMP_NEQ_UQ>(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn select(m: AvxMask8, a: Self, b: Self) -> Self {
+            Self(avx!(_mm256_blendv_ps(b.0, a.0, m.0)))
+        }
+    }
+
+    impl Mask8 for AvxMask8 {
+        #[inline(always)]
+        fn from_bools(b: [bool; 8]) -> Self {
+            let lanes = b.map(|x| if x { -1i32 } else { 0 });
+            Self(avx!(_mm256_castsi256_ps(_mm256_loadu_si256(
+                lanes.as_ptr().cast()
+            ))))
+        }
+        #[inline(always)]
+        fn and(self, o: Self) -> Self {
+            Self(avx!(_mm256_and_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn or(self, o: Self) -> Self {
+            Self(avx!(_mm256_or_ps(self.0, o.0)))
+        }
+        #[inline(always)]
+        fn and_not(self, o: Self) -> Self {
+            Self(avx!(_mm256_andnot_ps(o.0, self.0)))
+        }
+        #[inline(always)]
+        fn bits(self) -> u32 {
+            avx!(_mm256_movemask_ps(self.0)) as u32
+        }
+    }
+}
