@@ -162,9 +162,9 @@ pub fn render_samples(
                 samples.clone(),
                 &mut scratch,
                 &mut splats,
-                |job, sample| {
-                    let row = (job.y - y0) as usize * width;
-                    pixels[row + job.x as usize].add(sample);
+                |x, y, run| {
+                    let row = (y - y0) as usize * width;
+                    pixels[row + x as usize].add_run(run);
                 },
             );
             (band_rays, splats)

@@ -125,23 +125,31 @@ impl<'a> FrameSampler<'a> {
     }
 
     /// Samples `samples` of each pixel of `pixels`, traced in batches of [`BATCH_SAMPLES`];
-    /// `add` receives each sample with its job (in no promised order). Returns the rays traced.
+    /// `add` receives runs of samples of one pixel (a pixel's samples may come in several
+    /// runs). Returns the rays traced.
     pub fn for_each_sample(
         &self,
         pixels: impl IntoIterator<Item = (u32, u32)>,
         samples: Range<u32>,
         scratch: &mut BatchScratch,
         splats: &mut Vec<Splat>,
-        mut add: impl FnMut(SampleJob, &Sample),
+        mut add: impl FnMut(u32, u32, &[Sample]),
     ) -> u64 {
         let mut rays = 0u64;
         let mut jobs = std::mem::take(&mut scratch.jobs);
         let mut out = std::mem::take(&mut scratch.samples);
         let mut flush = |jobs: &mut Vec<SampleJob>, scratch: &mut BatchScratch| {
             self.sample_batch(jobs, scratch, splats, &mut out);
-            for (&job, sample) in jobs.iter().zip(&out) {
-                rays += u64::from(sample.rays);
-                add(job, sample);
+            rays += out.iter().map(|s| u64::from(s.rays)).sum::<u64>();
+            let mut start = 0;
+            while start < jobs.len() {
+                let (x, y) = (jobs[start].x, jobs[start].y);
+                let len = jobs[start..]
+                    .iter()
+                    .take_while(|j| j.x == x && j.y == y)
+                    .count();
+                add(x, y, &out[start..start + len]);
+                start += len;
             }
             jobs.clear();
         };
