@@ -29,6 +29,7 @@ pub mod export;
 pub mod formats;
 pub mod geometry;
 pub mod integrator;
+mod lanes8;
 pub mod light;
 pub mod measure;
 pub mod render;

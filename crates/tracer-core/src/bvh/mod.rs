@@ -26,7 +26,6 @@
 
 mod binary;
 mod build;
-mod lanes8;
 mod packet;
 mod pages;
 mod simd;

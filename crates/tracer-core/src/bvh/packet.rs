@@ -17,15 +17,15 @@
 
 use std::mem::MaybeUninit;
 
-#[cfg(target_arch = "x86_64")]
-use super::lanes8::Avx8;
-use super::lanes8::{Lanes8, Mask8, Scalar8};
 use super::stack::Stack;
-use super::traverse::{EXIT_SCALE, Kernel, STACK_LEVELS, STACK_SIZE, cull_limit, cull_reach};
+use super::traverse::{CULL_SLACK, EXIT_SCALE, Kernel, STACK_LEVELS, STACK_SIZE, cull_limit};
 use super::triangle::{PACK, Tri4, closer};
 use super::wide::{EMPTY, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit, PADDING};
 use crate::geometry::Ray;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes8::Avx8;
+use crate::lanes8::{Lanes8, Mask8, Scalar8};
 
 /// Rays per packet.
 pub const PACKET: usize = 8;
@@ -68,6 +68,7 @@ impl<L: Lanes8> Rays8<L> {
     fn new(rays: &[Ray]) -> Self {
         debug_assert!((1..=PACKET).contains(&rays.len()));
         let n = rays.len();
+        let active = (1u32 << n) - 1;
         let mut dir = [[0.0f32; PACKET]; 3];
         let mut origin = [[0.0f32; PACKET]; 3];
         let mut t_min = [0.0f32; PACKET];
@@ -81,103 +82,90 @@ impl<L: Lanes8> Rays8<L> {
             t_min[i] = r.t_min;
             t_max[i] = r.t_max;
         }
-        let one = L::splat(1.0);
-        let inv_dir = [
-            one.div(L::from_array(dir[0])),
-            one.div(L::from_array(dir[1])),
-            one.div(L::from_array(dir[2])),
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        let d = [
+            L::from_array(dir[0]),
+            L::from_array(dir[1]),
+            L::from_array(dir[2]),
         ];
-        let inv = [
-            inv_dir[0].to_array(),
-            inv_dir[1].to_array(),
-            inv_dir[2].to_array(),
+        let o = [
+            L::from_array(origin[0]),
+            L::from_array(origin[1]),
+            L::from_array(origin[2]),
         ];
-        let mut negative = [[false; PACKET]; 3];
-        let mut uniform_negative = [None; 3];
-        for a in 0..3 {
-            for i in 0..PACKET {
-                negative[a][i] = inv[a][i].is_sign_negative();
-            }
-            if negative[a][1..n].iter().all(|&x| x == negative[a][0]) {
-                uniform_negative[a] = Some(negative[a][0]);
-            }
-        }
-        // The watertight test's frame (`RayTriangles::new`, per lane): kz the dominant axis,
-        // kx, ky the next two, the shear from one division.
-        let mut axes = [[0usize; 3]; PACKET];
-        let mut dir_k = [[0.0f32; PACKET]; 3];
-        let mut origin_k = [[0.0f32; PACKET]; 3];
-        let mut axis_is = [[[false; PACKET]; 2]; 3];
-        let mut reach = [0.0f32; PACKET];
-        for i in 0..PACKET {
-            let (x, y, z) = (dir[0][i].abs(), dir[1][i].abs(), dir[2][i].abs());
-            let kz = if x >= y && x >= z {
-                0
-            } else if y >= z {
-                1
+        let inv_dir = [one.div(d[0]), one.div(d[1]), one.div(d[2])];
+        // 1/d is never -0 or NaN for a finite d, so "below zero" is "sign negative".
+        let negative = [
+            inv_dir[0].lt(zero),
+            inv_dir[1].lt(zero),
+            inv_dir[2].lt(zero),
+        ];
+        let uniform = |bits: u32| {
+            if bits & active == active {
+                Some(true)
+            } else if bits & active == 0 {
+                Some(false)
             } else {
-                2
-            };
-            axes[i] = [(kz + 1) % 3, (kz + 2) % 3, kz];
-            for j in 0..3 {
-                let k = axes[i][j];
-                dir_k[j][i] = dir[k][i];
-                origin_k[j][i] = origin[k][i];
-                axis_is[j][0][i] = k == 0;
-                axis_is[j][1][i] = k == 1;
+                None
             }
-            let o = [origin[0][i], origin[1][i], origin[2][i]];
-            reach[i] = cull_reach(o, [inv[0][i], inv[1][i], inv[2][i]]);
+        };
+        let uniform_negative = [
+            uniform(negative[0].bits()),
+            uniform(negative[1].bits()),
+            uniform(negative[2].bits()),
+        ];
+        // The cull margin's reach (`cull_reach`): origin over direction on the axes moved along.
+        let infinity = L::splat(f32::INFINITY);
+        let mut reach = zero;
+        for a in 0..3 {
+            let along = o[a].mul(inv_dir[a]).abs();
+            let finite = inv_dir[a].abs().lt(infinity);
+            reach = L::select(finite, along, zero).max_or(reach);
         }
-        let uniform_axes = axes[1..n].iter().all(|k| *k == axes[0]).then_some(axes[0]);
-        let inv_z = one.div(L::from_array(dir_k[2]));
+        let reach = reach.mul(L::splat(CULL_SLACK)).to_array();
+        // The watertight test's frame (`RayTriangles::new`, per lane): kz the dominant axis
+        // (x when |dx| is largest, ties to the earlier axis), kx and ky the next two.
+        let (ax, ay, az) = (d[0].abs(), d[1].abs(), d[2].abs());
+        let kz_x = ax.ge(ay).and(ax.ge(az));
+        let kz_y = ay.ge(az).and_not(kz_x);
+        let kz_z = zero.le(zero).and_not(kz_x.or(kz_y));
+        // Along kx: y, z, x for kz = x, y, z; along ky: z, x, y.
+        let dir_k = [
+            by_axis(kz_x, kz_y, d[1], d[2], d[0]),
+            by_axis(kz_x, kz_y, d[2], d[0], d[1]),
+            by_axis(kz_x, kz_y, d[0], d[1], d[2]),
+        ];
+        let origin_k = [
+            by_axis(kz_x, kz_y, o[1], o[2], o[0]),
+            by_axis(kz_x, kz_y, o[2], o[0], o[1]),
+            by_axis(kz_x, kz_y, o[0], o[1], o[2]),
+        ];
+        let inv_z = one.div(dir_k[2]);
+        let uniform_axes = match (uniform(kz_x.bits()), uniform(kz_y.bits())) {
+            (Some(true), _) => Some([1, 2, 0]),
+            (Some(false), Some(true)) => Some([2, 0, 1]),
+            (Some(false), Some(false)) => Some([0, 1, 2]),
+            _ => None,
+        };
         let exit = L::splat(EXIT_SCALE);
         Self {
-            active: (1u32 << n) - 1,
-            origin: [
-                L::from_array(origin[0]),
-                L::from_array(origin[1]),
-                L::from_array(origin[2]),
-            ],
+            active,
+            origin: o,
             inv_dir,
             inv_dir_exit: [
                 inv_dir[0].mul(exit),
                 inv_dir[1].mul(exit),
                 inv_dir[2].mul(exit),
             ],
-            negative: [
-                L::Mask::from_bools(negative[0]),
-                L::Mask::from_bools(negative[1]),
-                L::Mask::from_bools(negative[2]),
-            ],
+            negative,
             uniform_negative,
             t_min: L::from_array(t_min),
             t_max,
             reach,
-            origin_k: [
-                L::from_array(origin_k[0]),
-                L::from_array(origin_k[1]),
-                L::from_array(origin_k[2]),
-            ],
-            shear: [
-                L::from_array(dir_k[0]).mul(inv_z),
-                L::from_array(dir_k[1]).mul(inv_z),
-                inv_z,
-            ],
-            axis_is: [
-                [
-                    L::Mask::from_bools(axis_is[0][0]),
-                    L::Mask::from_bools(axis_is[0][1]),
-                ],
-                [
-                    L::Mask::from_bools(axis_is[1][0]),
-                    L::Mask::from_bools(axis_is[1][1]),
-                ],
-                [
-                    L::Mask::from_bools(axis_is[2][0]),
-                    L::Mask::from_bools(axis_is[2][1]),
-                ],
-            ],
+            origin_k,
+            shear: [dir_k[0].mul(inv_z), dir_k[1].mul(inv_z), inv_z],
+            // Which lanes take x, y as axis kx (kz = z, x), ky (kz = y, z) and kz (x, y).
+            axis_is: [[kz_z, kz_x], [kz_y, kz_z], [kz_x, kz_y]],
             uniform_axes,
         }
     }
@@ -259,6 +247,12 @@ impl<L: Lanes8> Rays8<L> {
             .and_not(negative.and(positive));
         (hit.bits(), [t, v, w, inv_det])
     }
+}
+
+/// Per lane `a` where the ray's dominant axis is x, `b` where it is y, else `c`.
+#[inline(always)]
+fn by_axis<L: Lanes8>(kz_x: L::Mask, kz_y: L::Mask, a: L, b: L, c: L) -> L {
+    L::select(kz_x, a, L::select(kz_y, b, c))
 }
 
 #[derive(Clone, Copy)]

@@ -1,6 +1,7 @@
 //! Tiles, passes and threads: turning the integrator into images. One-shot rendering lives here;
 //! the progressive session of the viewer builds on the same film, sampler and tile order.
 
+mod camera_rays;
 mod film;
 pub mod partial;
 mod passes;

@@ -4,6 +4,7 @@
 //! range gives the same sums.
 
 use super::RenderSettings;
+use super::camera_rays::camera_rays;
 use super::film::PixelSum;
 use super::sampler::pixel_sample_offset;
 use crate::geometry::Ray;
@@ -92,10 +93,7 @@ impl<'a> FrameSampler<'a> {
             out.extend(jobs.iter().map(|j| self.sample(j.x, j.y, j.s, splats)));
             return;
         }
-        scratch.rays.clear();
-        scratch
-            .rays
-            .extend(jobs.iter().map(|&job| self.camera_ray(job)));
+        camera_rays(&self.basis, jobs, &mut scratch.rays);
         out.resize(jobs.len(), Sample::default());
         trace_direct_batch(
             &self.integrator.prep,

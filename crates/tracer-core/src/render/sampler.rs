@@ -16,15 +16,26 @@ pub fn sample_hash(pixel_index: u64, sample_index: u32) -> u64 {
 /// centre; later samples follow the R2 low-discrepancy sequence, shifted per pixel by a hash so
 /// neighbouring pixels do not share a pattern.
 pub fn pixel_sample_offset(x: u32, y: u32, width: u32, s: u32) -> (f32, f32) {
+    sample_offset(pixel_shift(x, y, width), s)
+}
+
+/// The per-pixel shift of the sequence (each in [0, 1)), the same for all of a pixel's samples.
+pub(crate) fn pixel_shift(x: u32, y: u32, width: u32) -> (f64, f64) {
+    let h = sample_hash(u64::from(y) * u64::from(width) + u64::from(x), 0);
+    let shift_x = (h >> 40) as f64 / (1u64 << 24) as f64;
+    let shift_y = ((h >> 16) & 0xFF_FFFF) as f64 / (1u64 << 24) as f64;
+    (shift_x, shift_y)
+}
+
+/// Offset of sample `s` of the pixel with shift `shift` (see [`pixel_sample_offset`]).
+#[inline]
+pub(crate) fn sample_offset((shift_x, shift_y): (f64, f64), s: u32) -> (f32, f32) {
     if s == 0 {
         return (0.5, 0.5);
     }
     // R2: increments 1/φ2 and 1/φ2², φ2 the plastic number.
     const A1: f64 = 0.754_877_666_246_692_7;
     const A2: f64 = 0.569_840_290_998_053_3;
-    let h = sample_hash(u64::from(y) * u64::from(width) + u64::from(x), 0);
-    let shift_x = (h >> 40) as f64 / (1u64 << 24) as f64;
-    let shift_y = ((h >> 16) & 0xFF_FFFF) as f64 / (1u64 << 24) as f64;
     let n = f64::from(s);
     let fx = fract_non_negative(shift_x + n * A1);
     let fy = fract_non_negative(shift_y + n * A2);

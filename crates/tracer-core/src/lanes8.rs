@@ -1,4 +1,4 @@
-//! Eight `f32` lanes for the packet traversal: one AVX register where the CPU has AVX2 (picked
+//! Eight `f32` lanes for the packet traversal and camera rays: one AVX register where the CPU has AVX2 (picked
 //! at run time), plain arrays elsewhere. Every operation rounds per lane exactly as the scalar
 //! `f32` operation does (no fused multiply-add), and `max_or`/`min_or` keep the second operand
 //! when the first is NaN, as the SSE and AVX instructions do, so both kinds give the same bits.
@@ -16,6 +16,10 @@ pub(crate) trait Lanes8: Copy {
     fn sub(self, o: Self) -> Self;
     fn mul(self, o: Self) -> Self;
     fn div(self, o: Self) -> Self;
+    /// Correctly rounded, as `f32::sqrt`.
+    fn sqrt(self) -> Self;
+    /// The sign bit cleared, as `f32::abs`.
+    fn abs(self) -> Self;
     /// Per lane `if self > o { self } else { o }`.
     fn max_or(self, o: Self) -> Self;
     /// Per lane `if self < o { self } else { o }`.
@@ -32,7 +36,6 @@ pub(crate) trait Lanes8: Copy {
 
 /// A per-lane condition.
 pub(crate) trait Mask8: Copy {
-    fn from_bools(b: [bool; 8]) -> Self;
     fn and(self, o: Self) -> Self;
     fn or(self, o: Self) -> Self;
     /// `self && !o` per lane.
@@ -100,6 +103,14 @@ impl Lanes8 for Scalar8 {
         self.zip(o, |a, b| a / b)
     }
     #[inline(always)]
+    fn sqrt(self) -> Self {
+        Self(self.0.map(f32::sqrt))
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        Self(self.0.map(f32::abs))
+    }
+    #[inline(always)]
     fn max_or(self, o: Self) -> Self {
         self.zip(o, |a, b| if a > b { a } else { b })
     }
@@ -139,10 +150,6 @@ impl Lanes8 for Scalar8 {
 
 impl Mask8 for ScalarMask8 {
     #[inline(always)]
-    fn from_bools(b: [bool; 8]) -> Self {
-        Self(b)
-    }
-    #[inline(always)]
     fn and(self, o: Self) -> Self {
         Self(std::array::from_fn(|i| self.0[i] && o.0[i]))
     }
@@ -167,8 +174,9 @@ impl Mask8 for ScalarMask8 {
 /// One AVX register.
 ///
 /// Soundness: the intrinsics need AVX. Values of these types are only made and used inside
-/// functions compiled with `#[target_feature(enable = "avx2")]` (the packet traversal's AVX2
-/// entry points, reached only after `is_x86_feature_detected!("avx2")`), into which these
+/// functions compiled with `#[target_feature(enable = "avx2")]` (the AVX2 entry points of the
+/// packet traversal and of the camera rays, reached only after
+/// `is_x86_feature_detected!("avx2")`), into which these
 /// `#[inline(always)]` methods inline. Loads and stores go through `[f32; 8]` references of
 /// exactly 32 bytes (unaligned forms).
 #[cfg(target_arch = "x86_64")]
@@ -226,6 +234,14 @@ mod avx {
             Self(avx!(_mm256_div_ps(self.0, o.0)))
         }
         #[inline(always)]
+        fn sqrt(self) -> Self {
+            Self(avx!(_mm256_sqrt_ps(self.0)))
+        }
+        #[inline(always)]
+        fn abs(self) -> Self {
+            Self(avx!(_mm256_andnot_ps(_mm256_set1_ps(-0.0), self.0)))
+        }
+        #[inline(always)]
         fn max_or(self, o: Self) -> Self {
             Self(avx!(_mm256_max_ps(self.0, o.0)))
         }
@@ -260,13 +276,6 @@ mod avx {
     }
 
     impl Mask8 for AvxMask8 {
-        #[inline(always)]
-        fn from_bools(b: [bool; 8]) -> Self {
-            let lanes = b.map(|x| if x { -1i32 } else { 0 });
-            Self(avx!(_mm256_castsi256_ps(_mm256_loadu_si256(
-                lanes.as_ptr().cast()
-            ))))
-        }
         #[inline(always)]
         fn and(self, o: Self) -> Self {
             Self(avx!(_mm256_and_ps(self.0, o.0)))

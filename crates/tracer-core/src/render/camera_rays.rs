@@ -1,0 +1,137 @@
+//! The camera rays of a batch of samples, eight at a time: the sample positions and random
+//! streams per sample (each pixel's sequence shift hashed once for its run of samples), the
+//! directions in vector lanes (AVX where the CPU has AVX2, chosen at run time). Per ray the
+//! operations and their order are [`CameraBasis::ray`]'s, so the rays are the same bit for
+//! bit (the wavefront test compares whole samples with single ones).
+
+use super::pixel::SampleJob;
+use super::sampler::{pixel_shift, sample_offset};
+use crate::geometry::Ray;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes8::Avx8;
+use crate::lanes8::{Lanes8, Scalar8};
+use crate::sampling::SampleRng;
+use crate::scene::CameraBasis;
+use glam::Vec3;
+
+/// The camera ray and random stream of each of `jobs`, into `out` (cleared first).
+pub(super) fn camera_rays(
+    basis: &CameraBasis,
+    jobs: &[SampleJob],
+    out: &mut Vec<(Ray, SampleRng)>,
+) {
+    out.clear();
+    #[cfg(target_arch = "x86_64")]
+    if is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2, the only feature `rays_avx2` is compiled for.
+        unsafe { rays_avx2(basis, jobs, out) };
+        return;
+    }
+    rays::<Scalar8>(basis, jobs, out);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn rays_avx2(basis: &CameraBasis, jobs: &[SampleJob], out: &mut Vec<(Ray, SampleRng)>) {
+    rays::<Avx8>(basis, jobs, out);
+}
+
+/// (Loops and straight-line lane calls only: a closure would not inherit the AVX feature.)
+#[inline(always)]
+fn rays<L: Lanes8>(basis: &CameraBasis, jobs: &[SampleJob], out: &mut Vec<(Ray, SampleRng)>) {
+    let width = basis.width;
+    let mut shift_of = (u32::MAX, u32::MAX);
+    let mut shift = (0.0, 0.0);
+    let (one, two) = (L::splat(1.0), L::splat(2.0));
+    let (w, h) = (L::splat(width as f32), L::splat(basis.height as f32));
+    let (hw, hh) = (L::splat(basis.half_width), L::splat(basis.half_height));
+    let (f, r, u) = (basis.forward, basis.right, basis.up);
+    for chunk in jobs.chunks(8) {
+        let mut fx = [0.0f32; 8];
+        let mut fy = [0.0f32; 8];
+        for (i, job) in chunk.iter().enumerate() {
+            if shift_of != (job.x, job.y) {
+                shift_of = (job.x, job.y);
+                shift = pixel_shift(job.x, job.y, width);
+            }
+            let (dx, dy) = sample_offset(shift, job.s);
+            fx[i] = job.x as f32 + dx;
+            fy[i] = job.y as f32 + dy;
+        }
+        // CameraBasis::ray: screen position, then forward + right sx + up sy, normalised.
+        let sx = two.mul(L::from_array(fx)).div(w).sub(one).mul(hw);
+        let sy = one.sub(two.mul(L::from_array(fy)).div(h)).mul(hh);
+        let dx = L::splat(f.x)
+            .add(L::splat(r.x).mul(sx))
+            .add(L::splat(u.x).mul(sy));
+        let dy = L::splat(f.y)
+            .add(L::splat(r.y).mul(sx))
+            .add(L::splat(u.y).mul(sy));
+        let dz = L::splat(f.z)
+            .add(L::splat(r.z).mul(sx))
+            .add(L::splat(u.z).mul(sy));
+        let length = dx.mul(dx).add(dy.mul(dy)).add(dz.mul(dz)).sqrt();
+        let scale = one.div(length);
+        let (x, y, z) = (
+            dx.mul(scale).to_array(),
+            dy.mul(scale).to_array(),
+            dz.mul(scale).to_array(),
+        );
+        for (i, job) in chunk.iter().enumerate() {
+            let key = u64::from(job.y) * u64::from(width) + u64::from(job.x);
+            out.push((
+                Ray::new(basis.origin, Vec3::new(x[i], y[i], z[i])),
+                SampleRng::new(key, job.s),
+            ));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Camera, Handedness};
+
+    #[test]
+    fn both_lane_kinds_give_the_rays_of_camera_basis_bit_for_bit() {
+        let camera = Camera {
+            position: [0.3, 1.7, 4.0],
+            look_at: [-0.2, 0.4, -1.0],
+            up: [0.1, 1.0, 0.0],
+            fov_deg: 53.0,
+        };
+        let basis = camera.basis(Handedness::Left, 317, 211);
+        let jobs: Vec<SampleJob> = (0..3000u32)
+            .map(|i| SampleJob {
+                x: (i * 7) % 317,
+                y: (i / 5) % 211,
+                s: i % 37,
+            })
+            .collect();
+        let expected: Vec<Ray> = jobs
+            .iter()
+            .map(|j| {
+                let (dx, dy) = super::super::pixel_sample_offset(j.x, j.y, 317, j.s);
+                basis.ray(j.x as f32 + dx, j.y as f32 + dy)
+            })
+            .collect();
+        let mut kinds: Vec<Vec<(Ray, SampleRng)>> = Vec::new();
+        let mut out = Vec::new();
+        rays::<Scalar8>(&basis, &jobs, &mut out);
+        kinds.push(out);
+        let mut out = Vec::new();
+        camera_rays(&basis, &jobs, &mut out);
+        kinds.push(out);
+        for rays in kinds {
+            assert_eq!(rays.len(), jobs.len());
+            for (k, ((ray, _), want)) in rays.iter().zip(&expected).enumerate() {
+                assert_eq!(
+                    ray.dir.to_array().map(f32::to_bits),
+                    want.dir.to_array().map(f32::to_bits),
+                    "job {k}"
+                );
+                assert_eq!(ray.origin, want.origin);
+            }
+        }
+    }
+}
