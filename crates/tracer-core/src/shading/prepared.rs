@@ -10,9 +10,9 @@ use crate::scene::{Handedness, Scene, Setup};
 use glam::Vec3;
 use std::sync::Arc;
 
-/// Whether batches of rays go through the tree as packets of eight (else one by one; the hits
-/// are the same either way).
-const USE_PACKETS: bool = true;
+/// Fewer rays than this go one by one: a packet's set-up and lanes cost more than it saves on
+/// a few rays (the hits are the same either way).
+const MIN_PACKET: usize = 4;
 
 #[derive(Clone, Debug)]
 pub struct PreparedLight {
@@ -176,14 +176,14 @@ impl<'a> Prepared<'a> {
             }
             return;
         }
-        if !USE_PACKETS {
-            for (o, r) in out.iter_mut().zip(rays) {
-                *o = self.scene.bvh.intersect(r);
-            }
-            return;
-        }
         for (r, o) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
-            self.scene.bvh.intersect_packet(r, o);
+            if r.len() < MIN_PACKET {
+                for (o, r) in o.iter_mut().zip(r) {
+                    *o = self.scene.bvh.intersect(r);
+                }
+            } else {
+                self.scene.bvh.intersect_packet(r, o);
+            }
         }
     }
 
@@ -204,14 +204,14 @@ impl<'a> Prepared<'a> {
             }
             return;
         }
-        if !USE_PACKETS {
-            for (o, r) in out.iter_mut().zip(rays) {
-                *o = self.scene.bvh.occluded(r);
-            }
-            return;
-        }
         for (r, o) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
-            self.scene.bvh.occluded_packet(r, o);
+            if r.len() < MIN_PACKET {
+                for (o, r) in o.iter_mut().zip(r) {
+                    *o = self.scene.bvh.occluded(r);
+                }
+            } else {
+                self.scene.bvh.occluded_packet(r, o);
+            }
         }
     }
 

@@ -22,14 +22,20 @@ use super::Sample;
 use crate::geometry::Ray;
 use crate::sampling::SampleRng;
 use crate::shading::Prepared;
+use std::cell::RefCell;
 
 /// Luminance arriving along the camera ray `ray`, with the first hit's direct illuminance.
 pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
-    let mut batch = DirectBatch::default();
+    thread_local! {
+        // Working memory reused by single samples (previews, tests), so none allocates.
+        static BATCH: RefCell<DirectBatch> = RefCell::new(DirectBatch::default());
+    }
     let mut out = [Sample::default()];
-    trace_batch(prep, &[(*ray, rng.clone())], &mut batch, &mut out);
-    // The stream's state after the sample is not used by any caller; keep it advanced the way
-    // the batch advanced its copy for the sake of callers that draw more from it.
-    *rng = batch.final_rng(0);
+    BATCH.with(|batch| {
+        let mut batch = batch.borrow_mut();
+        trace_batch(prep, &[(*ray, rng.clone())], &mut batch, &mut out);
+        // Callers that draw more from the stream go on from where the sample left it.
+        *rng = batch.final_rng(0);
+    });
     out[0]
 }
