@@ -71,11 +71,15 @@ struct RayBoxes {
     near_row: [usize; 3],
     far_row: [usize; 3],
     t_min: f32,
-    /// See [`cull_reach`].
-    reach: f32,
 }
 
 impl RayBoxes {
+    /// See [`cull_reach`]: computed only once the root is known to be hit, since most rays of
+    /// a small object miss it and cost little else.
+    fn reach(&self) -> f32 {
+        cull_reach(self.origin, self.inv_dir)
+    }
+
     fn new(ray: &Ray) -> Self {
         let inv = [1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z];
         let negative = inv.map(f32::is_sign_negative);
@@ -86,7 +90,6 @@ impl RayBoxes {
             near_row: std::array::from_fn(|a| if negative[a] { 3 + a } else { a }),
             far_row: std::array::from_fn(|a| if negative[a] { a } else { 3 + a }),
             t_min: ray.t_min,
-            reach: cull_reach(ray.origin.to_array(), inv),
         }
     }
 }
@@ -300,12 +303,25 @@ impl Bvh {
         // Rays that miss everything (most primary rays of a small object) cost one node test:
         // no stack, no triangle set-up.
         let ray_boxes = RayBoxes::new(ray);
-        let reach = ray_boxes.reach;
         let boxes = test.prepare(&ray_boxes);
-        let root = test.enter(&boxes, self.nodes.first()?, cull_limit(ray.t_max, reach));
+        // Without a finite t_max the margin cannot matter before the first hit: a ray that
+        // misses the root costs no more than the box test.
+        let (reach, root) = if ray.t_max.is_finite() {
+            let reach = ray_boxes.reach();
+            let root = test.enter(&boxes, self.nodes.first()?, cull_limit(ray.t_max, reach));
+            (reach, root)
+        } else {
+            let root = test.enter(&boxes, self.nodes.first()?, f32::MAX);
+            (0.0, root)
+        };
         if root.0 == 0 {
             return None;
         }
+        let reach = if ray.t_max.is_finite() {
+            reach
+        } else {
+            ray_boxes.reach()
+        };
         if self.depth <= STACK_LEVELS {
             let buf = &mut [MaybeUninit::uninit(); STACK_SIZE];
             self.closest(test, ray, &boxes, reach, root, Stack::new(buf))
@@ -318,7 +334,7 @@ impl Bvh {
     #[inline(always)]
     fn occluded_with<T: NodeTest>(&self, test: T, ray: &Ray) -> bool {
         let ray_boxes = RayBoxes::new(ray);
-        let limit = cull_limit(ray.t_max, ray_boxes.reach);
+        let limit = cull_limit(ray.t_max, ray_boxes.reach());
         let boxes = test.prepare(&ray_boxes);
         let Some(root) = self.nodes.first() else {
             return false;
