@@ -407,12 +407,14 @@ impl Bvh {
         let mut nodes = wide::collapse(&nodes);
         let tris = pack_leaves(&mut nodes, &prims, triangles);
         let depth = wide::tree_depth(&nodes);
-        Bvh {
+        let mut bvh = Bvh {
             nodes,
             triangles: tris,
             triangle_count: triangles.len(),
             depth,
-            kernel: Kernel::Auto,
-        }
+            ..Bvh::default()
+        };
+        bvh.set_kernel(Kernel::Auto);
+        bvh
     }
 }

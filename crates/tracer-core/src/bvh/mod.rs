@@ -74,6 +74,10 @@ pub struct Bvh {
     depth: usize,
     /// The node test traversal uses.
     kernel: Kernel,
+    /// With [`Kernel::Auto`] on a CPU with AVX2 and FMA, the proof of it: checked once when
+    /// the kernel is set, not on every ray.
+    #[cfg(target_arch = "x86_64")]
+    avx2: Option<simd::Avx2>,
 }
 
 impl std::fmt::Debug for Bvh {

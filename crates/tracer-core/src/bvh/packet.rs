@@ -18,7 +18,7 @@
 use std::mem::MaybeUninit;
 
 use super::stack::Stack;
-use super::traverse::{CULL_SLACK, EXIT_SCALE, Kernel, STACK_LEVELS, STACK_SIZE, cull_limit};
+use super::traverse::{CULL_SLACK, EXIT_SCALE, STACK_LEVELS, STACK_SIZE, cull_limit};
 use super::triangle::{PACK, Tri4, closer};
 use super::wide::{EMPTY, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit, PADDING};
@@ -286,8 +286,9 @@ impl Bvh {
             return;
         }
         #[cfg(target_arch = "x86_64")]
-        if self.kernel == Kernel::Auto && is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2, the only feature `closest8_avx2` is compiled for.
+        if self.avx2.is_some() {
+            // SAFETY: `avx2` is only set when the CPU has AVX2 (and FMA), the features
+            // `closest8_avx2` needs.
             unsafe { self.closest8_avx2(rays, out) };
             return;
         }
@@ -308,7 +309,7 @@ impl Bvh {
             return;
         }
         #[cfg(target_arch = "x86_64")]
-        if self.kernel == Kernel::Auto && is_x86_feature_detected!("avx2") {
+        if self.avx2.is_some() {
             // SAFETY: as in `intersect_packet`.
             unsafe { self.any8_avx2(rays, out) };
             return;

@@ -33,19 +33,31 @@ pub(super) const CULL_SLACK: f32 = 16.0 * f32::EPSILON;
 
 /// Per ray: the absolute part of the cull margin (origin over direction per axis, the scale of
 /// the rounding in slab and triangle distances; axes the ray does not move along are exact).
+/// Written without branches or `f32::max` (whose NaN rules cost extra instructions on every
+/// ray): per axis a compare and a select, as the packets do it in lanes.
+#[inline(always)]
 pub(super) fn cull_reach(origin: [f32; 3], inv_dir: [f32; 3]) -> f32 {
-    (0..3)
-        .filter(|&a| inv_dir[a].is_finite())
-        .map(|a| (origin[a] * inv_dir[a]).abs())
-        .fold(0.0, f32::max)
-        * CULL_SLACK
+    let mut reach = 0.0f32;
+    for a in 0..3 {
+        let along = (origin[a] * inv_dir[a]).abs();
+        let along = if inv_dir[a].abs() < f32::INFINITY {
+            along
+        } else {
+            0.0
+        };
+        // NaN `along` (a NaN origin) keeps `reach`, as `max_or` does in lanes.
+        reach = if along > reach { along } else { reach };
+    }
+    reach * CULL_SLACK
 }
 
 /// The distance up to which boxes are opened when the best hit so far is at `t` (finite, as
 /// box tests need).
 #[inline(always)]
 pub(super) fn cull_limit(t: f32, reach: f32) -> f32 {
-    (t + t.abs() * CULL_SLACK + reach).min(f32::MAX)
+    let limit = t + t.abs() * CULL_SLACK + reach;
+    // `+inf` and NaN become `f32::MAX`, as `f32::min` would give, in one compare and select.
+    if limit < f32::MAX { limit } else { f32::MAX }
 }
 
 pub(super) const EXIT_SCALE: f32 =
@@ -259,14 +271,19 @@ impl Bvh {
     /// Selects the node test (default [`Kernel::Auto`]); results are the same either way.
     pub fn set_kernel(&mut self, kernel: Kernel) {
         self.kernel = kernel;
+        #[cfg(target_arch = "x86_64")]
+        {
+            self.avx2 = match kernel {
+                Kernel::Auto => Avx2::detect(),
+                Kernel::Portable => None,
+            };
+        }
     }
 
     /// The closest hit with `t` in `[ray.t_min, ray.t_max]`; both sides of a triangle count.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         #[cfg(target_arch = "x86_64")]
-        if self.kernel == Kernel::Auto
-            && let Some(avx2) = Avx2::detect()
-        {
+        if let Some(avx2) = self.avx2 {
             // SAFETY: `avx2` proves the CPU has AVX2, the feature `intersect_avx2` is
             // compiled for.
             return unsafe { self.intersect_avx2(avx2, ray) };
@@ -277,9 +294,7 @@ impl Bvh {
     /// Whether anything is hit with `t` in `[ray.t_min, ray.t_max]`; stops at the first hit.
     pub fn occluded(&self, ray: &Ray) -> bool {
         #[cfg(target_arch = "x86_64")]
-        if self.kernel == Kernel::Auto
-            && let Some(avx2) = Avx2::detect()
-        {
+        if let Some(avx2) = self.avx2 {
             // SAFETY: as in `intersect`.
             return unsafe { self.occluded_avx2(avx2, ray) };
         }

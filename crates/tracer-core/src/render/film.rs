@@ -33,20 +33,19 @@ fn to_fixed(v: f64, scale: f64) -> Option<i128> {
     (x.is_finite() && x.abs() < SAMPLE_LIMIT).then_some(x as i128)
 }
 
-/// [`to_fixed`] when the scaled value is below 2^62 in size (None otherwise, NaN included).
-#[inline(always)]
-fn to_fixed_fast(v: f64, scale: f64) -> Option<i64> {
-    let x = v * scale;
-    (x.abs() < FAST_LIMIT).then(|| round_half_away(x))
-}
-
 /// Below 2^62 a scaled value rounds through i64 (one instruction each way) instead of libm's
 /// `round` and the soft 128-bit conversions, which took a tenth of a direct-light frame.
 const FAST_LIMIT: f64 = 4_611_686_018_427_387_904.0; // 2^62
 
+/// [`PixelSum::add_run`] sums scaled values below 2^52 in size in 64 bits (each rounds to at
+/// most 2^52), [`RUN_SAMPLES`] at a time: at most 2^62, so a run's sums cannot overflow.
+const RUN_LIMIT: f64 = 4_503_599_627_370_496.0; // 2^52
+const RUN_SAMPLES: usize = 1024;
+
 /// `x.round() as i64` for |x| < 2^62, bit for bit: truncate, then step away from zero when the
 /// remainder is at least one half. `x - trunc(x)` is exact: below 2^52 by Sterbenz's lemma
 /// (or x itself when |x| < 1), above it x is whole and the remainder 0.
+#[inline(always)]
 fn round_half_away(x: f64) -> i64 {
     debug_assert!(x.abs() < FAST_LIMIT);
     // SAFETY: |x| < 2^62 (the caller's test, false for NaN): finite and in range, so the
@@ -124,67 +123,56 @@ impl PixelSum {
     /// Adds `samples` (all of this pixel), with the same result as [`PixelSum::add`] one by
     /// one (integer sums do not care about order), but summing in 64 bits first: one 128-bit
     /// addition per run instead of five per sample. Returns how many were rejected.
+    ///
+    /// The run's loop has no branch per sample: every scaled value is tested against
+    /// [`RUN_LIMIT`] and the results and'ed together; a run with a value out of range (large,
+    /// NaN or infinite: rare) is added again one by one through the exact path.
     pub fn add_run(&mut self, samples: &[Sample]) -> u32 {
-        let mut run = [0i64; 5];
-        let mut count = 0u32;
         let mut rejected = 0;
-        for s in samples {
-            let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
-            let fixed = (
-                to_fixed_fast(f64::from(s.rgb.x), VALUE_SCALE),
-                to_fixed_fast(f64::from(s.rgb.y), VALUE_SCALE),
-                to_fixed_fast(f64::from(s.rgb.z), VALUE_SCALE),
-                to_fixed_fast(f64::from(s.illuminance_lx), VALUE_SCALE),
-                to_fixed_fast(y * y, SQUARE_SCALE),
-            );
-            // Each term is below 2^62 in size: checked adds catch a run leaving i64.
-            let sums = match fixed {
-                (Some(r), Some(g), Some(b), Some(e), Some(q)) => (|| {
-                    Some([
-                        run[0].checked_add(r)?,
-                        run[1].checked_add(g)?,
-                        run[2].checked_add(b)?,
-                        run[3].checked_add(e)?,
-                        run[4].checked_add(q)?,
-                    ])
-                })(),
-                _ => None,
-            };
-            match sums {
-                Some(out) => {
-                    run = out;
-                    count += 1;
+        for run in samples.chunks(RUN_SAMPLES) {
+            let mut sums = [0i64; 5];
+            let mut in_range = true;
+            for s in run {
+                let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
+                let scaled = [
+                    f64::from(s.rgb.x) * VALUE_SCALE,
+                    f64::from(s.rgb.y) * VALUE_SCALE,
+                    f64::from(s.rgb.z) * VALUE_SCALE,
+                    f64::from(s.illuminance_lx) * VALUE_SCALE,
+                    y * y * SQUARE_SCALE,
+                ];
+                for (sum, x) in sums.iter_mut().zip(scaled) {
+                    let ok = x.abs() < RUN_LIMIT;
+                    in_range &= ok;
+                    // Out of range (NaN included) counts as 0 here: the run is redone anyway.
+                    *sum += round_half_away(if ok { x } else { 0.0 });
                 }
-                None => {
-                    // Large or not finite: flush the run and take the exact slow path.
-                    rejected += self.flush_run(&mut run, &mut count);
+            }
+            if !in_range {
+                for s in run {
                     if !self.add(s) {
                         rejected += 1;
                     }
                 }
+                continue;
+            }
+            let sum = PixelSum {
+                rgb: [
+                    i128::from(sums[0]),
+                    i128::from(sums[1]),
+                    i128::from(sums[2]),
+                ],
+                illuminance: i128::from(sums[3]),
+                luminance_sq: i128::from(sums[4]),
+                splat_rgb: [0; 3],
+                count: run.len() as u32,
+                rejected: 0,
+            };
+            if !self.merge(&sum) {
+                rejected += run.len() as u32;
             }
         }
-        rejected + self.flush_run(&mut run, &mut count)
-    }
-
-    /// Adds a 64-bit run of `count` samples and clears it; returns the samples rejected (the
-    /// run's count when the sum would overflow).
-    fn flush_run(&mut self, run: &mut [i64; 5], count: &mut u32) -> u32 {
-        if *count == 0 {
-            return 0;
-        }
-        let sum = PixelSum {
-            rgb: [i128::from(run[0]), i128::from(run[1]), i128::from(run[2])],
-            illuminance: i128::from(run[3]),
-            luminance_sq: i128::from(run[4]),
-            splat_rgb: [0; 3],
-            count: *count,
-            rejected: 0,
-        };
-        let n = *count;
-        *run = [0; 5];
-        *count = 0;
-        if self.merge(&sum) { 0 } else { n }
+        rejected
     }
 
     /// Adds a splat (luminance per channel); false (and counted as rejected) when it cannot be
@@ -531,8 +519,8 @@ mod tests {
 
     #[test]
     fn runs_add_up_like_single_samples() {
-        // Ordinary values, huge ones (beyond the 64-bit path, and enough of them to overflow
-        // a 64-bit run), negative, NaN and infinite ones, in runs of every length.
+        // Ordinary values, huge ones (beyond the 64-bit path), negative, NaN and infinite
+        // ones, in runs of every length (4000: several 64-bit runs in one call).
         let mut h = 7u64;
         let mut values = Vec::new();
         for i in 0..4000u32 {
