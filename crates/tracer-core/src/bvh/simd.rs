@@ -85,6 +85,18 @@ mod imp {
         pub fn ne(self, o: Self) -> M4 {
             M4(sse!(_mm_cmpneq_ps(self.0, o.0)))
         }
+
+        /// Per lane `|x|` (the sign bit cleared).
+        #[inline(always)]
+        pub fn abs(self) -> Self {
+            Self(sse!(_mm_andnot_ps(_mm_set1_ps(-0.0), self.0)))
+        }
+
+        /// Per lane `if m { x } else { 0.0 }`.
+        #[inline(always)]
+        pub fn keep(self, m: M4) -> Self {
+            Self(sse!(_mm_and_ps(m.0, self.0)))
+        }
     }
 
     impl M4 {
@@ -190,6 +202,16 @@ mod imp {
         #[inline(always)]
         pub fn ne(self, o: Self) -> M4 {
             M4(std::array::from_fn(|i| self.0[i] != o.0[i]))
+        }
+        #[inline(always)]
+        pub fn abs(self) -> Self {
+            Self(self.0.map(f32::abs))
+        }
+        #[inline(always)]
+        pub fn keep(self, m: M4) -> Self {
+            Self(std::array::from_fn(
+                |i| if m.0[i] { self.0[i] } else { 0.0 },
+            ))
         }
     }
 

@@ -33,20 +33,18 @@ pub(super) const CULL_SLACK: f32 = 16.0 * f32::EPSILON;
 
 /// Per ray: the absolute part of the cull margin (origin over direction per axis, the scale of
 /// the rounding in slab and triangle distances; axes the ray does not move along are exact).
-/// Written without branches or `f32::max` (whose NaN rules cost extra instructions on every
-/// ray): per axis a compare and a select, as the packets do it in lanes.
+/// Three lanes at once and no branch: this is on every ray's path, as the packets compute it
+/// in lanes (the same operations, so the same value).
 #[inline(always)]
 pub(super) fn cull_reach(origin: [f32; 3], inv_dir: [f32; 3]) -> f32 {
+    let inv = F4::load(&[inv_dir[0], inv_dir[1], inv_dir[2], 0.0]);
+    let o = F4::load(&[origin[0], origin[1], origin[2], 0.0]);
+    let moved = inv.abs().lt(F4::splat(f32::INFINITY));
+    let along = (o * inv).abs().keep(moved).to_array();
+    // NaN `along` (a NaN origin) keeps `reach`, as `max_or` does in lanes.
     let mut reach = 0.0f32;
-    for a in 0..3 {
-        let along = (origin[a] * inv_dir[a]).abs();
-        let along = if inv_dir[a].abs() < f32::INFINITY {
-            along
-        } else {
-            0.0
-        };
-        // NaN `along` (a NaN origin) keeps `reach`, as `max_or` does in lanes.
-        reach = if along > reach { along } else { reach };
+    for a in along.into_iter().take(3) {
+        reach = if a > reach { a } else { reach };
     }
     reach * CULL_SLACK
 }
