@@ -25,7 +25,9 @@ use crate::shading::Prepared;
 use glam::Vec3;
 
 /// What one camera sample sees.
+// Laid out in order, so the film loads luminance and illuminance as one vector.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
 pub struct Sample {
     /// Linear luminance per RGB channel, cd/m².
     pub rgb: Vec3,

@@ -12,6 +12,7 @@
 //! a sample beyond that, or not a finite number, is not added: it is counted in
 //! [`PixelSum::rejected`] and the film reports it ([`Film::rejected_samples`]).
 
+use super::run_sums::{RUN_SAMPLES, run_sums};
 use super::tiles::Tile;
 use crate::integrator::Sample;
 use crate::light::LUMINANCE_WEIGHTS;
@@ -37,16 +38,11 @@ fn to_fixed(v: f64, scale: f64) -> Option<i128> {
 /// `round` and the soft 128-bit conversions, which took a tenth of a direct-light frame.
 const FAST_LIMIT: f64 = 4_611_686_018_427_387_904.0; // 2^62
 
-/// [`PixelSum::add_run`] sums scaled values below 2^52 in size in 64 bits (each rounds to at
-/// most 2^52), [`RUN_SAMPLES`] at a time: at most 2^62, so a run's sums cannot overflow.
-const RUN_LIMIT: f64 = 4_503_599_627_370_496.0; // 2^52
-const RUN_SAMPLES: usize = 1024;
-
 /// `x.round() as i64` for |x| < 2^62, bit for bit: truncate, then step away from zero when the
 /// remainder is at least one half. `x - trunc(x)` is exact: below 2^52 by Sterbenz's lemma
 /// (or x itself when |x| < 1), above it x is whole and the remainder 0.
 #[inline(always)]
-fn round_half_away(x: f64) -> i64 {
+pub(super) fn round_half_away(x: f64) -> i64 {
     debug_assert!(x.abs() < FAST_LIMIT);
     // SAFETY: |x| < 2^62 (the caller's test, false for NaN): finite and in range, so the
     // truncation is exact; unlike `as`, no saturation checks.
@@ -124,38 +120,20 @@ impl PixelSum {
     /// one (integer sums do not care about order), but summing in 64 bits first: one 128-bit
     /// addition per run instead of five per sample. Returns how many were rejected.
     ///
-    /// The run's loop has no branch per sample: every scaled value is tested against
-    /// [`RUN_LIMIT`] and the results and'ed together; a run with a value out of range (large,
-    /// NaN or infinite: rare) is added again one by one through the exact path.
+    /// The run's sums come from [`run_sums`] (in vector lanes where the CPU has them); a run
+    /// with a value out of range (large, NaN or infinite: rare) is added one by one through
+    /// the exact path instead.
     pub fn add_run(&mut self, samples: &[Sample]) -> u32 {
         let mut rejected = 0;
         for run in samples.chunks(RUN_SAMPLES) {
-            let mut sums = [0i64; 5];
-            let mut in_range = true;
-            for s in run {
-                let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
-                let scaled = [
-                    f64::from(s.rgb.x) * VALUE_SCALE,
-                    f64::from(s.rgb.y) * VALUE_SCALE,
-                    f64::from(s.rgb.z) * VALUE_SCALE,
-                    f64::from(s.illuminance_lx) * VALUE_SCALE,
-                    y * y * SQUARE_SCALE,
-                ];
-                for (sum, x) in sums.iter_mut().zip(scaled) {
-                    let ok = x.abs() < RUN_LIMIT;
-                    in_range &= ok;
-                    // Out of range (NaN included) counts as 0 here: the run is redone anyway.
-                    *sum += round_half_away(if ok { x } else { 0.0 });
-                }
-            }
-            if !in_range {
+            let Some(sums) = run_sums(run) else {
                 for s in run {
                     if !self.add(s) {
                         rejected += 1;
                     }
                 }
                 continue;
-            }
+            };
             let sum = PixelSum {
                 rgb: [
                     i128::from(sums[0]),

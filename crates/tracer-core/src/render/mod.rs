@@ -7,6 +7,7 @@ pub mod partial;
 mod passes;
 mod pixel;
 mod progressive_film;
+mod run_sums;
 mod sampler;
 mod session;
 mod tiles;

@@ -1,0 +1,201 @@
+//! The 64-bit sums of a run of one pixel's samples, for [`PixelSum::add_run`]: each of a
+//! sample's five values scaled to fixed point and rounded half away from zero, exactly as the
+//! film's exact path rounds it, then added as an integer. Where the CPU has AVX2 (checked at
+//! run time) a sample's luminance per channel and its illuminance are converted together in
+//! four `f64` lanes; elsewhere one by one. Both give the same integers, so the film's sums do
+//! not depend on the CPU.
+//!
+//! A run comes back as `None` when any value is out of range (large, NaN or infinite); the
+//! caller then adds its samples one by one through the exact path.
+//!
+//! [`PixelSum::add_run`]: super::film::PixelSum::add_run
+
+use super::film::{SQUARE_SCALE, VALUE_SCALE, round_half_away};
+use crate::integrator::Sample;
+use crate::light::LUMINANCE_WEIGHTS;
+
+/// Most samples summed in one run: each term is at most 2^52 in size ([`SCALAR_LIMIT`]), so
+/// 1024 of them stay below 2^62 and a run's sums cannot overflow.
+pub(super) const RUN_SAMPLES: usize = 1024;
+
+/// The scalar path takes scaled values below 2^52 in size (its truncation is exact there).
+const SCALAR_LIMIT: f64 = 4_503_599_627_370_496.0; // 2^52
+
+/// The sums of `run` (at most [`RUN_SAMPLES`] samples): Σ r, g, b, illuminance in units of
+/// 2⁻³², Σ luminance² in units of 2⁻¹⁶; None when a value is out of the fast range.
+pub(super) fn run_sums(run: &[Sample]) -> Option<[i64; 5]> {
+    debug_assert!(run.len() <= RUN_SAMPLES);
+    #[cfg(target_arch = "x86_64")]
+    if is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2, the only feature `avx2::run_sums` is compiled for.
+        return unsafe { avx2::run_sums(run) };
+    }
+    scalar_run_sums(run)
+}
+
+/// Luminance squared in units of 2⁻¹⁶ (cd/m²)², before rounding.
+#[inline(always)]
+fn scaled_luminance_sq(s: &Sample) -> f64 {
+    let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
+    y * y * SQUARE_SCALE
+}
+
+/// One value into a run's sum, without a branch: out of range (NaN included) it counts 0 and
+/// clears `in_range`.
+#[inline(always)]
+fn add_scaled(sum: &mut i64, x: f64, in_range: &mut bool) {
+    let ok = x.abs() < SCALAR_LIMIT;
+    *in_range &= ok;
+    *sum += round_half_away(if ok { x } else { 0.0 });
+}
+
+fn scalar_run_sums(run: &[Sample]) -> Option<[i64; 5]> {
+    let mut sums = [0i64; 5];
+    let mut in_range = true;
+    for s in run {
+        let scaled = [
+            f64::from(s.rgb.x) * VALUE_SCALE,
+            f64::from(s.rgb.y) * VALUE_SCALE,
+            f64::from(s.rgb.z) * VALUE_SCALE,
+            f64::from(s.illuminance_lx) * VALUE_SCALE,
+            scaled_luminance_sq(s),
+        ];
+        for (sum, x) in sums.iter_mut().zip(scaled) {
+            add_scaled(sum, x, &mut in_range);
+        }
+    }
+    in_range.then_some(sums)
+}
+
+/// Four lanes of `f64`: r, g, b and illuminance of one sample.
+///
+/// Per lane: `x = v · 2³²` (exact, as in the scalar path); `t = trunc(x)`; the remainder
+/// `x - t` (exact); `t` moved one away from zero when the remainder is at least one half. The
+/// whole number `t` becomes an `i64` through the bits of `t + 1.5 · 2⁵²`, exact for
+/// `|t| < 2⁵¹`, the lanes' range (values up to 2⁵² take the scalar path's way through
+/// `None` and the exact path, which gives the same sums).
+#[cfg(target_arch = "x86_64")]
+mod avx2 {
+    use super::{RUN_SAMPLES, Sample, VALUE_SCALE, add_scaled, scaled_luminance_sq};
+    use std::arch::x86_64::*;
+
+    /// Values below 2^51 in size (where the bit trick is exact).
+    const LANE_LIMIT: f64 = 2_251_799_813_685_248.0; // 2^51
+    /// 1.5 · 2⁵²: added to a whole number below 2⁵¹ in size, its bits less this one's bits
+    /// are the number.
+    const MAGIC: f64 = 6_755_399_441_055_744.0;
+
+    #[target_feature(enable = "avx2")]
+    pub(super) fn run_sums(run: &[Sample]) -> Option<[i64; 5]> {
+        debug_assert!(run.len() <= RUN_SAMPLES);
+        let scale = _mm256_set1_pd(VALUE_SCALE);
+        let limit = _mm256_set1_pd(LANE_LIMIT);
+        let sign = _mm256_set1_pd(-0.0);
+        let half = _mm256_set1_pd(0.5);
+        let minus_half = _mm256_set1_pd(-0.5);
+        let magic = _mm256_set1_pd(MAGIC);
+        let mut sums = _mm256_setzero_si256();
+        let mut ok_all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+        let mut q_sum = 0i64;
+        let mut q_in_range = true;
+        for s in run {
+            let v = _mm_set_ps(s.illuminance_lx, s.rgb.z, s.rgb.y, s.rgb.x);
+            let x = _mm256_mul_pd(_mm256_cvtps_pd(v), scale);
+            let ok = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(sign, x), limit);
+            ok_all = _mm256_and_pd(ok_all, ok);
+            let x = _mm256_and_pd(x, ok);
+            let t = _mm256_round_pd::<{ _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC }>(x);
+            let frac = _mm256_sub_pd(x, t);
+            // All ones (-1) where the remainder rounds away from zero.
+            let up = _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_GE_OQ>(frac, half));
+            let down = _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_LE_OQ>(frac, minus_half));
+            let whole = _mm256_sub_epi64(
+                _mm256_castpd_si256(_mm256_add_pd(t, magic)),
+                _mm256_castpd_si256(magic),
+            );
+            let rounded = _mm256_add_epi64(_mm256_sub_epi64(whole, up), down);
+            sums = _mm256_add_epi64(sums, rounded);
+            add_scaled(&mut q_sum, scaled_luminance_sq(s), &mut q_in_range);
+        }
+        let all_in_range = _mm256_movemask_pd(ok_all) == 0b1111;
+        let mut lanes = [0i64; 4];
+        // SAFETY: `lanes` is 32 writable bytes; the store is unaligned.
+        unsafe { _mm256_storeu_si256(lanes.as_mut_ptr().cast(), sums) };
+        (all_in_range && q_in_range).then_some([lanes[0], lanes[1], lanes[2], lanes[3], q_sum])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn sample(rgb: [f32; 3], e: f32) -> Sample {
+        Sample {
+            rgb: Vec3::from_array(rgb),
+            illuminance_lx: e,
+            rays: 1,
+            missed: false,
+        }
+    }
+
+    #[test]
+    fn lanes_and_scalar_give_the_same_sums() {
+        // Halves and near-halves of the fixed-point unit (both signs), tiny, whole, large and
+        // out-of-range values, in runs of several lengths.
+        let unit = (VALUE_SCALE as f32).recip();
+        let mut h = 11u64;
+        let mut values = vec![
+            0.0,
+            -0.0,
+            unit * 0.5,
+            -unit * 0.5,
+            unit * 1.5,
+            -unit * 2.5,
+            unit * 0.499_999_97,
+            unit * 0.500_000_06,
+            1.0,
+            -3.25,
+            1.0e5,
+            4.0e5,
+            -4.0e5,
+        ];
+        for i in 0..3000u32 {
+            h = crate::render::sample_hash(h, i);
+            let u = (h >> 40) as f32 / (1u64 << 24) as f32;
+            values.push(match i % 7 {
+                0 => u * unit * 4.0 - unit * 2.0,
+                1 => u * 1.0e-3,
+                2 => (u - 0.5) * 300.0,
+                3 => u * 3.0e5,
+                _ => u * 50.0,
+            });
+        }
+        let samples: Vec<Sample> = values
+            .chunks(4)
+            .filter(|c| c.len() == 4)
+            .map(|c| sample([c[0], c[1], c[2]], c[3]))
+            .collect();
+        let mut fast = 0;
+        for len in [1, 5, 64, 700] {
+            for run in samples.chunks(len) {
+                let sums = run_sums(run);
+                assert_eq!(sums, scalar_run_sums(run), "run of {len}");
+                fast += usize::from(len == 1 && sums.is_some());
+            }
+        }
+        // The comparison is not vacuous: almost every single sample takes the fast path.
+        assert!(fast > samples.len() * 9 / 10, "{fast} of {}", samples.len());
+        let big = [sample([6.0e5, 0.0, 0.0], 0.0)];
+        assert_eq!(scalar_run_sums(&big).map(|_| ()), Some(()));
+        // Beyond the lanes' 2^51 the fast path declines (the exact path gives the same sums).
+        #[cfg(target_arch = "x86_64")]
+        if is_x86_feature_detected!("avx2") {
+            assert_eq!(run_sums(&big), None);
+        }
+        for bad in [f32::NAN, f32::INFINITY, 2.0e9] {
+            assert_eq!(run_sums(&[sample([1.0, bad, 1.0], 0.0)]), None);
+            assert_eq!(scalar_run_sums(&[sample([1.0, 1.0, 1.0], bad)]), None);
+        }
+    }
+}
