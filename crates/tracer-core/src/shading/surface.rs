@@ -32,7 +32,9 @@ pub struct Surface {
 }
 
 impl Surface {
-    /// The frame at `hit` of a ray travelling along `dir`.
+    /// The frame at `hit` of a ray travelling along `dir`. (Inlined: called, its vector
+    /// arguments went through memory in pieces the CPU could not forward to its loads.)
+    #[inline(always)]
     pub fn at(prep: &Prepared<'_>, hit: &Hit, p: Vec3, dir: Vec3) -> Surface {
         let scene = prep.scene;
         let prim = hit.prim as usize;

@@ -35,11 +35,11 @@ pub struct Walk {
     next: Option<(Ray, Vec3)>,
 }
 
-impl Walk {
-    pub fn new(ray: Ray, rng: SampleRng) -> Self {
+impl Default for Walk {
+    fn default() -> Self {
         Self {
-            ray,
-            rng,
+            ray: Ray::new(Vec3::ZERO, Vec3::Z),
+            rng: SampleRng::new(0, 0),
             sample: Sample::default(),
             weight: Vec3::ONE,
             depth: 0,
@@ -47,6 +47,21 @@ impl Walk {
             pending_len: 0,
             next: None,
         }
+    }
+}
+
+impl Walk {
+    /// Starts this walk over as camera sample `ray` with its random stream `rng`.
+    #[inline(always)]
+    pub fn restart(&mut self, ray: &Ray, rng: &SampleRng) {
+        self.ray = *ray;
+        self.rng = rng.clone();
+        self.sample = Sample::default();
+        self.weight = Vec3::ONE;
+        self.depth = 0;
+        self.pending = 0;
+        self.pending_len = 0;
+        self.next = None;
     }
 
     /// Shades the closest hit `hit` of `self.ray` (None: a miss): emission seen, the lights'
