@@ -221,11 +221,11 @@ impl<L: Lanes8> Rays8<L> {
         L::select(is_x, L::splat(p[0]), yz)
     }
 
-    /// Triangle `j` of `pack` against every lane (the watertight test, as `Tri4::lanes` does
-    /// it per triangle): lanes hit with `t` in `[t_min, t_max[lane]]`, and `t`, the
-    /// unnormalised `v`, `w` and `1 / det`.
+    /// Triangle `j` of `pack` against the lanes `lanes` (the watertight test, as `Tri4::lanes`
+    /// does it per triangle): those hit with `t` in `[t_min, t_max[lane]]`, and `t`, the
+    /// unnormalised `v`, `w` and `1 / det` (zeros when none passes the edge tests).
     #[inline(always)]
-    fn triangle(&self, pack: &Tri4, j: usize, t_max: L) -> (u32, [L; 4]) {
+    fn triangle(&self, pack: &Tri4, j: usize, t_max: L, lanes: u32) -> (u32, [L; 4]) {
         let vertex = |v: usize| [pack.v[v][0][j], pack.v[v][1][j], pack.v[v][2][j]];
         let [ax, ay, az] = self.frame(vertex(0));
         let [bx, by, bz] = self.frame(vertex(1));
@@ -237,15 +237,16 @@ impl<L: Lanes8> Rays8<L> {
         let negative = u.lt(zero).or(v.lt(zero)).or(w.lt(zero));
         let positive = u.gt(zero).or(v.gt(zero)).or(w.gt(zero));
         let det = u.add(v).add(w);
+        let inside = det.ne(zero).and_not(negative.and(positive));
+        if inside.bits() & lanes == 0 {
+            // Every ray asked about passes beside the triangle: no division, no distances.
+            return (0, [zero; 4]);
+        }
         let t_scaled = self.shear[2].mul(u.mul(az).add(v.mul(bz)).add(w.mul(cz)));
         let inv_det = L::splat(1.0).div(det);
         let t = t_scaled.mul(inv_det);
-        let hit = det
-            .ne(zero)
-            .and(t.ge(self.t_min))
-            .and(t.le(t_max))
-            .and_not(negative.and(positive));
-        (hit.bits(), [t, v, w, inv_det])
+        let hit = inside.and(t.ge(self.t_min)).and(t.le(t_max));
+        (hit.bits() & lanes, [t, v, w, inv_det])
     }
 }
 
@@ -405,8 +406,7 @@ impl Bvh {
                         if id == PADDING {
                             continue;
                         }
-                        let (hit, [t, v, w, inv_det]) = r.triangle(pack, j, best_t);
-                        let mut hit = hit & lanes;
+                        let (mut hit, [t, v, w, inv_det]) = r.triangle(pack, j, best_t, lanes);
                         if hit == 0 {
                             continue;
                         }
@@ -484,7 +484,7 @@ impl Bvh {
                         if pack.ids[j] == PADDING {
                             continue;
                         }
-                        done |= r.triangle(pack, j, t_max).0 & lanes;
+                        done |= r.triangle(pack, j, t_max, lanes).0;
                         if done & lanes == lanes {
                             break 'packs;
                         }

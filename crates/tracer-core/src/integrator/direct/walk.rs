@@ -87,9 +87,11 @@ impl Walk {
         let surface = Surface::at(prep, &hit, p, ray.dir);
         let n = surface.ns;
         let mat = prep.material_of(hit.prim);
-        let view = -ray.dir.normalize();
+        // Towards the viewer; only emission and highlights need it (a square root and a
+        // division per hit saved on matte surfaces).
+        let view = || -ray.dir.normalize();
         if mat.emission.max_element() > 0.0 {
-            self.sample.rgb += self.weight * prep.emitters.radiance(hit.prim, view);
+            self.sample.rgb += self.weight * prep.emitters.radiance(hit.prim, view());
         }
         let before = shadows.len();
         direct_light(
@@ -155,15 +157,16 @@ fn direct_light(
     prep: &Prepared<'_>,
     mat: &PreparedMaterial,
     surface: &Surface,
-    view: Vec3,
+    view: impl Fn() -> Vec3,
     rng: &mut SampleRng,
     shadows: &mut Vec<Ray>,
     contributions: &mut Vec<Contribution>,
 ) {
     let (p, n, origin) = (surface.p, surface.ns, surface.origin);
+    let view = (mat.glossiness > 0.0).then(view);
     let brdf = |wi: Vec3| {
         let mut f = mat.kd_over_pi;
-        if mat.glossiness > 0.0 {
+        if let Some(view) = view {
             let h = (wi + view).normalize_or_zero();
             let n_dot_h = n.dot(h).max(0.0);
             f += mat.ks * (mat.highlight_norm * n_dot_h.powf(mat.glossiness));
