@@ -32,6 +32,18 @@ pub(crate) trait Lanes8: Copy {
     fn ne(self, o: Self) -> Self::Mask;
     /// Per lane `if m { a } else { b }`.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+    /// Per lane `i`: the fraction of `base + (n0 + i) · step` (in `f64`, multiplied then
+    /// added, no fused operation), rounded to `f32`: eight steps of a rank-1 lattice sequence.
+    /// `base`, `step` ≥ 0 and the sums below 2^53.
+    fn fract_steps(base: f64, n0: u32, step: f64) -> Self;
+}
+
+/// One lane of [`Lanes8::fract_steps`]: `x - trunc(x)` is exact (the truncation through
+/// `i64`, which `x` < 2^53 fits, avoids the libm call `trunc` makes on baseline x86_64).
+#[inline(always)]
+pub(crate) fn fract_step(base: f64, n: u32, step: f64) -> f32 {
+    let x = base + f64::from(n) * step;
+    (x - (x as i64) as f64) as f32
 }
 
 /// A per-lane condition.
@@ -145,6 +157,12 @@ impl Lanes8 for Scalar8 {
             out[i] = if m.0[i] { a.0[i] } else { b.0[i] };
         }
         Self(out)
+    }
+    #[inline(always)]
+    fn fract_steps(base: f64, n0: u32, step: f64) -> Self {
+        Self(std::array::from_fn(|i| {
+            fract_step(base, n0.wrapping_add(i as u32), step)
+        }))
     }
 }
 
@@ -273,6 +291,32 @@ mod avx {
         fn select(m: AvxMask8, a: Self, b: Self) -> Self {
             Self(avx!(_mm256_blendv_ps(b.0, a.0, m.0)))
         }
+        #[inline(always)]
+        fn fract_steps(base: f64, n0: u32, step: f64) -> Self {
+            let (lo, hi) = (
+                fract_steps4(base, n0, step),
+                fract_steps4(base, n0.wrapping_add(4), step),
+            );
+            Self(avx!(_mm256_set_m128(hi, lo)))
+        }
+    }
+
+    /// Four lanes of [`Lanes8::fract_steps`] in `f64` (`n` exact below 2^32), as
+    /// `super::fract_step` per lane. (A function, not a closure, so it inlines into the AVX
+    /// caller.)
+    #[inline(always)]
+    fn fract_steps4(base: f64, first: u32, step: f64) -> __m128 {
+        avx!({
+            let n = _mm256_set_pd(
+                f64::from(first.wrapping_add(3)),
+                f64::from(first.wrapping_add(2)),
+                f64::from(first.wrapping_add(1)),
+                f64::from(first),
+            );
+            let x = _mm256_add_pd(_mm256_set1_pd(base), _mm256_mul_pd(n, _mm256_set1_pd(step)));
+            let t = _mm256_round_pd::<{ _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC }>(x);
+            _mm256_cvtpd_ps(_mm256_sub_pd(x, t))
+        })
     }
 
     impl Mask8 for AvxMask8 {

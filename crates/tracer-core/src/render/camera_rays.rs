@@ -5,7 +5,7 @@
 //! bit (the wavefront test compares whole samples with single ones).
 
 use super::pixel::SampleJob;
-use super::sampler::{pixel_shift, sample_offset};
+use super::sampler::{MAX_OFFSET, R2_STEP, pixel_shift, sample_offset};
 use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;
@@ -13,6 +13,22 @@ use crate::lanes8::{Lanes8, Scalar8};
 use crate::sampling::SampleRng;
 use crate::scene::CameraBasis;
 use glam::Vec3;
+
+/// 0, 1, ..., 7.
+const LANE_INDEX: [f32; 8] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0];
+
+/// The first job of `chunk` when it is eight consecutive samples of one pixel.
+#[inline(always)]
+fn one_pixel_run(chunk: &[SampleJob]) -> Option<SampleJob> {
+    let first = *chunk.first()?;
+    let run = chunk.len() == 8
+        && first.s <= u32::MAX - 7
+        && chunk
+            .iter()
+            .zip(first.s..)
+            .all(|(j, s)| j.x == first.x && j.y == first.y && j.s == s);
+    run.then_some(first)
+}
 
 /// The camera ray and random stream of each of `jobs`, into `out` (cleared first).
 pub(super) fn camera_rays(
@@ -46,21 +62,43 @@ fn rays<L: Lanes8>(basis: &CameraBasis, jobs: &[SampleJob], out: &mut Vec<(Ray, 
     let (w, h) = (L::splat(width as f32), L::splat(basis.height as f32));
     let (hw, hh) = (L::splat(basis.half_width), L::splat(basis.half_height));
     let (f, r, u) = (basis.forward, basis.right, basis.up);
+    let (max_offset, centre) = (L::splat(MAX_OFFSET), L::splat(0.5));
+    // Lanes 1..8 (lane 0 of a run starting at sample 0 is the pixel's centre).
+    let after_first = L::from_array(LANE_INDEX).gt(L::splat(0.0));
     for chunk in jobs.chunks(8) {
-        let mut fx = [0.0f32; 8];
-        let mut fy = [0.0f32; 8];
-        for (i, job) in chunk.iter().enumerate() {
+        let (fx, fy) = if let Some(job) = one_pixel_run(chunk) {
+            // Eight consecutive samples of one pixel (the common case): the offsets in lanes.
             if shift_of != (job.x, job.y) {
                 shift_of = (job.x, job.y);
                 shift = pixel_shift(job.x, job.y, width);
             }
-            let (dx, dy) = sample_offset(shift, job.s);
-            fx[i] = job.x as f32 + dx;
-            fy[i] = job.y as f32 + dy;
-        }
+            let mut dx = L::fract_steps(shift.0, job.s, R2_STEP.0).min_or(max_offset);
+            let mut dy = L::fract_steps(shift.1, job.s, R2_STEP.1).min_or(max_offset);
+            if job.s == 0 {
+                dx = L::select(after_first, dx, centre);
+                dy = L::select(after_first, dy, centre);
+            }
+            (
+                L::splat(job.x as f32).add(dx),
+                L::splat(job.y as f32).add(dy),
+            )
+        } else {
+            let mut fx = [0.0f32; 8];
+            let mut fy = [0.0f32; 8];
+            for (i, job) in chunk.iter().enumerate() {
+                if shift_of != (job.x, job.y) {
+                    shift_of = (job.x, job.y);
+                    shift = pixel_shift(job.x, job.y, width);
+                }
+                let (dx, dy) = sample_offset(shift, job.s);
+                fx[i] = job.x as f32 + dx;
+                fy[i] = job.y as f32 + dy;
+            }
+            (L::from_array(fx), L::from_array(fy))
+        };
         // CameraBasis::ray: screen position, then forward + right sx + up sy, normalised.
-        let sx = two.mul(L::from_array(fx)).div(w).sub(one).mul(hw);
-        let sy = one.sub(two.mul(L::from_array(fy)).div(h)).mul(hh);
+        let sx = two.mul(fx).div(w).sub(one).mul(hw);
+        let sy = one.sub(two.mul(fy).div(h)).mul(hh);
         let dx = L::splat(f.x)
             .add(L::splat(r.x).mul(sx))
             .add(L::splat(u.x).mul(sy));
@@ -101,13 +139,24 @@ mod tests {
             fov_deg: 53.0,
         };
         let basis = camera.basis(Handedness::Left, 317, 211);
-        let jobs: Vec<SampleJob> = (0..3000u32)
+        let runs = |jobs: &[SampleJob]| {
+            jobs.chunks(8)
+                .filter(|c| one_pixel_run(c).is_some())
+                .count()
+        };
+        let mut jobs: Vec<SampleJob> = (0..3000u32)
             .map(|i| SampleJob {
                 x: (i * 7) % 317,
                 y: (i / 5) % 211,
                 s: i % 37,
             })
             .collect();
+        // Runs of consecutive samples of one pixel (the lanes' own offsets), from sample 0
+        // and from later ones, with chunks of eight falling at every alignment.
+        for (k, first) in [0u32, 0, 3, 8, 1000, 0, 17].into_iter().enumerate() {
+            let (x, y) = (29 * k as u32 % 317, 13 * k as u32 % 211);
+            jobs.extend((first..first + 8 + 5 * k as u32).map(|s| SampleJob { x, y, s }));
+        }
         let expected: Vec<Ray> = jobs
             .iter()
             .map(|j| {
@@ -115,6 +164,7 @@ mod tests {
                 basis.ray(j.x as f32 + dx, j.y as f32 + dy)
             })
             .collect();
+        assert!(runs(&jobs) >= 5, "the runs reach the lanes' path");
         let mut kinds: Vec<Vec<(Ray, SampleRng)>> = Vec::new();
         let mut out = Vec::new();
         rays::<Scalar8>(&basis, &jobs, &mut out);

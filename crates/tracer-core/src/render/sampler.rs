@@ -33,15 +33,17 @@ pub(crate) fn sample_offset((shift_x, shift_y): (f64, f64), s: u32) -> (f32, f32
     if s == 0 {
         return (0.5, 0.5);
     }
-    // R2: increments 1/φ2 and 1/φ2², φ2 the plastic number.
-    const A1: f64 = 0.754_877_666_246_692_7;
-    const A2: f64 = 0.569_840_290_998_053_3;
     let n = f64::from(s);
-    let fx = fract_non_negative(shift_x + n * A1);
-    let fy = fract_non_negative(shift_y + n * A2);
+    let fx = fract_non_negative(shift_x + n * R2_STEP.0);
+    let fy = fract_non_negative(shift_y + n * R2_STEP.1);
     // f32 rounding could give 1.0 exactly; keep offsets inside the pixel.
-    ((fx as f32).min(0.999_999_94), (fy as f32).min(0.999_999_94))
+    ((fx as f32).min(MAX_OFFSET), (fy as f32).min(MAX_OFFSET))
 }
+
+/// R2's increments per sample, 1/φ2 and 1/φ2², φ2 the plastic number.
+pub(crate) const R2_STEP: (f64, f64) = (0.754_877_666_246_692_7, 0.569_840_290_998_053_3);
+/// The largest offset in a pixel (the `f32` below 1).
+pub(crate) const MAX_OFFSET: f32 = 0.999_999_94;
 
 /// `x.fract()` for finite `0 <= x < 2^63`, bit for bit, without the libm `trunc` call that
 /// `fract` makes on baseline x86_64 (a few per cent of a direct-light frame): the cast
