@@ -30,31 +30,44 @@ fn one_pixel_run(chunk: &[SampleJob]) -> Option<SampleJob> {
     run.then_some(first)
 }
 
-/// The camera ray and random stream of each of `jobs`, into `out` (cleared first).
+/// The camera ray and random stream of each of `jobs`, into `rays` and `rngs` (cleared
+/// first; the batch traces the rays from that slice as they are).
 pub(super) fn camera_rays(
     basis: &CameraBasis,
     jobs: &[SampleJob],
-    out: &mut Vec<(Ray, SampleRng)>,
+    rays: &mut Vec<Ray>,
+    rngs: &mut Vec<SampleRng>,
 ) {
-    out.clear();
+    rays.clear();
+    rngs.clear();
     #[cfg(target_arch = "x86_64")]
     if is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2, the only feature `rays_avx2` is compiled for.
-        unsafe { rays_avx2(basis, jobs, out) };
+        unsafe { lane_rays_avx2(basis, jobs, rays, rngs) };
         return;
     }
-    rays::<Scalar8>(basis, jobs, out);
+    lane_rays::<Scalar8>(basis, jobs, rays, rngs);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn rays_avx2(basis: &CameraBasis, jobs: &[SampleJob], out: &mut Vec<(Ray, SampleRng)>) {
-    rays::<Avx8>(basis, jobs, out);
+fn lane_rays_avx2(
+    basis: &CameraBasis,
+    jobs: &[SampleJob],
+    rays: &mut Vec<Ray>,
+    rngs: &mut Vec<SampleRng>,
+) {
+    lane_rays::<Avx8>(basis, jobs, rays, rngs);
 }
 
 /// (Loops and straight-line lane calls only: a closure would not inherit the AVX feature.)
 #[inline(always)]
-fn rays<L: Lanes8>(basis: &CameraBasis, jobs: &[SampleJob], out: &mut Vec<(Ray, SampleRng)>) {
+fn lane_rays<L: Lanes8>(
+    basis: &CameraBasis,
+    jobs: &[SampleJob],
+    rays: &mut Vec<Ray>,
+    rngs: &mut Vec<SampleRng>,
+) {
     let width = basis.width;
     let mut shift_of = (u32::MAX, u32::MAX);
     let mut shift = (0.0, 0.0);
@@ -117,10 +130,8 @@ fn rays<L: Lanes8>(basis: &CameraBasis, jobs: &[SampleJob], out: &mut Vec<(Ray, 
         );
         for (i, job) in chunk.iter().enumerate() {
             let key = u64::from(job.y) * u64::from(width) + u64::from(job.x);
-            out.push((
-                Ray::new(basis.origin, Vec3::new(x[i], y[i], z[i])),
-                SampleRng::new(key, job.s),
-            ));
+            rays.push(Ray::new(basis.origin, Vec3::new(x[i], y[i], z[i])));
+            rngs.push(SampleRng::new(key, job.s));
         }
     }
 }
@@ -165,16 +176,17 @@ mod tests {
             })
             .collect();
         assert!(runs(&jobs) >= 5, "the runs reach the lanes' path");
-        let mut kinds: Vec<Vec<(Ray, SampleRng)>> = Vec::new();
-        let mut out = Vec::new();
-        rays::<Scalar8>(&basis, &jobs, &mut out);
-        kinds.push(out);
-        let mut out = Vec::new();
-        camera_rays(&basis, &jobs, &mut out);
-        kinds.push(out);
+        let mut kinds: Vec<Vec<Ray>> = Vec::new();
+        let (mut rays, mut rngs) = (Vec::new(), Vec::new());
+        lane_rays::<Scalar8>(&basis, &jobs, &mut rays, &mut rngs);
+        kinds.push(rays);
+        let (mut rays, mut rngs) = (Vec::new(), Vec::new());
+        camera_rays(&basis, &jobs, &mut rays, &mut rngs);
+        kinds.push(rays);
+        assert_eq!(rngs.len(), jobs.len());
         for rays in kinds {
             assert_eq!(rays.len(), jobs.len());
-            for (k, ((ray, _), want)) in rays.iter().zip(&expected).enumerate() {
+            for (k, (ray, want)) in rays.iter().zip(&expected).enumerate() {
                 assert_eq!(
                     ray.dir.to_array().map(f32::to_bits),
                     want.dir.to_array().map(f32::to_bits),

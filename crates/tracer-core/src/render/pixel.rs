@@ -36,7 +36,8 @@ pub struct SampleJob {
 pub struct BatchScratch {
     jobs: Vec<SampleJob>,
     samples: Vec<Sample>,
-    rays: Vec<(Ray, SampleRng)>,
+    rays: Vec<Ray>,
+    rngs: Vec<SampleRng>,
     direct: DirectBatch,
 }
 
@@ -93,11 +94,12 @@ impl<'a> FrameSampler<'a> {
             out.extend(jobs.iter().map(|j| self.sample(j.x, j.y, j.s, splats)));
             return;
         }
-        camera_rays(&self.basis, jobs, &mut scratch.rays);
+        camera_rays(&self.basis, jobs, &mut scratch.rays, &mut scratch.rngs);
         out.resize(jobs.len(), Sample::default());
         trace_direct_batch(
             &self.integrator.prep,
             &scratch.rays,
+            &scratch.rngs,
             &mut scratch.direct,
             out,
         );

@@ -15,7 +15,7 @@ pub struct DirectBatch {
     walks: Vec<Walk>,
     /// Indices of the walks still going.
     active: Vec<u32>,
-    /// The active walks' rays, and their closest hits.
+    /// The active walks' mirror rays (after the first step), and the closest hits.
     rays: Vec<Ray>,
     hits: Vec<Option<Hit>>,
     shadows: Vec<Ray>,
@@ -30,37 +30,38 @@ impl DirectBatch {
     }
 }
 
-/// Traces the camera samples `rays` (each ray with its random stream) and writes what each sees
-/// to `out` (as long as `rays`): the same samples, bit for bit, as tracing them one by one.
+/// Traces the camera samples `rays` (each with its random stream, `rngs[i]` for `rays[i]`)
+/// and writes what each sees to `out` (as long as `rays`): the same samples, bit for bit, as
+/// tracing them one by one.
 pub fn trace_batch(
     prep: &Prepared<'_>,
-    rays: &[(Ray, SampleRng)],
+    rays: &[Ray],
+    rngs: &[SampleRng],
     batch: &mut DirectBatch,
     out: &mut [Sample],
 ) {
-    debug_assert_eq!(rays.len(), out.len());
+    debug_assert!(rays.len() == out.len() && rays.len() == rngs.len());
     // Walks are restarted in place, field by field: building each on the stack and copying
     // it in made the CPU read back stores it could not forward (a tenth of a frame).
     batch.walks.truncate(rays.len());
     batch.walks.resize_with(rays.len(), Walk::default);
-    for (walk, (ray, rng)) in batch.walks.iter_mut().zip(rays) {
-        walk.restart(ray, rng);
+    for (walk, rng) in batch.walks.iter_mut().zip(rngs) {
+        walk.restart(rng);
     }
     batch.active.clear();
     batch.active.extend(0..rays.len() as u32);
+    // The camera rays are traced from the caller's slice; mirror rays from `batch.rays`.
+    let mut first = true;
     while !batch.active.is_empty() {
         let walks = &mut batch.walks;
-        batch.rays.clear();
-        batch
-            .rays
-            .extend(batch.active.iter().map(|&i| walks[i as usize].ray));
+        let current: &[Ray] = if first { rays } else { &batch.rays };
         batch.hits.clear();
-        batch.hits.resize(batch.rays.len(), None);
-        prep.closest_visible_many(&batch.rays, &mut batch.hits);
+        batch.hits.resize(current.len(), None);
+        prep.closest_visible_many(current, &mut batch.hits);
         batch.shadows.clear();
         batch.contributions.clear();
-        for (&i, &hit) in batch.active.iter().zip(&batch.hits) {
-            walks[i as usize].shade(prep, hit, &mut batch.shadows, &mut batch.contributions);
+        for ((&i, &hit), ray) in batch.active.iter().zip(&batch.hits).zip(current) {
+            walks[i as usize].shade(prep, ray, hit, &mut batch.shadows, &mut batch.contributions);
         }
         batch.blocked.clear();
         batch.blocked.resize(batch.shadows.len(), false);
@@ -70,6 +71,11 @@ pub fn trace_batch(
             walk.resolve(&batch.contributions, &batch.blocked);
             walk.advance()
         });
+        batch.rays.clear();
+        batch
+            .rays
+            .extend(batch.active.iter().map(|&i| walks[i as usize].next_ray));
+        first = false;
     }
     for (o, walk) in out.iter_mut().zip(&batch.walks) {
         *o = walk.sample;

@@ -33,7 +33,13 @@ pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
     let mut out = [Sample::default()];
     BATCH.with(|batch| {
         let mut batch = batch.borrow_mut();
-        trace_batch(prep, &[(*ray, rng.clone())], &mut batch, &mut out);
+        trace_batch(
+            prep,
+            &[*ray],
+            std::slice::from_ref(rng),
+            &mut batch,
+            &mut out,
+        );
         // Callers that draw more from the stream go on from where the sample left it.
         *rng = batch.final_rng(0);
     });

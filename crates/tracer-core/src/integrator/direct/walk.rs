@@ -18,71 +18,71 @@ pub struct Contribution {
     pub rgb: Vec3,
 }
 
-/// One camera sample on its way.
+/// One camera sample on its way (kept small: a batch holds hundreds, rewritten every batch).
 #[derive(Clone, Debug)]
 pub struct Walk {
-    pub ray: Ray,
     pub rng: SampleRng,
     pub sample: Sample,
     /// Throughput: the product of Ks along the mirror chain so far.
     weight: Vec3,
+    /// The mirror ray to follow after this hit and its weight there (when `continues`).
+    pub next_ray: Ray,
+    next_weight: Vec3,
+    continues: bool,
     depth: u32,
     /// The contributions of the current hit: `pending .. pending + pending_len` of the batch's
     /// shadow rays.
     pub pending: u32,
     pub pending_len: u32,
-    /// Where the walk goes after this hit and its weight there (None: it ends).
-    next: Option<(Ray, Vec3)>,
 }
 
 impl Default for Walk {
     fn default() -> Self {
         Self {
-            ray: Ray::new(Vec3::ZERO, Vec3::Z),
             rng: SampleRng::new(0, 0),
             sample: Sample::default(),
             weight: Vec3::ONE,
+            next_ray: Ray::new(Vec3::ZERO, Vec3::Z),
+            next_weight: Vec3::ZERO,
+            continues: false,
             depth: 0,
             pending: 0,
             pending_len: 0,
-            next: None,
         }
     }
 }
 
 impl Walk {
-    /// Starts this walk over as camera sample `ray` with its random stream `rng`.
+    /// Starts this walk over as a camera sample with the random stream `rng` (its ray is the
+    /// batch's).
     #[inline(always)]
-    pub fn restart(&mut self, ray: &Ray, rng: &SampleRng) {
-        self.ray = *ray;
+    pub fn restart(&mut self, rng: &SampleRng) {
         self.rng = rng.clone();
         self.sample = Sample::default();
         self.weight = Vec3::ONE;
         self.depth = 0;
-        self.pending = 0;
-        self.pending_len = 0;
-        self.next = None;
     }
 
-    /// Shades the closest hit `hit` of `self.ray` (None: a miss): emission seen, the lights'
-    /// shadow rays pushed to `shadows` with their contributions to `contributions`, and the
-    /// mirror ray to follow.
+    /// Shades the closest hit `hit` of the walk's current ray `ray` (None: a miss): emission
+    /// seen, the lights' shadow rays pushed to `shadows` with their contributions to
+    /// `contributions`, and the mirror ray to follow.
     pub fn shade(
         &mut self,
         prep: &Prepared<'_>,
+        ray: &Ray,
         hit: Option<Hit>,
         shadows: &mut Vec<Ray>,
         contributions: &mut Vec<Contribution>,
     ) {
         self.pending = shadows.len() as u32;
         self.pending_len = 0;
-        self.next = None;
+        self.continues = false;
         self.sample.rays += 1;
         let Some(hit) = hit else {
             self.sample.missed = self.depth == 0;
             return;
         };
-        let ray = self.ray;
+        let ray = *ray;
         let p = ray.at(hit.t);
         let surface = Surface::at(prep, &hit, p, ray.dir);
         let n = surface.ns;
@@ -118,7 +118,9 @@ impl Walk {
             // The shading normal bent the mirror direction into the mesh: it ends here.
             return;
         }
-        self.next = Some((Ray::new(surface.origin, reflected), weight));
+        self.next_ray = Ray::new(surface.origin, reflected);
+        self.next_weight = weight;
+        self.continues = true;
     }
 
     /// Adds the contributions of the current hit whose shadow rays were not `blocked` (both
@@ -139,13 +141,13 @@ impl Walk {
         self.sample.rgb += self.weight * direct;
     }
 
-    /// Turns to the mirror ray after [`Walk::resolve`]; false when the walk has ended.
+    /// Turns to the mirror ray ([`Walk::next_ray`]) after [`Walk::resolve`]; false when the
+    /// walk has ended.
     pub fn advance(&mut self) -> bool {
-        let Some((ray, weight)) = self.next.take() else {
+        if !self.continues {
             return false;
-        };
-        self.ray = ray;
-        self.weight = weight;
+        }
+        self.weight = self.next_weight;
         self.depth += 1;
         true
     }
