@@ -14,8 +14,27 @@ const PRB: &str = "product p\n  attrs\n    A000001\n    A000002\n  enddef\n  par
 const ATR: &str = "Attr a000001\n  kd 0.6\n  color 255 255 255\nenddef\n\
                    Attr a000002\n  kd 0.2\n  SelfLuminance 50\n  SelfLumDirection Pos\nenddef\n";
 
+/// A bundle's `.shp` in a folder of its own, removed with the value (the test passing or not).
+struct Bundle {
+    dir: PathBuf,
+    shp: PathBuf,
+}
+
+impl Drop for Bundle {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+impl std::ops::Deref for Bundle {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.shp
+    }
+}
+
 /// A bundle `room` in a fresh folder named after the test, with `lgt` (and `cam`) as given.
-fn bundle(test: &str, lgt: &str, cam: Option<&str>) -> PathBuf {
+fn bundle(test: &str, lgt: &str, cam: Option<&str>) -> Bundle {
     let dir = std::env::temp_dir().join(format!("raygine-integra-{test}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(dir.join("room")).unwrap();
@@ -26,7 +45,8 @@ fn bundle(test: &str, lgt: &str, cam: Option<&str>) -> PathBuf {
     if let Some(cam) = cam {
         std::fs::write(dir.join("room/room.cam"), cam).unwrap();
     }
-    dir.join("room.shp")
+    let shp = dir.join("room.shp");
+    Bundle { dir, shp }
 }
 
 fn load(path: &Path) -> LoadedScene {

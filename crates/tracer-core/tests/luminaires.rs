@@ -97,10 +97,26 @@ fn steps(from: f64, to: f64, step: f64) -> Vec<f64> {
     (0..=n).map(|i| from + i as f64 * step).collect()
 }
 
-fn temp_dir(name: &str) -> PathBuf {
+/// A folder of its own for one test, removed with the value (the test passing or not).
+struct Scratch(PathBuf);
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+fn temp_dir(name: &str) -> Scratch {
     let d = std::env::temp_dir().join(format!("raygine-lum-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
-    d
+    Scratch(d)
 }
 
 /// CIE 171:2006 case 5.2: I(γ) = 1000 cos γ cd aimed down 3 m above a 4 x 4 m floor gives
