@@ -19,9 +19,6 @@ use crate::geometry::Ray;
 pub(super) const STACK_LEVELS: usize = 24;
 pub(super) const STACK_SIZE: usize = STACK_LEVELS * (WIDTH - 1) + 1;
 
-/// Scales each slab's exit distance up so rounding never culls a box the ray touches: 2 gamma(4)
-/// covers the subtraction, the product and the rounded reciprocal and its scaling (Ize, "Robust
-/// BVH Ray Traversal", 2013).
 /// How far past the best hit (relative to `t` and to the ray's origin over its direction) boxes
 /// are still opened. A triangle hit at `t` lies in boxes the ray enters no later than `t`
 /// exactly, but the rounded entry distance can come out a few ulps later than the rounded `t`;
@@ -58,6 +55,9 @@ pub(super) fn cull_limit(t: f32, reach: f32) -> f32 {
     if limit < f32::MAX { limit } else { f32::MAX }
 }
 
+/// Scales each slab's exit distance up so rounding never culls a box the ray touches: 2 gamma(4)
+/// covers the subtraction, the product and the rounded reciprocal and its scaling (Ize, "Robust
+/// BVH Ray Traversal", 2013).
 pub(super) const EXIT_SCALE: f32 =
     1.0 + 2.0 * (4.0 * f32::EPSILON * 0.5) / (1.0 - 4.0 * f32::EPSILON * 0.5);
 
