@@ -123,10 +123,23 @@ mod avx2 {
         lanes
     }
 
+    /// Adds sample `s`'s luminance per channel and illuminance, rounded in four lanes, to
+    /// `sums`, and its range test to `ok_all`.
+    #[inline(always)]
+    fn add_channels(s: &Sample, sums: &mut __m256i, ok_all: &mut __m256d) {
+        // SAFETY: only called from `run_sums`, compiled for AVX2; no memory operands.
+        unsafe {
+            let v = _mm_set_ps(s.illuminance_lx, s.rgb.z, s.rgb.y, s.rgb.x);
+            let scaled = _mm256_mul_pd(_mm256_cvtps_pd(v), _mm256_set1_pd(VALUE_SCALE));
+            let (rounded, ok) = round_lanes(scaled);
+            *ok_all = _mm256_and_pd(*ok_all, ok);
+            *sums = _mm256_add_epi64(*sums, rounded);
+        }
+    }
+
     #[target_feature(enable = "avx2")]
     pub(super) fn run_sums(run: &[Sample]) -> Option<[i64; 5]> {
         debug_assert!(run.len() <= RUN_SAMPLES);
-        let scale = _mm256_set1_pd(VALUE_SCALE);
         let square_scale = _mm256_set1_pd(SQUARE_SCALE);
         let mut sums = _mm256_setzero_si256();
         let mut q_sums = _mm256_setzero_si256();
@@ -135,10 +148,7 @@ mod avx2 {
         for quad in four.by_ref() {
             // Luminance per channel and illuminance of each sample, four lanes at a time.
             for s in quad {
-                let v = _mm_set_ps(s.illuminance_lx, s.rgb.z, s.rgb.y, s.rgb.x);
-                let (rounded, ok) = round_lanes(_mm256_mul_pd(_mm256_cvtps_pd(v), scale));
-                ok_all = _mm256_and_pd(ok_all, ok);
-                sums = _mm256_add_epi64(sums, rounded);
+                add_channels(s, &mut sums, &mut ok_all);
             }
             // The four samples' luminance squared in one vector (y · y · 2¹⁶, as the scalar
             // path multiplies).
@@ -151,10 +161,7 @@ mod avx2 {
         let mut q_sum = lanes_of(q_sums).iter().sum::<i64>();
         let mut q_in_range = true;
         for s in four.remainder() {
-            let v = _mm_set_ps(s.illuminance_lx, s.rgb.z, s.rgb.y, s.rgb.x);
-            let (rounded, ok) = round_lanes(_mm256_mul_pd(_mm256_cvtps_pd(v), scale));
-            ok_all = _mm256_and_pd(ok_all, ok);
-            sums = _mm256_add_epi64(sums, rounded);
+            add_channels(s, &mut sums, &mut ok_all);
             add_scaled(&mut q_sum, scaled_luminance_sq(s), &mut q_in_range);
         }
         let all_in_range = _mm256_movemask_pd(ok_all) == 0b1111;
