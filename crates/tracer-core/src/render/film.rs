@@ -290,6 +290,12 @@ pub struct Film {
     pub pixels: Vec<PixelSum>,
 }
 
+impl Drop for Film {
+    fn drop(&mut self) {
+        super::film_buffers::give(std::mem::take(&mut self.pixels));
+    }
+}
+
 /// Why two films cannot be added.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum FilmError {
@@ -304,7 +310,7 @@ impl Film {
         Self {
             width,
             height,
-            pixels: vec![PixelSum::default(); width as usize * height as usize],
+            pixels: super::film_buffers::take(width as usize * height as usize),
         }
     }
 

@@ -3,6 +3,7 @@
 
 mod camera_rays;
 mod film;
+mod film_buffers;
 pub mod partial;
 mod passes;
 mod pixel;
