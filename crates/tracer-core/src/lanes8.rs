@@ -36,6 +36,8 @@ pub(crate) trait Lanes8: Copy {
     /// added, no fused operation), rounded to `f32`: eight steps of a rank-1 lattice sequence.
     /// `base`, `step` ≥ 0 and the sums below 2^53.
     fn fract_steps(base: f64, n0: u32, step: f64) -> Self;
+    /// Eight rows of eight into eight columns: lane `i` of column `j` is `rows[i][j]`.
+    fn transpose(rows: [[f32; 8]; 8]) -> [Self; 8];
 }
 
 /// One lane of [`Lanes8::fract_steps`]: `x - trunc(x)` is exact (the truncation through
@@ -163,6 +165,10 @@ impl Lanes8 for Scalar8 {
         Self(std::array::from_fn(|i| {
             fract_step(base, n0.wrapping_add(i as u32), step)
         }))
+    }
+    #[inline(always)]
+    fn transpose(rows: [[f32; 8]; 8]) -> [Self; 8] {
+        std::array::from_fn(|j| Self(std::array::from_fn(|i| rows[i][j])))
     }
 }
 
@@ -299,6 +305,44 @@ mod avx {
             );
             Self(avx!(_mm256_set_m128(hi, lo)))
         }
+        #[inline(always)]
+        fn transpose(rows: [[f32; 8]; 8]) -> [Self; 8] {
+            avx!({
+                // (Loads written out: a closure would not inherit the AVX target feature.)
+                let r0 = _mm256_loadu_ps(rows[0].as_ptr());
+                let r1 = _mm256_loadu_ps(rows[1].as_ptr());
+                let r2 = _mm256_loadu_ps(rows[2].as_ptr());
+                let r3 = _mm256_loadu_ps(rows[3].as_ptr());
+                let r4 = _mm256_loadu_ps(rows[4].as_ptr());
+                let r5 = _mm256_loadu_ps(rows[5].as_ptr());
+                let r6 = _mm256_loadu_ps(rows[6].as_ptr());
+                let r7 = _mm256_loadu_ps(rows[7].as_ptr());
+                // Pairs of rows interleaved: (a0 b0 a1 b1 | a4 b4 a5 b5), (a2 b2 a3 b3 | ...).
+                let (a01, b01) = (_mm256_unpacklo_ps(r0, r1), _mm256_unpackhi_ps(r0, r1));
+                let (a23, b23) = (_mm256_unpacklo_ps(r2, r3), _mm256_unpackhi_ps(r2, r3));
+                let (a45, b45) = (_mm256_unpacklo_ps(r4, r5), _mm256_unpackhi_ps(r4, r5));
+                let (a67, b67) = (_mm256_unpacklo_ps(r6, r7), _mm256_unpackhi_ps(r6, r7));
+                // Columns j and j + 4 of rows 0-3 (then 4-7) in the two halves.
+                let c0 = _mm256_shuffle_ps::<0x44>(a01, a23);
+                let c1 = _mm256_shuffle_ps::<0xEE>(a01, a23);
+                let c2 = _mm256_shuffle_ps::<0x44>(b01, b23);
+                let c3 = _mm256_shuffle_ps::<0xEE>(b01, b23);
+                let d0 = _mm256_shuffle_ps::<0x44>(a45, a67);
+                let d1 = _mm256_shuffle_ps::<0xEE>(a45, a67);
+                let d2 = _mm256_shuffle_ps::<0x44>(b45, b67);
+                let d3 = _mm256_shuffle_ps::<0xEE>(b45, b67);
+                [
+                    Self(_mm256_permute2f128_ps::<0x20>(c0, d0)),
+                    Self(_mm256_permute2f128_ps::<0x20>(c1, d1)),
+                    Self(_mm256_permute2f128_ps::<0x20>(c2, d2)),
+                    Self(_mm256_permute2f128_ps::<0x20>(c3, d3)),
+                    Self(_mm256_permute2f128_ps::<0x31>(c0, d0)),
+                    Self(_mm256_permute2f128_ps::<0x31>(c1, d1)),
+                    Self(_mm256_permute2f128_ps::<0x31>(c2, d2)),
+                    Self(_mm256_permute2f128_ps::<0x31>(c3, d3)),
+                ]
+            })
+        }
     }
 
     /// Four lanes of [`Lanes8::fract_steps`] in `f64` (`n` exact below 2^32), as
@@ -335,6 +379,37 @@ mod avx {
         #[inline(always)]
         fn bits(self) -> u32 {
             avx!(_mm256_movemask_ps(self.0)) as u32
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rows() -> [[f32; 8]; 8] {
+        std::array::from_fn(|i| std::array::from_fn(|j| (10 * i + j) as f32))
+    }
+
+    fn check<L: Lanes8>() {
+        let rows = rows();
+        let columns = L::transpose(rows);
+        for (j, column) in columns.iter().enumerate() {
+            let lanes = column.to_array();
+            for (i, lane) in lanes.iter().enumerate() {
+                assert_eq!(*lane, rows[i][j], "lane {i} of column {j}");
+            }
+        }
+    }
+
+    #[test]
+    fn transpose_moves_rows_into_lanes() {
+        check::<Scalar8>();
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            check::<Avx8>();
+        } else {
+            eprintln!("skipping the AVX transpose: this CPU has no AVX2");
         }
     }
 }

@@ -47,7 +47,10 @@ struct Rays8<L: Lanes8> {
     /// Per axis: lanes whose direction is negative (entering a box through its maximum), and
     /// the sign when every lane has the same (the common case: no blend per box).
     negative: [L::Mask; 3],
-    uniform_negative: [Option<bool>; 3],
+    /// When every lane has the same sign on every axis (the common case), the rows of a
+    /// node's bounds holding the entry planes (`[..3]`) and the exit planes (`[3..]`): two
+    /// broadcasts per axis and child, no blend and no branch.
+    planes: Option<[usize; 6]>,
     t_min: L,
     t_max: F8,
     /// See `cull_reach`.
@@ -69,30 +72,25 @@ impl<L: Lanes8> Rays8<L> {
         debug_assert!((1..=PACKET).contains(&rays.len()));
         let n = rays.len();
         let active = (1u32 << n) - 1;
-        let mut dir = [[0.0f32; PACKET]; 3];
-        let mut origin = [[0.0f32; PACKET]; 3];
-        let mut t_min = [0.0f32; PACKET];
-        let mut t_max = [0.0f32; PACKET];
-        for i in 0..PACKET {
+        // Ray per row, then one lane per ray (lanes past the rays repeat the first).
+        let row = |i: usize| {
             let r = rays.get(i).unwrap_or(&rays[0]);
-            for a in 0..3 {
-                dir[a][i] = r.dir[a];
-                origin[a][i] = r.origin[a];
-            }
-            t_min[i] = r.t_min;
-            t_max[i] = r.t_max;
-        }
+            let (o, d) = (r.origin, r.dir);
+            [o.x, o.y, o.z, d.x, d.y, d.z, r.t_min, r.t_max]
+        };
+        let [ox, oy, oz, dx, dy, dz, t_min, t_max] = L::transpose([
+            row(0),
+            row(1),
+            row(2),
+            row(3),
+            row(4),
+            row(5),
+            row(6),
+            row(7),
+        ]);
         let (zero, one) = (L::splat(0.0), L::splat(1.0));
-        let d = [
-            L::from_array(dir[0]),
-            L::from_array(dir[1]),
-            L::from_array(dir[2]),
-        ];
-        let o = [
-            L::from_array(origin[0]),
-            L::from_array(origin[1]),
-            L::from_array(origin[2]),
-        ];
+        let d = [dx, dy, dz];
+        let o = [ox, oy, oz];
         let inv_dir = [one.div(d[0]), one.div(d[1]), one.div(d[2])];
         // 1/d is never -0 or NaN for a finite d, so "below zero" is "sign negative".
         let negative = [
@@ -109,11 +107,27 @@ impl<L: Lanes8> Rays8<L> {
                 None
             }
         };
-        let uniform_negative = [
+        let planes = match [
             uniform(negative[0].bits()),
             uniform(negative[1].bits()),
             uniform(negative[2].bits()),
-        ];
+        ] {
+            [Some(nx), Some(ny), Some(nz)] => {
+                // Entering through the minimum on axes moved along positively.
+                let row = |axis: usize, neg: bool, entry: bool| {
+                    if neg == entry { 3 + axis } else { axis }
+                };
+                Some([
+                    row(0, nx, true),
+                    row(1, ny, true),
+                    row(2, nz, true),
+                    row(0, nx, false),
+                    row(1, ny, false),
+                    row(2, nz, false),
+                ])
+            }
+            _ => None,
+        };
         // The cull margin's reach (`cull_reach`): origin over direction on the axes moved along.
         let infinity = L::splat(f32::INFINITY);
         let mut reach = zero;
@@ -158,9 +172,9 @@ impl<L: Lanes8> Rays8<L> {
                 inv_dir[2].mul(exit),
             ],
             negative,
-            uniform_negative,
-            t_min: L::from_array(t_min),
-            t_max,
+            planes,
+            t_min,
+            t_max: t_max.to_array(),
             reach,
             origin_k,
             shear: [dir_k[0].mul(inv_z), dir_k[1].mul(inv_z), inv_z],
@@ -175,28 +189,37 @@ impl<L: Lanes8> Rays8<L> {
     #[inline(always)]
     fn enter(&self, node: &WideNode, c: usize, limit: L, lanes: u32) -> (u32, L) {
         let (g, l) = (c / LANES, c % LANES);
-        let mut near = self.t_min;
-        let mut far = limit;
-        for axis in 0..3 {
-            let lo = node.bounds[axis][g][l];
-            let hi = node.bounds[3 + axis][g][l];
-            let (np, fp) = match self.uniform_negative[axis] {
-                Some(true) => (L::splat(hi), L::splat(lo)),
-                Some(false) => (L::splat(lo), L::splat(hi)),
-                None => {
-                    let (lo, hi) = (L::splat(lo), L::splat(hi));
-                    let m = self.negative[axis];
-                    (L::select(m, hi, lo), L::select(m, lo, hi))
+        let (mut near, mut far) = (self.t_min, limit);
+        match self.planes {
+            Some(rows) => {
+                for axis in 0..3 {
+                    let np = L::splat(node.bounds[rows[axis]][g][l]);
+                    let fp = L::splat(node.bounds[rows[3 + axis]][g][l]);
+                    (near, far) = self.slab(axis, np, fp, near, far);
                 }
-            };
-            let o = self.origin[axis];
-            let tn = np.sub(o).mul(self.inv_dir[axis]);
-            let tf = fp.sub(o).mul(self.inv_dir_exit[axis]);
-            // NaN (origin on the plane, zero direction) keeps the other side.
-            near = tn.max_or(near);
-            far = tf.min_or(far);
+            }
+            None => {
+                for axis in 0..3 {
+                    let lo = L::splat(node.bounds[axis][g][l]);
+                    let hi = L::splat(node.bounds[3 + axis][g][l]);
+                    let m = self.negative[axis];
+                    let (np, fp) = (L::select(m, hi, lo), L::select(m, lo, hi));
+                    (near, far) = self.slab(axis, np, fp, near, far);
+                }
+            }
         }
         (lanes & near.le(far).bits(), near)
+    }
+
+    /// The slab of `axis` between the entry plane `np` and the exit plane `fp`, narrowing the
+    /// interval (`near`, `far`) of every lane.
+    #[inline(always)]
+    fn slab(&self, axis: usize, np: L, fp: L, near: L, far: L) -> (L, L) {
+        let o = self.origin[axis];
+        let tn = np.sub(o).mul(self.inv_dir[axis]);
+        let tf = fp.sub(o).mul(self.inv_dir_exit[axis]);
+        // NaN (origin on the plane, zero direction) keeps the other side.
+        (tn.max_or(near), tf.min_or(far))
     }
 
     /// One vertex in every lane's ray frame: (x, y) sheared, z along the ray (the single-ray
@@ -349,14 +372,14 @@ impl Bvh {
             lanes: r.active,
             t_enter: r.t_min,
         });
-        let mut children = [(
-            0.0f32,
-            Entry {
-                child: 0,
-                lanes: 0,
-                t_enter: r.t_min,
-            },
-        ); WIDTH];
+        // The children a node's box tests let through: where the first of their rays enters
+        // (the visit key), and the entry to push, kept apart so the sort moves bytes only.
+        let mut keys = [0.0f32; WIDTH];
+        let mut found = [Entry {
+            child: 0,
+            lanes: 0,
+            t_enter: r.t_min,
+        }; WIDTH];
         while let Some(e) = stack.pop() {
             // Lanes that found a hit nearer than where they enter this box need not open it.
             let lanes = e.lanes & e.t_enter.le(cull).bits();
@@ -373,30 +396,26 @@ impl Bvh {
                     }
                     let (hit, near) = r.enter(node, c, cull, lanes);
                     if hit != 0 {
-                        // Visit order: where the first of its rays enters.
-                        let key = near.to_array()[hit.trailing_zeros() as usize];
-                        children[n] = (
-                            key,
-                            Entry {
-                                child,
-                                lanes: hit,
-                                t_enter: near,
-                            },
-                        );
+                        keys[n] = near.to_array()[hit.trailing_zeros() as usize];
+                        found[n] = Entry {
+                            child,
+                            lanes: hit,
+                            t_enter: near,
+                        };
                         n += 1;
                     }
                 }
-                // Nearest on top of the stack.
-                let run = &mut children[..n];
+                // Nearest on top of the stack: indices sorted by key, farthest first.
+                let mut order = [0u8, 1, 2, 3, 4, 5, 6, 7];
                 for i in 1..n {
                     let mut j = i;
-                    while j > 0 && run[j - 1].0 < run[j].0 {
-                        run.swap(j - 1, j);
+                    while j > 0 && keys[order[j - 1] as usize] < keys[order[j] as usize] {
+                        order.swap(j - 1, j);
                         j -= 1;
                     }
                 }
-                for (_, entry) in run.iter() {
-                    stack.push(*entry);
+                for &k in &order[..n] {
+                    stack.push(found[k as usize]);
                 }
             } else {
                 let (first, count) = leaf_range(e.child);
