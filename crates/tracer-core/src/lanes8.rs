@@ -56,6 +56,8 @@ pub(crate) trait Mask8: Copy {
     fn and_not(self, o: Self) -> Self;
     /// Bit `i` set when lane `i` is true.
     fn bits(self) -> u32;
+    /// Lane `i` true when bit `i` is set.
+    fn from_bits(bits: u32) -> Self;
 }
 
 /// Plain arrays, for every CPU.
@@ -192,6 +194,10 @@ impl Mask8 for ScalarMask8 {
             bits |= u32::from(self.0[i]) << i;
         }
         bits
+    }
+    #[inline(always)]
+    fn from_bits(bits: u32) -> Self {
+        Self(std::array::from_fn(|i| bits & (1 << i) != 0))
     }
 }
 
@@ -380,6 +386,14 @@ mod avx {
         fn bits(self) -> u32 {
             avx!(_mm256_movemask_ps(self.0)) as u32
         }
+        #[inline(always)]
+        fn from_bits(bits: u32) -> Self {
+            avx!({
+                let lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+                let set = _mm256_and_si256(_mm256_set1_epi32(bits as i32), lane_bits);
+                Self(_mm256_castsi256_ps(_mm256_cmpeq_epi32(set, lane_bits)))
+            })
+        }
     }
 }
 
@@ -402,14 +416,26 @@ mod tests {
         }
     }
 
+    fn masks_round_trip<L: Lanes8>() {
+        for bits in 0..256 {
+            assert_eq!(L::Mask::from_bits(bits).bits(), bits);
+        }
+        // Lane by lane against the comparison that sets it.
+        let lanes = L::from_array([0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
+        assert_eq!(lanes.lt(L::splat(3.0)).bits(), 0b0000_0111);
+        assert_eq!(L::Mask::from_bits(0b0000_0111).bits(), 0b0000_0111);
+    }
+
     #[test]
-    fn transpose_moves_rows_into_lanes() {
+    fn transpose_and_masks_match_the_plain_lanes() {
         check::<Scalar8>();
+        masks_round_trip::<Scalar8>();
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             check::<Avx8>();
+            masks_round_trip::<Avx8>();
         } else {
-            eprintln!("skipping the AVX transpose: this CPU has no AVX2");
+            eprintln!("skipping the AVX lanes: this CPU has no AVX2");
         }
     }
 }

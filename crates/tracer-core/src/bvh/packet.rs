@@ -18,8 +18,8 @@
 use std::mem::MaybeUninit;
 
 use super::stack::Stack;
-use super::traverse::{CULL_SLACK, EXIT_SCALE, STACK_LEVELS, STACK_SIZE, cull_limit};
-use super::triangle::{PACK, Tri4, closer};
+use super::traverse::{CULL_SLACK, EXIT_SCALE, STACK_LEVELS, STACK_SIZE};
+use super::triangle::{PACK, Tri4};
 use super::wide::{EMPTY, LANES, LEAF_BIT, WIDTH, WideNode, leaf_range};
 use super::{Bvh, Hit, PADDING};
 use crate::geometry::Ray;
@@ -54,7 +54,7 @@ struct Rays8<L: Lanes8> {
     t_min: L,
     t_max: F8,
     /// See `cull_reach`.
-    reach: F8,
+    reach: L,
     /// The triangle test's frame per lane: the origin's coordinates along kx, ky, kz and the
     /// shear; which lanes take x (`axis_is[j][0]`) or y (`axis_is[j][1]`) as axis j (else z),
     /// and the axes when every lane has the same (the common case: plain broadcasts).
@@ -136,7 +136,7 @@ impl<L: Lanes8> Rays8<L> {
             let finite = inv_dir[a].abs().lt(infinity);
             reach = L::select(finite, along, zero).max_or(reach);
         }
-        let reach = reach.mul(L::splat(CULL_SLACK)).to_array();
+        let reach = reach.mul(L::splat(CULL_SLACK));
         // The watertight test's frame (`RayTriangles::new`, per lane): kz the dominant axis
         // (x when |dx| is largest, ties to the earlier axis), kx and ky the next two.
         let (ax, ay, az) = (d[0].abs(), d[1].abs(), d[2].abs());
@@ -287,12 +287,21 @@ struct Entry<L: Lanes8> {
     t_enter: L,
 }
 
-/// The best hit per lane so far.
-struct Best8 {
-    t: F8,
+/// The best hit per lane so far, and the distance up to which boxes are still opened.
+struct Best8<L: Lanes8> {
+    t: L,
     id: [u32; PACKET],
-    u: F8,
-    v: F8,
+    u: L,
+    v: L,
+    cull: L,
+}
+
+/// `traverse::cull_limit` per lane, with the same operations in the same order.
+#[inline(always)]
+fn cull_limits<L: Lanes8>(t: L, reach: L) -> L {
+    let limit = t.add(t.abs().mul(L::splat(CULL_SLACK))).add(reach);
+    let max = L::splat(f32::MAX);
+    L::select(limit.lt(max), limit, max)
 }
 
 impl Bvh {
@@ -356,15 +365,14 @@ impl Bvh {
     #[inline(always)]
     fn closest8<L: Lanes8>(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
         let r = Rays8::<L>::new(rays);
+        let t_max = L::from_array(r.t_max);
         let mut best = Best8 {
-            t: r.t_max,
+            t: t_max,
             id: [u32::MAX; PACKET],
-            u: [0.0; PACKET],
-            v: [0.0; PACKET],
+            u: L::splat(0.0),
+            v: L::splat(0.0),
+            cull: cull_limits(t_max, r.reach),
         };
-        let mut cull_t: F8 = std::array::from_fn(|i| cull_limit(r.t_max[i], r.reach[i]));
-        let mut best_t = L::from_array(best.t);
-        let mut cull = L::from_array(cull_t);
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
         let mut stack = Stack::new(buf);
         stack.push(Entry {
@@ -382,7 +390,7 @@ impl Bvh {
         }; WIDTH];
         while let Some(e) = stack.pop() {
             // Lanes that found a hit nearer than where they enter this box need not open it.
-            let lanes = e.lanes & e.t_enter.le(cull).bits();
+            let lanes = e.lanes & e.t_enter.le(best.cull).bits();
             if lanes == 0 {
                 continue;
             }
@@ -394,7 +402,7 @@ impl Bvh {
                     if child == EMPTY {
                         break;
                     }
-                    let (hit, near) = r.enter(node, c, cull, lanes);
+                    let (hit, near) = r.enter(node, c, best.cull, lanes);
                     if hit != 0 {
                         keys[n] = near.to_array()[hit.trailing_zeros() as usize];
                         found[n] = Entry {
@@ -425,38 +433,43 @@ impl Bvh {
                         if id == PADDING {
                             continue;
                         }
-                        let (mut hit, [t, v, w, inv_det]) = r.triangle(pack, j, best_t, lanes);
+                        let (hit, [t, v, w, inv_det]) = r.triangle(pack, j, best.t, lanes);
                         if hit == 0 {
                             continue;
                         }
-                        let t = t.to_array();
-                        let (bu, bv) = (v.mul(inv_det).to_array(), w.mul(inv_det).to_array());
-                        let mut changed = false;
-                        while hit != 0 {
-                            let i = hit.trailing_zeros() as usize;
-                            hit &= hit - 1;
-                            if closer(t[i], id, best.t[i], best.id[i]) {
-                                best.t[i] = t[i];
-                                best.id[i] = id;
-                                best.u[i] = bu[i];
-                                best.v[i] = bv[i];
-                                cull_t[i] = cull_limit(t[i], r.reach[i]);
-                                changed = true;
+                        // Hits lie within the best distance: nearer wins, and on a tie the
+                        // lower id (`triangle::closer`).
+                        let mut take = hit & t.lt(best.t).bits();
+                        let mut tied = hit & !take;
+                        while tied != 0 {
+                            let i = tied.trailing_zeros() as usize;
+                            tied &= tied - 1;
+                            if id < best.id[i] {
+                                take |= 1 << i;
                             }
                         }
-                        if changed {
-                            best_t = L::from_array(best.t);
-                            cull = L::from_array(cull_t);
+                        if take == 0 {
+                            continue;
+                        }
+                        let m = L::Mask::from_bits(take);
+                        best.t = L::select(m, t, best.t);
+                        best.u = L::select(m, v.mul(inv_det), best.u);
+                        best.v = L::select(m, w.mul(inv_det), best.v);
+                        best.cull = L::select(m, cull_limits(t, r.reach), best.cull);
+                        while take != 0 {
+                            best.id[take.trailing_zeros() as usize] = id;
+                            take &= take - 1;
                         }
                     }
                 }
             }
         }
+        let (t, u, v) = (best.t.to_array(), best.u.to_array(), best.v.to_array());
         for (i, o) in out.iter_mut().enumerate() {
             *o = (best.id[i] != u32::MAX).then(|| Hit {
-                t: best.t[i],
-                u: best.u[i],
-                v: best.v[i],
+                t: t[i],
+                u: u[i],
+                v: v[i],
                 prim: best.id[i],
             });
         }
@@ -465,8 +478,8 @@ impl Bvh {
     #[inline(always)]
     fn any8<L: Lanes8>(&self, rays: &[Ray], out: &mut [bool]) {
         let r = Rays8::<L>::new(rays);
-        let limit = L::from_array(std::array::from_fn(|i| cull_limit(r.t_max[i], r.reach[i])));
         let t_max = L::from_array(r.t_max);
+        let limit = cull_limits(t_max, r.reach);
         let mut done = 0u32;
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
         let mut stack: Stack<Entry<L>> = Stack::new(buf);
