@@ -36,8 +36,9 @@ pub(crate) trait Lanes8: Copy {
     /// added, no fused operation), rounded to `f32`: eight steps of a rank-1 lattice sequence.
     /// `base`, `step` ≥ 0 and the sums below 2^53.
     fn fract_steps(base: f64, n0: u32, step: f64) -> Self;
-    /// Eight rows of eight into eight columns: lane `i` of column `j` is `rows[i][j]`.
-    fn transpose(rows: [[f32; 8]; 8]) -> [Self; 8];
+    /// Eight rows of eight lanes into eight columns: lane `i` of column `j` is lane `j` of row
+    /// `i` (its own inverse).
+    fn transpose(rows: [Self; 8]) -> [Self; 8];
 }
 
 /// One lane of [`Lanes8::fract_steps`]: `x - trunc(x)` is exact (the truncation through
@@ -169,8 +170,8 @@ impl Lanes8 for Scalar8 {
         }))
     }
     #[inline(always)]
-    fn transpose(rows: [[f32; 8]; 8]) -> [Self; 8] {
-        std::array::from_fn(|j| Self(std::array::from_fn(|i| rows[i][j])))
+    fn transpose(rows: [Self; 8]) -> [Self; 8] {
+        std::array::from_fn(|j| Self(std::array::from_fn(|i| rows[i].0[j])))
     }
 }
 
@@ -312,17 +313,9 @@ mod avx {
             Self(avx!(_mm256_set_m128(hi, lo)))
         }
         #[inline(always)]
-        fn transpose(rows: [[f32; 8]; 8]) -> [Self; 8] {
+        fn transpose(rows: [Self; 8]) -> [Self; 8] {
             avx!({
-                // (Loads written out: a closure would not inherit the AVX target feature.)
-                let r0 = _mm256_loadu_ps(rows[0].as_ptr());
-                let r1 = _mm256_loadu_ps(rows[1].as_ptr());
-                let r2 = _mm256_loadu_ps(rows[2].as_ptr());
-                let r3 = _mm256_loadu_ps(rows[3].as_ptr());
-                let r4 = _mm256_loadu_ps(rows[4].as_ptr());
-                let r5 = _mm256_loadu_ps(rows[5].as_ptr());
-                let r6 = _mm256_loadu_ps(rows[6].as_ptr());
-                let r7 = _mm256_loadu_ps(rows[7].as_ptr());
+                let [r0, r1, r2, r3, r4, r5, r6, r7] = rows.map(|r| r.0);
                 // Pairs of rows interleaved: (a0 b0 a1 b1 | a4 b4 a5 b5), (a2 b2 a3 b3 | ...).
                 let (a01, b01) = (_mm256_unpacklo_ps(r0, r1), _mm256_unpackhi_ps(r0, r1));
                 let (a23, b23) = (_mm256_unpacklo_ps(r2, r3), _mm256_unpackhi_ps(r2, r3));
@@ -407,7 +400,11 @@ mod tests {
 
     fn check<L: Lanes8>() {
         let rows = rows();
-        let columns = L::transpose(rows);
+        let columns = L::transpose(rows.map(L::from_array));
+        let back = L::transpose(columns);
+        for (i, row) in back.iter().enumerate() {
+            assert_eq!(row.to_array(), rows[i], "row {i} after transposing twice");
+        }
         for (j, column) in columns.iter().enumerate() {
             let lanes = column.to_array();
             for (i, lane) in lanes.iter().enumerate() {

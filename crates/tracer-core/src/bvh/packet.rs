@@ -79,14 +79,14 @@ impl<L: Lanes8> Rays8<L> {
             [o.x, o.y, o.z, d.x, d.y, d.z, r.t_min, r.t_max]
         };
         let [ox, oy, oz, dx, dy, dz, t_min, t_max] = L::transpose([
-            row(0),
-            row(1),
-            row(2),
-            row(3),
-            row(4),
-            row(5),
-            row(6),
-            row(7),
+            L::from_array(row(0)),
+            L::from_array(row(1)),
+            L::from_array(row(2)),
+            L::from_array(row(3)),
+            L::from_array(row(4)),
+            L::from_array(row(5)),
+            L::from_array(row(6)),
+            L::from_array(row(7)),
         ]);
         let (zero, one) = (L::splat(0.0), L::splat(1.0));
         let d = [dx, dy, dz];

@@ -123,16 +123,32 @@ fn lane_rays<L: Lanes8>(
             .add(L::splat(u.z).mul(sy));
         let length = dx.mul(dx).add(dy.mul(dy)).add(dz.mul(dz)).sqrt();
         let scale = one.div(length);
-        let (x, y, z) = (
-            dx.mul(scale).to_array(),
-            dy.mul(scale).to_array(),
-            dz.mul(scale).to_array(),
-        );
-        for (i, job) in chunk.iter().enumerate() {
+        // One ray per lane, written whole: origin, direction and `Ray::new`'s interval.
+        let o = basis.origin;
+        let columns = L::transpose([
+            L::splat(o.x),
+            L::splat(o.y),
+            L::splat(o.z),
+            dx.mul(scale),
+            dy.mul(scale),
+            dz.mul(scale),
+            L::splat(0.0),
+            L::splat(f32::INFINITY),
+        ]);
+        // (Extended from sized iterators: no capacity check per ray.)
+        rays.extend(columns[..chunk.len()].iter().map(|column| {
+            let [ox, oy, oz, x, y, z, t_min, t_max] = column.to_array();
+            Ray {
+                origin: Vec3::new(ox, oy, oz),
+                dir: Vec3::new(x, y, z),
+                t_min,
+                t_max,
+            }
+        }));
+        rngs.extend(chunk.iter().map(|job| {
             let key = u64::from(job.y) * u64::from(width) + u64::from(job.x);
-            rays.push(Ray::new(basis.origin, Vec3::new(x[i], y[i], z[i])));
-            rngs.push(SampleRng::new(key, job.s));
-        }
+            SampleRng::new(key, job.s)
+        }));
     }
 }
 
