@@ -30,8 +30,6 @@ use crate::lanes8::{Lanes8, Mask8, Scalar8};
 /// Rays per packet.
 pub const PACKET: usize = 8;
 
-type F8 = [f32; PACKET];
-
 /// Stack entries: a packet pushes at most every child of a node.
 const PACKET_STACK: usize = STACK_SIZE + WIDTH;
 
@@ -44,15 +42,14 @@ struct Rays8<L: Lanes8> {
     origin: [L; 3],
     inv_dir: [L; 3],
     inv_dir_exit: [L; 3],
-    /// Per axis: lanes whose direction is negative (entering a box through its maximum), and
-    /// the sign when every lane has the same (the common case: no blend per box).
+    /// Per axis: lanes whose direction is negative (entering a box through its maximum).
     negative: [L::Mask; 3],
     /// When every lane has the same sign on every axis (the common case), the rows of a
     /// node's bounds holding the entry planes (`[..3]`) and the exit planes (`[3..]`): two
     /// broadcasts per axis and child, no blend and no branch.
     planes: Option<[usize; 6]>,
     t_min: L,
-    t_max: F8,
+    t_max: L,
     /// See `cull_reach`.
     reach: L,
     /// The triangle test's frame per lane: the origin's coordinates along kx, ky, kz and the
@@ -66,7 +63,8 @@ struct Rays8<L: Lanes8> {
 
 impl<L: Lanes8> Rays8<L> {
     /// (Plain loops and straight-line lane calls: a closure would not inherit the caller's
-    /// AVX target feature, and each intrinsic in it would become a call.)
+    /// AVX target feature, and each intrinsic in it would become a call. The `row` closure
+    /// only reads fields.)
     #[inline(always)]
     fn new(rays: &[Ray]) -> Self {
         debug_assert!((1..=PACKET).contains(&rays.len()));
@@ -174,7 +172,7 @@ impl<L: Lanes8> Rays8<L> {
             negative,
             planes,
             t_min,
-            t_max: t_max.to_array(),
+            t_max,
             reach,
             origin_k,
             shear: [dir_k[0].mul(inv_z), dir_k[1].mul(inv_z), inv_z],
@@ -365,13 +363,12 @@ impl Bvh {
     #[inline(always)]
     fn closest8<L: Lanes8>(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
         let r = Rays8::<L>::new(rays);
-        let t_max = L::from_array(r.t_max);
         let mut best = Best8 {
-            t: t_max,
+            t: r.t_max,
             id: [u32::MAX; PACKET],
             u: L::splat(0.0),
             v: L::splat(0.0),
-            cull: cull_limits(t_max, r.reach),
+            cull: cull_limits(r.t_max, r.reach),
         };
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
         let mut stack = Stack::new(buf);
@@ -478,8 +475,7 @@ impl Bvh {
     #[inline(always)]
     fn any8<L: Lanes8>(&self, rays: &[Ray], out: &mut [bool]) {
         let r = Rays8::<L>::new(rays);
-        let t_max = L::from_array(r.t_max);
-        let limit = cull_limits(t_max, r.reach);
+        let limit = cull_limits(r.t_max, r.reach);
         let mut done = 0u32;
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
         let mut stack: Stack<Entry<L>> = Stack::new(buf);
@@ -516,7 +512,7 @@ impl Bvh {
                         if pack.ids[j] == PADDING {
                             continue;
                         }
-                        done |= r.triangle(pack, j, t_max, lanes).0;
+                        done |= r.triangle(pack, j, r.t_max, lanes).0;
                         if done & lanes == lanes {
                             break 'packs;
                         }
