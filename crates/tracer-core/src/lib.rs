@@ -37,6 +37,8 @@ pub mod sampling;
 pub mod scene;
 pub mod shading;
 pub mod shard;
+#[cfg(test)]
+mod test_scenes;
 
 /// The `.shp` reader, kept at its old path (it lives in [`formats::shp`]).
 pub use formats::shp;

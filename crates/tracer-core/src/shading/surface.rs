@@ -65,7 +65,10 @@ impl Surface {
         let t = &scene.triangles[prim];
         let lift = |k: usize| {
             let nk = c[k] * sign;
-            let below = (p - t[k]).dot(nk).min(0.0);
+            // `min(0.0)` spelt out: the lanes of the direct wavefront compute it the same way,
+            // down to the sign of a zero.
+            let d = (p - t[k]).dot(nk);
+            let below = if d < 0.0 { d } else { 0.0 };
             p - nk * below
         };
         let lifted = lift(0) * w + lift(1) * u + lift(2) * v;
@@ -99,48 +102,9 @@ impl Surface {
 #[allow(clippy::unwrap_used, clippy::expect_used)]
 mod tests {
     use super::*;
-    use crate::formats::{MeshDescription, PartDescription, SceneDescription};
     use crate::geometry::Ray;
     use crate::scene::{LengthUnit, Scene, Setup};
-
-    /// A UV sphere of radius 1 about the origin without vertex normals: `rings` × `segments`.
-    fn sphere(rings: u32, segments: u32) -> SceneDescription {
-        let mut positions = Vec::new();
-        for i in 0..=rings {
-            let theta = std::f64::consts::PI * f64::from(i) / f64::from(rings);
-            for j in 0..segments {
-                let phi = 2.0 * std::f64::consts::PI * f64::from(j) / f64::from(segments);
-                positions.push([
-                    theta.sin() * phi.cos(),
-                    theta.cos(),
-                    theta.sin() * phi.sin(),
-                ]);
-            }
-        }
-        let at = |i: u32, j: u32| i * segments + j % segments;
-        let mut triangles = Vec::new();
-        for i in 0..rings {
-            for j in 0..segments {
-                let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j), at(i + 1, j + 1));
-                if i > 0 {
-                    triangles.push([a, b, c]);
-                }
-                if i + 1 < rings {
-                    triangles.push([b, d, c]);
-                }
-            }
-        }
-        SceneDescription {
-            meshes: vec![MeshDescription {
-                name: "sphere".into(),
-                positions,
-                triangles,
-                parts: vec![PartDescription::default()],
-                ..MeshDescription::default()
-            }],
-            ..SceneDescription::default()
-        }
-    }
+    use crate::test_scenes::sphere;
 
     #[test]
     fn smooth_normals_on_a_sphere_match_the_analytic_normal_within_one_degree() {
