@@ -1,6 +1,6 @@
-//! The camera rays of a batch of samples, eight at a time: the sample positions and random
-//! streams per sample (each pixel's sequence shift hashed once for its run of samples), the
-//! directions in vector lanes (AVX where the CPU has AVX2, chosen at run time). Per ray the
+//! The camera rays of a batch of samples, eight at a time: the sample positions per sample
+//! (each pixel's sequence shift hashed once for its run of samples), the directions in vector
+//! lanes (AVX where the CPU has AVX2, chosen at run time). Per ray the
 //! operations and their order are [`CameraBasis::ray`]'s, so the rays are the same bit for
 //! bit (the wavefront test compares whole samples with single ones).
 
@@ -10,7 +10,6 @@ use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;
 use crate::lanes8::{Lanes8, Scalar8};
-use crate::sampling::SampleRng;
 use crate::scene::CameraBasis;
 use glam::Vec3;
 
@@ -30,44 +29,28 @@ fn one_pixel_run(chunk: &[SampleJob]) -> Option<SampleJob> {
     run.then_some(first)
 }
 
-/// The camera ray and random stream of each of `jobs`, into `rays` and `rngs` (cleared
-/// first; the batch traces the rays from that slice as they are).
-pub(super) fn camera_rays(
-    basis: &CameraBasis,
-    jobs: &[SampleJob],
-    rays: &mut Vec<Ray>,
-    rngs: &mut Vec<SampleRng>,
-) {
+/// The camera ray of each of `jobs`, into `rays` (cleared first; the batch traces the rays
+/// from that slice as they are).
+pub(super) fn camera_rays(basis: &CameraBasis, jobs: &[SampleJob], rays: &mut Vec<Ray>) {
     rays.clear();
-    rngs.clear();
     #[cfg(target_arch = "x86_64")]
     if is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2, the only feature `rays_avx2` is compiled for.
-        unsafe { lane_rays_avx2(basis, jobs, rays, rngs) };
+        unsafe { lane_rays_avx2(basis, jobs, rays) };
         return;
     }
-    lane_rays::<Scalar8>(basis, jobs, rays, rngs);
+    lane_rays::<Scalar8>(basis, jobs, rays);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn lane_rays_avx2(
-    basis: &CameraBasis,
-    jobs: &[SampleJob],
-    rays: &mut Vec<Ray>,
-    rngs: &mut Vec<SampleRng>,
-) {
-    lane_rays::<Avx8>(basis, jobs, rays, rngs);
+fn lane_rays_avx2(basis: &CameraBasis, jobs: &[SampleJob], rays: &mut Vec<Ray>) {
+    lane_rays::<Avx8>(basis, jobs, rays);
 }
 
 /// (Loops and straight-line lane calls only: a closure would not inherit the AVX feature.)
 #[inline(always)]
-fn lane_rays<L: Lanes8>(
-    basis: &CameraBasis,
-    jobs: &[SampleJob],
-    rays: &mut Vec<Ray>,
-    rngs: &mut Vec<SampleRng>,
-) {
+fn lane_rays<L: Lanes8>(basis: &CameraBasis, jobs: &[SampleJob], rays: &mut Vec<Ray>) {
     let width = basis.width;
     let mut shift_of = (u32::MAX, u32::MAX);
     let mut shift = (0.0, 0.0);
@@ -145,10 +128,6 @@ fn lane_rays<L: Lanes8>(
                 t_max,
             }
         }));
-        rngs.extend(chunk.iter().map(|job| {
-            let key = u64::from(job.y) * u64::from(width) + u64::from(job.x);
-            SampleRng::new(key, job.s)
-        }));
     }
 }
 
@@ -193,13 +172,12 @@ mod tests {
             .collect();
         assert!(runs(&jobs) >= 5, "the runs reach the lanes' path");
         let mut kinds: Vec<Vec<Ray>> = Vec::new();
-        let (mut rays, mut rngs) = (Vec::new(), Vec::new());
-        lane_rays::<Scalar8>(&basis, &jobs, &mut rays, &mut rngs);
+        let mut rays = Vec::new();
+        lane_rays::<Scalar8>(&basis, &jobs, &mut rays);
         kinds.push(rays);
-        let (mut rays, mut rngs) = (Vec::new(), Vec::new());
-        camera_rays(&basis, &jobs, &mut rays, &mut rngs);
+        let mut rays = Vec::new();
+        camera_rays(&basis, &jobs, &mut rays);
         kinds.push(rays);
-        assert_eq!(rngs.len(), jobs.len());
         for rays in kinds {
             assert_eq!(rays.len(), jobs.len());
             for (k, (ray, want)) in rays.iter().zip(&expected).enumerate() {

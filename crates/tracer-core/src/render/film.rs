@@ -127,11 +127,7 @@ impl PixelSum {
         let mut rejected = 0;
         for run in samples.chunks(RUN_SAMPLES) {
             let Some(sums) = run_sums(run) else {
-                for s in run {
-                    if !self.add(s) {
-                        rejected += 1;
-                    }
-                }
+                rejected += self.add_wide_run(run);
                 continue;
             };
             let sum = PixelSum {
@@ -151,6 +147,41 @@ impl PixelSum {
             }
         }
         rejected
+    }
+
+    /// [`PixelSum::add_run`] for a run with a value past the 64-bit sums (very bright
+    /// pixels: a lamp a few millimetres away gives millions of lux): the same fixed-point
+    /// values summed in 128 bits, where a run cannot overflow (1024 terms below 2^94 each),
+    /// and added once. A run with a value that cannot be represented at all (NaN, infinite,
+    /// beyond 2^94) goes sample by sample through [`PixelSum::add`], which rejects it.
+    fn add_wide_run(&mut self, run: &[Sample]) -> u32 {
+        let mut sum = PixelSum {
+            count: run.len() as u32,
+            ..PixelSum::default()
+        };
+        for s in run {
+            let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
+            let fixed = (
+                to_fixed(f64::from(s.rgb.x), VALUE_SCALE),
+                to_fixed(f64::from(s.rgb.y), VALUE_SCALE),
+                to_fixed(f64::from(s.rgb.z), VALUE_SCALE),
+                to_fixed(f64::from(s.illuminance_lx), VALUE_SCALE),
+                to_fixed(y * y, SQUARE_SCALE),
+            );
+            let (Some(r), Some(g), Some(b), Some(e), Some(q)) = fixed else {
+                return run.iter().map(|s| u32::from(!self.add(s))).sum();
+            };
+            sum.rgb[0] += r;
+            sum.rgb[1] += g;
+            sum.rgb[2] += b;
+            sum.illuminance += e;
+            sum.luminance_sq += q;
+        }
+        if self.merge(&sum) {
+            0
+        } else {
+            run.len() as u32
+        }
     }
 
     /// Adds a splat (luminance per channel); false (and counted as rejected) when it cannot be

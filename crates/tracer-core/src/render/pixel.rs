@@ -37,7 +37,6 @@ pub struct BatchScratch {
     jobs: Vec<SampleJob>,
     samples: Vec<Sample>,
     rays: Vec<Ray>,
-    rngs: Vec<SampleRng>,
     direct: DirectBatch,
 }
 
@@ -75,8 +74,14 @@ impl<'a> FrameSampler<'a> {
         let width = self.basis.width;
         let (dx, dy) = pixel_sample_offset(x, y, width, s);
         let ray = self.basis.ray(x as f32 + dx, y as f32 + dy);
-        let key = u64::from(y) * u64::from(width) + u64::from(x);
-        (ray, SampleRng::new(key, s))
+        (ray, self.sample_rng(SampleJob { x, y, s }))
+    }
+
+    /// The random stream of a sample, keyed by its pixel and sample index.
+    #[inline]
+    fn sample_rng(&self, SampleJob { x, y, s }: SampleJob) -> SampleRng {
+        let key = u64::from(y) * u64::from(self.basis.width) + u64::from(x);
+        SampleRng::new(key, s)
     }
 
     /// The samples `jobs` (at most [`BATCH_SAMPLES`] is best), written to `out` in the same
@@ -94,12 +99,12 @@ impl<'a> FrameSampler<'a> {
             out.extend(jobs.iter().map(|j| self.sample(j.x, j.y, j.s, splats)));
             return;
         }
-        camera_rays(&self.basis, jobs, &mut scratch.rays, &mut scratch.rngs);
+        camera_rays(&self.basis, jobs, &mut scratch.rays);
         out.resize(jobs.len(), Sample::default());
         trace_direct_batch(
             &self.integrator.prep,
             &scratch.rays,
-            &scratch.rngs,
+            |i| self.sample_rng(jobs[i]),
             &mut scratch.direct,
             out,
         );
@@ -155,8 +160,13 @@ impl<'a> FrameSampler<'a> {
         };
         jobs.clear();
         for (x, y) in pixels {
-            for s in samples.clone() {
-                jobs.push(SampleJob { x, y, s });
+            // A pixel's samples go in as runs, as many as the batch has room for.
+            let mut s = samples.start;
+            while s < samples.end {
+                let room = (BATCH_SAMPLES - jobs.len()) as u32;
+                let end = samples.end.min(s.saturating_add(room));
+                jobs.extend((s..end).map(|s| SampleJob { x, y, s }));
+                s = end;
                 if jobs.len() == BATCH_SAMPLES {
                     flush(&mut jobs, scratch);
                 }

@@ -35,29 +35,29 @@ impl DirectBatch {
     }
 }
 
-/// Traces the camera samples `rays` (each with its random stream, `rngs[i]` for `rays[i]`)
-/// and writes what each sees to `out` (as long as `rays`): the same samples, bit for bit, as
-/// tracing them one by one.
+/// Traces the camera samples `rays` (each with its random stream, `rng_of(i)` for `rays[i]`,
+/// asked for only by samples that go past their first hit) and writes what each sees to `out`
+/// (as long as `rays`): the same samples, bit for bit, as tracing them one by one.
 pub fn trace_batch(
     prep: &Prepared<'_>,
     rays: &[Ray],
-    rngs: &[SampleRng],
+    rng_of: impl Fn(usize) -> SampleRng,
     batch: &mut DirectBatch,
     out: &mut [Sample],
 ) {
-    trace_batch_with(prep, rays, rngs, Lanes::Native, batch, out);
+    trace_batch_with(prep, rays, rng_of, Lanes::Native, batch, out);
 }
 
 /// [`trace_batch`] with the first hits on matte surfaces shaded in `lanes`.
 pub(super) fn trace_batch_with(
     prep: &Prepared<'_>,
     rays: &[Ray],
-    rngs: &[SampleRng],
+    rng_of: impl Fn(usize) -> SampleRng,
     lanes: Lanes,
     batch: &mut DirectBatch,
     out: &mut [Sample],
 ) {
-    debug_assert!(rays.len() == out.len() && rays.len() == rngs.len());
+    debug_assert!(rays.len() == out.len());
     batch.hits.clear();
     batch.hits.resize(rays.len(), None);
     prep.closest_visible_many(rays, &mut batch.hits);
@@ -89,7 +89,7 @@ pub(super) fn trace_batch_with(
     batch.walks.truncate(rays.len());
     batch.walks.resize_with(rays.len(), Walk::default);
     for &i in &batch.walked {
-        batch.walks[i as usize].restart(&rngs[i as usize]);
+        batch.walks[i as usize].restart(rng_of(i as usize));
     }
     batch.active.clone_from(&batch.walked);
     let mut first = true;
@@ -157,7 +157,7 @@ mod tests {
             let mut all = Vec::new();
             for (r, g) in rays.chunks(size).zip(rngs.chunks(size)) {
                 let mut out = vec![Sample::default(); r.len()];
-                trace_batch_with(prep, r, g, lanes, &mut batch, &mut out);
+                trace_batch_with(prep, r, |i| g[i].clone(), lanes, &mut batch, &mut out);
                 if lanes == Lanes::Native {
                     in_lanes += r.len() - batch.walked.len();
                 }

@@ -206,28 +206,21 @@ struct Chunk {
     v: [f32; 8],
 }
 
-/// Picks the lanes of the samples `base ..` (`hits` of one chunk): misses are written to
-/// `out` and the samples that go on to the walk to `rest`. None when no lane is left.
+/// Picks the lanes of the samples `base ..` (`hits` of one chunk) into `c`: misses are
+/// written to `out` and the samples that go on to the walk to `rest`. False when no lane is
+/// left.
 #[inline(always)]
 fn pick(
     prep: &Prepared<'_>,
     matte: &[bool],
     base: usize,
     hits: &[Option<Hit>],
+    c: &mut Chunk,
     out: &mut [Sample],
     rest: &mut Vec<u32>,
-) -> Option<Chunk> {
+) -> bool {
     let scene = prep.scene;
-    let mut c = Chunk {
-        live: 0,
-        smooth: 0,
-        sample: [0; 8],
-        prim: [0; 8],
-        slot: [0; 8],
-        t: [0.0; 8],
-        u: [0.0; 8],
-        v: [0.0; 8],
-    };
+    (c.live, c.smooth) = (0, 0);
     for (j, hit) in hits.iter().enumerate() {
         let i = base + j;
         let Some(hit) = hit else {
@@ -261,7 +254,7 @@ fn pick(
         }
     }
     if c.live == 0 {
-        return None;
+        return false;
     }
     let first = c.live.trailing_zeros() as usize;
     for j in 0..8 {
@@ -270,7 +263,7 @@ fn pick(
             (c.t[j], c.u[j], c.v[j]) = (c.t[first], c.u[first], c.v[first]);
         }
     }
-    Some(c)
+    true
 }
 
 /// The frame at the hits, as [`crate::shading::Surface::at`] computes it per hit.
@@ -293,10 +286,20 @@ fn shade<L: Lanes8>(
 ) {
     let zero = L::splat(0.0);
     let metres_sq = L::splat(prep.metres_per_unit_sq);
+    let mut c = Chunk {
+        live: 0,
+        smooth: 0,
+        sample: [0; 8],
+        prim: [0; 8],
+        slot: [0; 8],
+        t: [0.0; 8],
+        u: [0.0; 8],
+        v: [0.0; 8],
+    };
     for (k, chunk_hits) in hits.chunks(8).enumerate() {
-        let Some(c) = pick(prep, &scratch.matte, k * 8, chunk_hits, out, rest) else {
+        if !pick(prep, &scratch.matte, k * 8, chunk_hits, &mut c, out, rest) {
             continue;
-        };
+        }
         let frame = frame::<L>(prep, rays, &c);
         let kd: V3<L> = gather(|j| prep.materials[c.slot[j]].kd_over_pi);
         let origin = to_arrays(&frame.origin);

@@ -36,13 +36,7 @@ pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
     let mut out = [Sample::default()];
     BATCH.with(|batch| {
         let mut batch = batch.borrow_mut();
-        trace_batch(
-            prep,
-            &[*ray],
-            std::slice::from_ref(rng),
-            &mut batch,
-            &mut out,
-        );
+        trace_batch(prep, &[*ray], |_| rng.clone(), &mut batch, &mut out);
         // Callers that draw more from the stream go on from where the sample left it.
         if let Some(after) = batch.final_rng(0) {
             *rng = after;

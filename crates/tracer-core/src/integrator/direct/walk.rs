@@ -56,8 +56,8 @@ impl Walk {
     /// Starts this walk over as a camera sample with the random stream `rng` (its ray is the
     /// batch's).
     #[inline(always)]
-    pub fn restart(&mut self, rng: &SampleRng) {
-        self.rng = rng.clone();
+    pub fn restart(&mut self, rng: SampleRng) {
+        self.rng = rng;
         self.sample = Sample::default();
         self.weight = Vec3::ONE;
         self.depth = 0;
