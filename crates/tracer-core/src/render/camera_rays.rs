@@ -13,6 +13,9 @@ use crate::lanes8::{Lanes8, Scalar8};
 use crate::scene::CameraBasis;
 use glam::Vec3;
 
+/// Chunks of eight per block of [`lane_rays`]' two passes (a batch's worth).
+const BLOCK_CHUNKS: usize = 32;
+
 /// 0, 1, ..., 7.
 const LANE_INDEX: [f32; 8] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0];
 
@@ -61,73 +64,83 @@ fn lane_rays<L: Lanes8>(basis: &CameraBasis, jobs: &[SampleJob], rays: &mut Vec<
     let (max_offset, centre) = (L::splat(MAX_OFFSET), L::splat(0.5));
     // Lanes 1..8 (lane 0 of a run starting at sample 0 is the pixel's centre).
     let after_first = L::from_array(LANE_INDEX).gt(L::splat(0.0));
-    for chunk in jobs.chunks(8) {
-        let (fx, fy) = if let Some(job) = one_pixel_run(chunk) {
-            // Eight consecutive samples of one pixel (the common case): the offsets in lanes.
-            if shift_of != (job.x, job.y) {
-                shift_of = (job.x, job.y);
-                shift = pixel_shift(job.x, job.y, width);
-            }
-            let mut dx = L::fract_steps(shift.0, job.s, R2_STEP.0).min_or(max_offset);
-            let mut dy = L::fract_steps(shift.1, job.s, R2_STEP.1).min_or(max_offset);
-            if job.s == 0 {
-                dx = L::select(after_first, dx, centre);
-                dy = L::select(after_first, dy, centre);
-            }
-            (
-                L::splat(job.x as f32).add(dx),
-                L::splat(job.y as f32).add(dy),
-            )
-        } else {
-            let mut fx = [0.0f32; 8];
-            let mut fy = [0.0f32; 8];
-            for (i, job) in chunk.iter().enumerate() {
+    // Two passes per block: the film positions, then the directions. The second pass is
+    // short and branch-free, so the CPU overlaps one chunk's divisions and square root with
+    // the next chunk's instead of waiting on each chain.
+    let mut positions = [([0.0f32; 8], [0.0f32; 8]); BLOCK_CHUNKS];
+    for block in jobs.chunks(8 * BLOCK_CHUNKS) {
+        for (chunk, position) in block.chunks(8).zip(positions.iter_mut()) {
+            *position = if let Some(job) = one_pixel_run(chunk) {
+                // Eight consecutive samples of one pixel (the common case): the offsets in
+                // lanes.
                 if shift_of != (job.x, job.y) {
                     shift_of = (job.x, job.y);
                     shift = pixel_shift(job.x, job.y, width);
                 }
-                let (dx, dy) = sample_offset(shift, job.s);
-                fx[i] = job.x as f32 + dx;
-                fy[i] = job.y as f32 + dy;
-            }
-            (L::from_array(fx), L::from_array(fy))
-        };
-        // CameraBasis::ray: screen position, then forward + right sx + up sy, normalised.
-        let sx = two.mul(fx).div(w).sub(one).mul(hw);
-        let sy = one.sub(two.mul(fy).div(h)).mul(hh);
-        let dx = L::splat(f.x)
-            .add(L::splat(r.x).mul(sx))
-            .add(L::splat(u.x).mul(sy));
-        let dy = L::splat(f.y)
-            .add(L::splat(r.y).mul(sx))
-            .add(L::splat(u.y).mul(sy));
-        let dz = L::splat(f.z)
-            .add(L::splat(r.z).mul(sx))
-            .add(L::splat(u.z).mul(sy));
-        let length = dx.mul(dx).add(dy.mul(dy)).add(dz.mul(dz)).sqrt();
-        let scale = one.div(length);
-        // One ray per lane, written whole: origin, direction and `Ray::new`'s interval.
-        let o = basis.origin;
-        let columns = L::transpose([
-            L::splat(o.x),
-            L::splat(o.y),
-            L::splat(o.z),
-            dx.mul(scale),
-            dy.mul(scale),
-            dz.mul(scale),
-            L::splat(0.0),
-            L::splat(f32::INFINITY),
-        ]);
-        // (Extended from sized iterators: no capacity check per ray.)
-        rays.extend(columns[..chunk.len()].iter().map(|column| {
-            let [ox, oy, oz, x, y, z, t_min, t_max] = column.to_array();
-            Ray {
-                origin: Vec3::new(ox, oy, oz),
-                dir: Vec3::new(x, y, z),
-                t_min,
-                t_max,
-            }
-        }));
+                let mut dx = L::fract_steps(shift.0, job.s, R2_STEP.0).min_or(max_offset);
+                let mut dy = L::fract_steps(shift.1, job.s, R2_STEP.1).min_or(max_offset);
+                if job.s == 0 {
+                    dx = L::select(after_first, dx, centre);
+                    dy = L::select(after_first, dy, centre);
+                }
+                (
+                    L::splat(job.x as f32).add(dx).to_array(),
+                    L::splat(job.y as f32).add(dy).to_array(),
+                )
+            } else {
+                let mut fx = [0.0f32; 8];
+                let mut fy = [0.0f32; 8];
+                for (i, job) in chunk.iter().enumerate() {
+                    if shift_of != (job.x, job.y) {
+                        shift_of = (job.x, job.y);
+                        shift = pixel_shift(job.x, job.y, width);
+                    }
+                    let (dx, dy) = sample_offset(shift, job.s);
+                    fx[i] = job.x as f32 + dx;
+                    fy[i] = job.y as f32 + dy;
+                }
+                (fx, fy)
+            };
+        }
+        for (chunk, (fx, fy)) in block.chunks(8).zip(&positions) {
+            let (fx, fy) = (L::from_array(*fx), L::from_array(*fy));
+            // CameraBasis::ray: screen position, then forward + right sx + up sy, normalised.
+            let sx = two.mul(fx).div(w).sub(one).mul(hw);
+            let sy = one.sub(two.mul(fy).div(h)).mul(hh);
+            let dx = L::splat(f.x)
+                .add(L::splat(r.x).mul(sx))
+                .add(L::splat(u.x).mul(sy));
+            let dy = L::splat(f.y)
+                .add(L::splat(r.y).mul(sx))
+                .add(L::splat(u.y).mul(sy));
+            let dz = L::splat(f.z)
+                .add(L::splat(r.z).mul(sx))
+                .add(L::splat(u.z).mul(sy));
+            let length = dx.mul(dx).add(dy.mul(dy)).add(dz.mul(dz)).sqrt();
+            let scale = one.div(length);
+            // One ray per lane, written whole: origin, direction and `Ray::new`'s interval.
+            let o = basis.origin;
+            let columns = L::transpose([
+                L::splat(o.x),
+                L::splat(o.y),
+                L::splat(o.z),
+                dx.mul(scale),
+                dy.mul(scale),
+                dz.mul(scale),
+                L::splat(0.0),
+                L::splat(f32::INFINITY),
+            ]);
+            // (Extended from sized iterators: no capacity check per ray.)
+            rays.extend(columns[..chunk.len()].iter().map(|column| {
+                let [ox, oy, oz, x, y, z, t_min, t_max] = column.to_array();
+                Ray {
+                    origin: Vec3::new(ox, oy, oz),
+                    dir: Vec3::new(x, y, z),
+                    t_min,
+                    t_max,
+                }
+            }));
+        }
     }
 }
 

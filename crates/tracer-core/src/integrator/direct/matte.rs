@@ -195,8 +195,6 @@ fn gather<L: Lanes8>(get: impl Fn(usize) -> Vec3) -> V3<L> {
 struct Chunk {
     /// Bit `j`: lane `j` holds such a sample.
     live: u32,
-    /// Bit `j`: lane `j`'s triangle has vertex normals.
-    smooth: u32,
     /// Sample index, triangle and material slot per lane.
     sample: [usize; 8],
     prim: [usize; 8],
@@ -220,7 +218,7 @@ fn pick(
     rest: &mut Vec<u32>,
 ) -> bool {
     let scene = prep.scene;
-    (c.live, c.smooth) = (0, 0);
+    c.live = 0;
     for (j, hit) in hits.iter().enumerate() {
         let i = base + j;
         let Some(hit) = hit else {
@@ -244,14 +242,6 @@ fn pick(
         c.live |= 1 << j;
         (c.sample[j], c.prim[j], c.slot[j]) = (i, prim, slot);
         (c.t[j], c.u[j], c.v[j]) = (hit.t, hit.u, hit.v);
-        // `Surface::at`'s test: a zero first corner means flat.
-        if scene
-            .corner_normals
-            .get(prim)
-            .is_some_and(|n| n[0] != Vec3::ZERO)
-        {
-            c.smooth |= 1 << j;
-        }
     }
     if c.live == 0 {
         return false;
@@ -288,7 +278,6 @@ fn shade<L: Lanes8>(
     let metres_sq = L::splat(prep.metres_per_unit_sq);
     let mut c = Chunk {
         live: 0,
-        smooth: 0,
         sample: [0; 8],
         prim: [0; 8],
         slot: [0; 8],
@@ -393,17 +382,24 @@ fn frame<L: Lanes8>(prep: &Prepared<'_>, rays: &[Ray], c: &Chunk) -> Frame<L> {
     let ng = select(dot(&n, &d).gt(zero), &scale(&n, minus_one), &n);
     let eps = L::splat(prep.epsilon);
     let flat_origin = add(&p, &scale(&ng, eps));
-    if c.smooth & c.live == 0 {
-        return Frame {
-            p,
-            ns: ng,
-            origin: flat_origin,
-        };
+    let flat = Frame {
+        p,
+        ns: ng,
+        origin: flat_origin,
+    };
+    let corners = &scene.corner_normals;
+    if corners.is_empty() {
+        return flat;
+    }
+    // `Surface::at`'s test: a triangle whose first corner normal is zero is flat (a NaN
+    // component differs from zero, as for `Vec3`'s `!=`).
+    let c0: V3<L> = gather(|j| corners.get(c.prim[j]).map_or(Vec3::ZERO, |n| n[0]));
+    let smooth = c0[0].ne(zero).or(c0[1].ne(zero)).or(c0[2].ne(zero));
+    if smooth.bits() & c.live == 0 {
+        return flat;
     }
     let (u, v) = (L::from_array(c.u), L::from_array(c.v));
     let w = one.sub(u).sub(v);
-    let corners = &scene.corner_normals;
-    let c0: V3<L> = gather(|j| corners.get(c.prim[j]).map_or(Vec3::ZERO, |n| n[0]));
     let c1: V3<L> = gather(|j| corners.get(c.prim[j]).map_or(Vec3::ZERO, |n| n[1]));
     let c2: V3<L> = gather(|j| corners.get(c.prim[j]).map_or(Vec3::ZERO, |n| n[2]));
     let interpolated = blend(&c0, &c1, &c2, w, u, v);
@@ -425,7 +421,6 @@ fn frame<L: Lanes8>(prep: &Prepared<'_>, rays: &[Ray], c: &Chunk) -> Frame<L> {
         .and(lifted[1].abs().lt(inf))
         .and(lifted[2].abs().lt(inf));
     let lifted = select(finite, &lifted, &p);
-    let smooth = L::Mask::from_bits(c.smooth);
     Frame {
         p,
         ns: select(smooth, &ns_smooth, &ng),
