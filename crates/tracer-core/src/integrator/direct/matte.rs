@@ -276,6 +276,7 @@ fn shade<L: Lanes8>(
 ) {
     let zero = L::splat(0.0);
     let metres_sq = L::splat(prep.metres_per_unit_sq);
+    let shadow_t_max = L::splat(Prepared::shadow_ray(Vec3::ZERO, Vec3::X).t_max);
     let mut c = Chunk {
         live: 0,
         sample: [0; 8],
@@ -291,7 +292,6 @@ fn shade<L: Lanes8>(
         }
         let frame = frame::<L>(prep, rays, &c);
         let kd: V3<L> = gather(|j| prep.materials[c.slot[j]].kd_over_pi);
-        let origin = to_arrays(&frame.origin);
         for light in &prep.lights {
             // Prepared::light_at: E = I cos θ / R², R in metres.
             let pos = splat::<L>(light.position);
@@ -329,23 +329,43 @@ fn shade<L: Lanes8>(
             }
             let e = intensity.mul(cos).div(dist2.mul(metres_sq));
             let tint = splat::<L>(light.tint);
-            let rgb = to_arrays(&[
+            let to = sub(&pos, &frame.origin);
+            // One shadow ray and one contribution per lane, written whole.
+            let rays = L::transpose([
+                frame.origin[0],
+                frame.origin[1],
+                frame.origin[2],
+                to[0],
+                to[1],
+                to[2],
+                zero,
+                shadow_t_max,
+            ]);
+            let shares = L::transpose([
+                e,
                 tint[0].mul(e).mul(kd[0]),
                 tint[1].mul(e).mul(kd[1]),
                 tint[2].mul(e).mul(kd[2]),
+                zero,
+                zero,
+                zero,
+                zero,
             ]);
-            let e = e.to_array();
-            let to = to_arrays(&sub(&pos, &frame.origin));
             let mut left = lit;
             while left != 0 {
                 let j = left.trailing_zeros() as usize;
                 left &= left - 1;
-                let from = Vec3::new(origin[0][j], origin[1][j], origin[2][j]);
-                let dir = Vec3::new(to[0][j], to[1][j], to[2][j]);
-                scratch.shadows.push(Prepared::shadow_ray(from, dir));
+                let [ox, oy, oz, dx, dy, dz, t_min, t_max] = rays[j].to_array();
+                scratch.shadows.push(Ray {
+                    origin: Vec3::new(ox, oy, oz),
+                    dir: Vec3::new(dx, dy, dz),
+                    t_min,
+                    t_max,
+                });
+                let [e, r, g, b, ..] = shares[j].to_array();
                 scratch.contributions.push(Contribution {
-                    illuminance_lx: e[j],
-                    rgb: Vec3::new(rgb[0][j], rgb[1][j], rgb[2][j]),
+                    illuminance_lx: e,
+                    rgb: Vec3::new(r, g, b),
                 });
                 scratch.owners.push(c.sample[j] as u32);
             }
