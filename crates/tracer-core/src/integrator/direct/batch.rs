@@ -75,15 +75,19 @@ pub(super) fn trace_batch_with(
     if batch.walked.is_empty() {
         return;
     }
-    // The walks start from their camera rays' hits, moved to the front (indices ascend).
-    batch.rays.clear();
-    batch
-        .rays
-        .extend(batch.walked.iter().map(|&i| rays[i as usize]));
-    for (k, &i) in batch.walked.iter().enumerate() {
-        batch.hits[k] = batch.hits[i as usize];
+    // The walks start from their camera rays' hits, moved to the front (indices ascend),
+    // unless every sample walks.
+    let all_walk = batch.walked.len() == rays.len();
+    if !all_walk {
+        batch.rays.clear();
+        batch
+            .rays
+            .extend(batch.walked.iter().map(|&i| rays[i as usize]));
+        for (k, &i) in batch.walked.iter().enumerate() {
+            batch.hits[k] = batch.hits[i as usize];
+        }
+        batch.hits.truncate(batch.walked.len());
     }
-    batch.hits.truncate(batch.walked.len());
     // Walks are restarted in place, field by field: building each on the stack and copying
     // it in made the CPU read back stores it could not forward (a tenth of a frame).
     batch.walks.truncate(rays.len());
@@ -100,9 +104,10 @@ pub(super) fn trace_batch_with(
             batch.hits.resize(batch.rays.len(), None);
             prep.closest_visible_many(&batch.rays, &mut batch.hits);
         }
+        let current: &[Ray] = if first && all_walk { rays } else { &batch.rays };
         batch.shadows.clear();
         batch.contributions.clear();
-        let steps = batch.active.iter().zip(&batch.hits).zip(&batch.rays);
+        let steps = batch.active.iter().zip(&batch.hits).zip(current);
         for ((&i, &hit), ray) in steps {
             walks[i as usize].shade(prep, ray, hit, &mut batch.shadows, &mut batch.contributions);
         }
@@ -273,6 +278,22 @@ mod tests {
         assert!(samples.iter().any(|s| s.missed));
         let lit = samples.iter().filter(|s| s.illuminance_lx > 0.0).count();
         assert!(lit > rays.len() / 4, "{lit} lit");
+    }
+
+    #[test]
+    fn everything_walks_in_a_hall_of_mirrors() {
+        let mut loaded = builtin_cornell_box(None).unwrap();
+        for m in &mut loaded.setup.materials {
+            m.ks = [0.4; 3];
+        }
+        let prep = Prepared::new(&loaded.scene, &loaded.setup, 5);
+        let basis = loaded.setup.camera.basis(loaded.setup.handedness, 40, 30);
+        let rays: Vec<Ray> = (0..1200)
+            .map(|i| basis.ray((i % 40) as f32, (i / 40) as f32))
+            .collect();
+        let (samples, in_lanes) = compare(&prep, &rays, 256);
+        assert_eq!(in_lanes, 0);
+        assert!(samples.iter().any(|s| s.rays > 6), "no mirror chain");
     }
 
     #[test]

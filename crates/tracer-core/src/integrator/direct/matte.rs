@@ -82,6 +82,11 @@ pub(super) fn shade_first_hits(
     scratch
         .matte
         .extend(prep.materials.iter().map(|m| is_matte(m, max_depth)));
+    if !scratch.matte.contains(&true) {
+        // Every surface mirrors, glows or shines (a hall of mirrors): all walk.
+        rest.extend(0..rays.len() as u32);
+        return;
+    }
     scratch.shadows.clear();
     scratch.contributions.clear();
     scratch.owners.clear();

@@ -65,7 +65,9 @@ impl Walk {
 
     /// Shades the closest hit `hit` of the walk's current ray `ray` (None: a miss): emission
     /// seen, the lights' shadow rays pushed to `shadows` with their contributions to
-    /// `contributions`, and the mirror ray to follow.
+    /// `contributions`, and the mirror ray to follow. (Inlined: out of line, its vector
+    /// arguments and the frame went through memory, +5 % on a mirror box.)
+    #[inline(always)]
     pub fn shade(
         &mut self,
         prep: &Prepared<'_>,
@@ -155,6 +157,7 @@ impl Walk {
 
 /// The lights' shadow rays at a hit and what each adds when free: point-like lights in order,
 /// then one sample of the emissive triangles.
+#[inline(always)]
 fn direct_light(
     prep: &Prepared<'_>,
     mat: &PreparedMaterial,
