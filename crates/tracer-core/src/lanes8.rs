@@ -6,6 +6,8 @@
 // Lane loops index arrays by lane on purpose.
 #![allow(clippy::needless_range_loop)]
 
+use crate::geometry::Ray;
+
 /// Eight lanes of `f32`.
 pub(crate) trait Lanes8: Copy {
     type Mask: Mask8;
@@ -47,6 +49,27 @@ pub(crate) trait Lanes8: Copy {
 pub(crate) fn fract_step(base: f64, n: u32, step: f64) -> f32 {
     let x = base + f64::from(n) * step;
     (x - (x as i64) as f64) as f32
+}
+
+/// Eight rays in lanes, lane `i` from `ray(i)`: the columns origin x, y, z, direction x, y, z,
+/// `t_min`, `t_max`, by one transpose. (`ray` only loads, so it needs no AVX of its own.)
+#[inline(always)]
+pub(crate) fn ray_columns<'r, L: Lanes8>(ray: impl Fn(usize) -> &'r Ray) -> [L; 8] {
+    let row = |i: usize| {
+        let r = ray(i);
+        let (o, d) = (r.origin, r.dir);
+        [o.x, o.y, o.z, d.x, d.y, d.z, r.t_min, r.t_max]
+    };
+    L::transpose([
+        L::from_array(row(0)),
+        L::from_array(row(1)),
+        L::from_array(row(2)),
+        L::from_array(row(3)),
+        L::from_array(row(4)),
+        L::from_array(row(5)),
+        L::from_array(row(6)),
+        L::from_array(row(7)),
+    ])
 }
 
 /// A per-lane condition.

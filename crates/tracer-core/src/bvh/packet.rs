@@ -25,7 +25,7 @@ use super::{Bvh, Hit, PADDING};
 use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;
-use crate::lanes8::{Lanes8, Mask8, Scalar8};
+use crate::lanes8::{Lanes8, Mask8, Scalar8, ray_columns};
 
 /// Rays per packet.
 pub const PACKET: usize = 8;
@@ -70,22 +70,9 @@ impl<L: Lanes8> Rays8<L> {
         debug_assert!((1..=PACKET).contains(&rays.len()));
         let n = rays.len();
         let active = (1u32 << n) - 1;
-        // Ray per row, then one lane per ray (lanes past the rays repeat the first).
-        let row = |i: usize| {
-            let r = rays.get(i).unwrap_or(&rays[0]);
-            let (o, d) = (r.origin, r.dir);
-            [o.x, o.y, o.z, d.x, d.y, d.z, r.t_min, r.t_max]
-        };
-        let [ox, oy, oz, dx, dy, dz, t_min, t_max] = L::transpose([
-            L::from_array(row(0)),
-            L::from_array(row(1)),
-            L::from_array(row(2)),
-            L::from_array(row(3)),
-            L::from_array(row(4)),
-            L::from_array(row(5)),
-            L::from_array(row(6)),
-            L::from_array(row(7)),
-        ]);
+        // One lane per ray (lanes past the rays repeat the first).
+        let [ox, oy, oz, dx, dy, dz, t_min, t_max] =
+            ray_columns::<L>(|i| rays.get(i).unwrap_or(&rays[0]));
         let (zero, one) = (L::splat(0.0), L::splat(1.0));
         let d = [dx, dy, dz];
         let o = [ox, oy, oz];

@@ -25,6 +25,25 @@ pub const SQUARE_SCALE: f64 = 65_536.0; // 2^16
 /// Largest fixed-point magnitude one sample may contribute (2^94): 2^33 samples fit in i128.
 const SAMPLE_LIMIT: f64 = 19_807_040_628_566_084_398_385_987_584.0;
 
+/// A sample's five values in fixed point: r, g, b and illuminance in units of 2⁻³², luminance
+/// squared in units of 2⁻¹⁶; None when one of them cannot be represented.
+/// (All five converted before any is tested: one branch, not five.)
+#[inline(always)]
+fn fixed_values(s: &Sample) -> Option<[i128; 5]> {
+    let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
+    let fixed = (
+        to_fixed(f64::from(s.rgb.x), VALUE_SCALE),
+        to_fixed(f64::from(s.rgb.y), VALUE_SCALE),
+        to_fixed(f64::from(s.rgb.z), VALUE_SCALE),
+        to_fixed(f64::from(s.illuminance_lx), VALUE_SCALE),
+        to_fixed(y * y, SQUARE_SCALE),
+    );
+    let (Some(r), Some(g), Some(b), Some(e), Some(q)) = fixed else {
+        return None;
+    };
+    Some([r, g, b, e, q])
+}
+
 fn to_fixed(v: f64, scale: f64) -> Option<i128> {
     let x = v * scale;
     if x.abs() < FAST_LIMIT {
@@ -82,15 +101,7 @@ pub struct PixelSum {
 impl PixelSum {
     /// Adds one sample; returns false (and counts it as rejected) when it cannot be represented.
     pub fn add(&mut self, s: &Sample) -> bool {
-        let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
-        let fixed = (
-            to_fixed(f64::from(s.rgb.x), VALUE_SCALE),
-            to_fixed(f64::from(s.rgb.y), VALUE_SCALE),
-            to_fixed(f64::from(s.rgb.z), VALUE_SCALE),
-            to_fixed(f64::from(s.illuminance_lx), VALUE_SCALE),
-            to_fixed(y * y, SQUARE_SCALE),
-        );
-        let (Some(r), Some(g), Some(b), Some(e), Some(q)) = fixed else {
+        let Some([r, g, b, e, q]) = fixed_values(s) else {
             self.rejected = self.rejected.saturating_add(1);
             return false;
         };
@@ -160,15 +171,7 @@ impl PixelSum {
             ..PixelSum::default()
         };
         for s in run {
-            let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
-            let fixed = (
-                to_fixed(f64::from(s.rgb.x), VALUE_SCALE),
-                to_fixed(f64::from(s.rgb.y), VALUE_SCALE),
-                to_fixed(f64::from(s.rgb.z), VALUE_SCALE),
-                to_fixed(f64::from(s.illuminance_lx), VALUE_SCALE),
-                to_fixed(y * y, SQUARE_SCALE),
-            );
-            let (Some(r), Some(g), Some(b), Some(e), Some(q)) = fixed else {
+            let Some([r, g, b, e, q]) = fixed_values(s) else {
                 return run.iter().map(|s| u32::from(!self.add(s))).sum();
             };
             sum.rgb[0] += r;

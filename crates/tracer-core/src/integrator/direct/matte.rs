@@ -20,7 +20,7 @@ use crate::bvh::Hit;
 use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;
-use crate::lanes8::{Lanes8, Mask8, Scalar8};
+use crate::lanes8::{Lanes8, Mask8, Scalar8, ray_columns};
 use crate::shading::{Prepared, PreparedMaterial, Profile};
 use glam::Vec3;
 
@@ -385,21 +385,7 @@ fn shade<L: Lanes8>(
 fn frame<L: Lanes8>(prep: &Prepared<'_>, rays: &[Ray], c: &Chunk) -> Frame<L> {
     let scene = prep.scene;
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
-    let row = |j: usize| {
-        let r = &rays[c.sample[j]];
-        let (o, d) = (r.origin, r.dir);
-        [o.x, o.y, o.z, d.x, d.y, d.z, r.t_min, r.t_max]
-    };
-    let [ox, oy, oz, dx, dy, dz, _, _] = L::transpose([
-        L::from_array(row(0)),
-        L::from_array(row(1)),
-        L::from_array(row(2)),
-        L::from_array(row(3)),
-        L::from_array(row(4)),
-        L::from_array(row(5)),
-        L::from_array(row(6)),
-        L::from_array(row(7)),
-    ]);
+    let [ox, oy, oz, dx, dy, dz, _, _] = ray_columns::<L>(|j| &rays[c.sample[j]]);
     let (o, d) = ([ox, oy, oz], [dx, dy, dz]);
     let p = add(&o, &scale(&d, L::from_array(c.t)));
     let n: V3<L> = gather(|j| scene.normals[c.prim[j]]);
