@@ -54,9 +54,9 @@ pub(super) struct MatteScratch {
 fn is_matte(mat: &PreparedMaterial, max_depth: u32) -> bool {
     let glows = mat.emission.max_element() > 0.0;
     let glossy = mat.glossiness > 0.0;
-    let mirrors = max_depth > 0 && mat.ks.max_element() > 0.0;
-    // `ks.max_element() <= 0.0` ends the walk; NaN does not, so it counts as a mirror.
-    let mirrors = mirrors || (max_depth > 0 && mat.ks.max_element().is_nan());
+    // The walk ends at depth 0 or where `ks.max_element() <= 0.0` (not for NaN).
+    let ends = mat.ks.max_element() <= 0.0;
+    let mirrors = max_depth > 0 && !ends;
     !glows && !glossy && !mirrors
 }
 
