@@ -41,6 +41,10 @@ pub(crate) trait Lanes8: Copy {
     /// Eight rows of eight lanes into eight columns: lane `i` of column `j` is lane `j` of row
     /// `i` (its own inverse).
     fn transpose(rows: [Self; 8]) -> [Self; 8];
+    /// The least lane (no lane may be NaN).
+    fn min_lane(self) -> f32;
+    /// The greatest lane (no lane may be NaN).
+    fn max_lane(self) -> f32;
 }
 
 /// One lane of [`Lanes8::fract_steps`]: `x - trunc(x)` is exact (the truncation through
@@ -195,6 +199,18 @@ impl Lanes8 for Scalar8 {
     #[inline(always)]
     fn transpose(rows: [Self; 8]) -> [Self; 8] {
         std::array::from_fn(|j| Self(std::array::from_fn(|i| rows[i].0[j])))
+    }
+    #[inline(always)]
+    fn min_lane(self) -> f32 {
+        self.0
+            .into_iter()
+            .fold(f32::INFINITY, |a, b| if b < a { b } else { a })
+    }
+    #[inline(always)]
+    fn max_lane(self) -> f32 {
+        self.0
+            .into_iter()
+            .fold(f32::NEG_INFINITY, |a, b| if b > a { b } else { a })
     }
 }
 
@@ -365,6 +381,28 @@ mod avx {
                 ]
             })
         }
+        #[inline(always)]
+        fn min_lane(self) -> f32 {
+            avx!({
+                let m = _mm_min_ps(
+                    _mm256_castps256_ps128(self.0),
+                    _mm256_extractf128_ps::<1>(self.0),
+                );
+                let m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+                _mm_cvtss_f32(_mm_min_ss(m, _mm_shuffle_ps::<1>(m, m)))
+            })
+        }
+        #[inline(always)]
+        fn max_lane(self) -> f32 {
+            avx!({
+                let m = _mm_max_ps(
+                    _mm256_castps256_ps128(self.0),
+                    _mm256_extractf128_ps::<1>(self.0),
+                );
+                let m = _mm_max_ps(m, _mm_movehl_ps(m, m));
+                _mm_cvtss_f32(_mm_max_ss(m, _mm_shuffle_ps::<1>(m, m)))
+            })
+        }
     }
 
     /// Four lanes of [`Lanes8::fract_steps`] in `f64` (`n` exact below 2^32), as
@@ -436,6 +474,20 @@ mod tests {
         }
     }
 
+    /// The least and greatest lane wherever they sit, infinite ones too.
+    fn extremes<L: Lanes8>() {
+        for at in 0..8 {
+            for (low, high) in [(-3.5, 9.25), (f32::NEG_INFINITY, f32::INFINITY)] {
+                let mut lanes = [1.0, 2.0, -1.0, 0.5, 4.0, -2.0, 3.0, 0.0];
+                lanes[at] = low;
+                lanes[7 - at] = high;
+                let l = L::from_array(lanes);
+                assert_eq!(l.min_lane(), low, "least of {lanes:?}");
+                assert_eq!(l.max_lane(), high, "greatest of {lanes:?}");
+            }
+        }
+    }
+
     fn masks_round_trip<L: Lanes8>() {
         for bits in 0..256 {
             assert_eq!(L::Mask::from_bits(bits).bits(), bits);
@@ -449,10 +501,12 @@ mod tests {
     #[test]
     fn transpose_and_masks_match_the_plain_lanes() {
         check::<Scalar8>();
+        extremes::<Scalar8>();
         masks_round_trip::<Scalar8>();
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             check::<Avx8>();
+            extremes::<Avx8>();
             masks_round_trip::<Avx8>();
         } else {
             eprintln!("skipping the AVX lanes: this CPU has no AVX2");

@@ -125,6 +125,41 @@ fn coherent_rays(triangles: &[[Vec3; 3]], bundles: usize, seed: u64) -> Vec<Ray>
     rays
 }
 
+/// Bundles of eight rays from different origins, like shadow rays from a pixel's hits to one
+/// light: origins spread over a patch (from tiny to a third of the scene), towards one point
+/// (ending just short of it, or some from `t_min` above zero) or all in one direction.
+fn converging_rays(triangles: &[[Vec3; 3]], bundles: usize, seed: u64) -> Vec<Ray> {
+    let b = bounds_of(triangles);
+    if b.is_empty() {
+        return Vec::new();
+    }
+    let size = b.extent().length().max(1e-3);
+    let mut rng = Rng::new(seed);
+    let mut rays = Vec::new();
+    for k in 0..bundles {
+        let centre = rng.in_box(&b);
+        let spread = size * [1e-4, 1e-2, 0.3][k % 3] * rng.f32();
+        let light = centre + rng.unit_vector() * size * (0.2 + rng.f32());
+        let direction = rng.unit_vector();
+        for _ in 0..PACKET {
+            let origin = centre + rng.unit_vector() * spread;
+            let mut ray = if k % 2 == 0 {
+                let to_light = light - origin;
+                let mut ray = Ray::new(origin, to_light.normalize());
+                ray.t_max = to_light.length() * (1.0 - 1e-4);
+                ray
+            } else {
+                Ray::new(origin, direction)
+            };
+            if k % 4 == 1 {
+                ray.t_min = size * 1e-3 * rng.f32();
+            }
+            rays.push(ray);
+        }
+    }
+    rays
+}
+
 /// Builds, validates and compares `intersect` and `occluded` with brute force on `n` rays.
 /// Returns how many rays hit.
 fn check(name: &str, triangles: &[[Vec3; 3]], n: usize) -> usize {
@@ -149,6 +184,11 @@ fn check_rays(name: &str, triangles: &[[Vec3; 3]], rays: &[Ray]) -> usize {
     let portable = with_kernel(&bvh, Kernel::Portable);
     check_packets(name, &bvh, rays);
     check_packets(name, &bvh, &coherent_rays(triangles, n / 16 + 1, n as u64));
+    check_packets(
+        name,
+        &bvh,
+        &converging_rays(triangles, n / 16 + 1, n as u64),
+    );
     let mut hits = 0;
     for (ray, (expected, any)) in rays.iter().zip(results) {
         let got = bvh.intersect(ray);

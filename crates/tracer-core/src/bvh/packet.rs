@@ -1,7 +1,9 @@
 //! Eight rays through the tree together (a packet). Camera rays of one pixel's samples, and
 //! shadow rays from neighbouring hits to one light, go the same way: a node's boxes and a
 //! leaf's triangles are read once for all eight, and each triangle is tested against the eight
-//! rays in one vector instead of each ray against four triangles.
+//! rays in one vector instead of each ray against four triangles. Before a node's children
+//! are tested lane by lane, one vector test of the packet as a whole ([`Frustum`], interval
+//! arithmetic over its lanes) drops the children no lane can enter.
 //!
 //! Per ray the arithmetic is that of the single-ray traversal: the portable slab test (which
 //! only decides which boxes are opened, conservatively) and the watertight triangle test with
@@ -59,6 +61,31 @@ struct Rays8<L: Lanes8> {
     shear: [L; 3],
     axis_is: [[L::Mask; 2]; 3],
     uniform_axes: Option<[usize; 3]>,
+    /// The packet as a whole, when its rays share their signs and move along every axis.
+    frustum: Option<Frustum>,
+}
+
+/// Bounds over a packet's lanes (interval arithmetic) that tell, with one vector test per node,
+/// which children no ray of the packet can enter, before each child is tested lane by lane.
+///
+/// Per axis the entry distance of a lane is `(entry plane - origin) · (1 / d)`, each step
+/// rounded. Rounding keeps order, so over lanes whose origin lies in `[lo, hi]` and whose `1 /
+/// d` (of one sign) lies in `[a, b]`, it is at least the lesser of `(plane - o*) · a` and
+/// `(plane - o*) · b`, rounded the same way, with `o*` the origin end that makes the first
+/// factor least (the greatest origin when moving positively). The exit distance is bounded
+/// above likewise. A child whose greatest entry exceeds its least exit, or the farthest cull
+/// limit, is entered by no lane: skipping it changes no hit.
+#[derive(Clone, Copy)]
+struct Frustum {
+    /// Per axis the `WideNode::bounds` rows of the entry planes (`[..3]`) and the exit planes.
+    rows: [usize; 6],
+    entry_origin: [f32; 3],
+    exit_origin: [f32; 3],
+    /// Per axis the least and the greatest `1 / d`, and the same of `inv_dir_exit`.
+    inv: [[f32; 2]; 3],
+    inv_exit: [[f32; 2]; 3],
+    /// The least `t_min` of the lanes.
+    t_min: f32,
 }
 
 impl<L: Lanes8> Rays8<L> {
@@ -147,6 +174,7 @@ impl<L: Lanes8> Rays8<L> {
             _ => None,
         };
         let exit = L::splat(EXIT_SCALE);
+        let frustum = planes.and_then(|rows| Frustum::new(rows, o, inv_dir, t_min));
         Self {
             active,
             origin: o,
@@ -166,7 +194,31 @@ impl<L: Lanes8> Rays8<L> {
             // Which lanes take x, y as axis kx (kz = z, x), ky (kz = y, z) and kz (x, y).
             axis_is: [[kz_z, kz_x], [kz_y, kz_z], [kz_x, kz_y]],
             uniform_axes,
+            frustum,
         }
+    }
+
+    /// The children of `node` that some lane may enter before `limit` (the farthest cull
+    /// limit of the lanes): a bit per child, empty children never set. Without a frustum, every
+    /// child (the caller stops at the first empty one).
+    #[inline(always)]
+    fn candidates(&self, node: &WideNode, limit: f32) -> u32 {
+        let Some(f) = &self.frustum else {
+            return (1 << WIDTH) - 1;
+        };
+        let (mut near, mut far) = (L::splat(f.t_min), L::splat(limit));
+        for axis in 0..3 {
+            let entry = L::from_array(node.row(f.rows[axis]));
+            let exit = L::from_array(node.row(f.rows[3 + axis]));
+            let dn = entry.sub(L::splat(f.entry_origin[axis]));
+            let df = exit.sub(L::splat(f.exit_origin[axis]));
+            let [a, b] = f.inv[axis];
+            let tn = dn.mul(L::splat(a)).min_or(dn.mul(L::splat(b)));
+            let [a, b] = f.inv_exit[axis];
+            let tf = df.mul(L::splat(a)).max_or(df.mul(L::splat(b)));
+            (near, far) = (tn.max_or(near), tf.min_or(far));
+        }
+        near.le(far).bits()
     }
 
     /// Which lanes of `lanes` meet child `c`'s box of `node` within `[t_min, limit[lane]]`
@@ -255,6 +307,41 @@ impl<L: Lanes8> Rays8<L> {
         let t = t_scaled.mul(inv_det);
         let hit = inside.and(t.ge(self.t_min)).and(t.le(t_max));
         (hit.bits() & lanes, [t, v, w, inv_det])
+    }
+}
+
+impl Frustum {
+    /// For rays that enter and leave through the rows `rows` (every lane the same signs), when
+    /// every origin and `1 / d` is finite (so no distance is NaN) and `t_min` below infinity.
+    #[inline(always)]
+    fn new<L: Lanes8>(rows: [usize; 6], o: [L; 3], inv_dir: [L; 3], t_min: L) -> Option<Self> {
+        let infinity = L::splat(f32::INFINITY);
+        let mut finite = t_min.lt(infinity).bits();
+        for a in 0..3 {
+            finite &= o[a].abs().lt(infinity).bits() & inv_dir[a].abs().lt(infinity).bits();
+        }
+        if finite != 0xff {
+            return None;
+        }
+        let mut f = Self {
+            rows,
+            entry_origin: [0.0; 3],
+            exit_origin: [0.0; 3],
+            inv: [[0.0; 2]; 3],
+            inv_exit: [[0.0; 2]; 3],
+            t_min: t_min.min_lane(),
+        };
+        for a in 0..3 {
+            let (lo, hi) = (o[a].min_lane(), o[a].max_lane());
+            // Entering through the minimum (moving positively) the greatest origin is nearest.
+            let positive = rows[a] == a;
+            (f.entry_origin[a], f.exit_origin[a]) = if positive { (hi, lo) } else { (lo, hi) };
+            let (a_lo, a_hi) = (inv_dir[a].min_lane(), inv_dir[a].max_lane());
+            f.inv[a] = [a_lo, a_hi];
+            // Scaling keeps order, so the scaled ends are the ends of the scaled lanes.
+            f.inv_exit[a] = [a_lo * EXIT_SCALE, a_hi * EXIT_SCALE];
+        }
+        Some(f)
     }
 }
 
@@ -350,13 +437,17 @@ impl Bvh {
     #[inline(always)]
     fn closest8<L: Lanes8>(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
         let r = Rays8::<L>::new(rays);
+        // Lanes without a ray never open a box, so the farthest limit is that of the rays.
+        let holds_ray = L::Mask::from_bits(r.active);
+        let cull = cull_limits(r.t_max, r.reach);
         let mut best = Best8 {
             t: r.t_max,
             id: [u32::MAX; PACKET],
             u: L::splat(0.0),
             v: L::splat(0.0),
-            cull: cull_limits(r.t_max, r.reach),
+            cull: L::select(holds_ray, cull, L::splat(f32::NEG_INFINITY)),
         };
+        let mut farthest = best.cull.max_lane();
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
         let mut stack = Stack::new(buf);
         stack.push(Entry {
@@ -381,7 +472,10 @@ impl Bvh {
             if e.child & LEAF_BIT == 0 {
                 let node = &self.nodes[e.child as usize];
                 let mut n = 0;
-                for c in 0..WIDTH {
+                let mut candidates = r.candidates(node, farthest);
+                while candidates != 0 {
+                    let c = candidates.trailing_zeros() as usize;
+                    candidates &= candidates - 1;
                     let child = node.children[c];
                     if child == EMPTY {
                         break;
@@ -440,6 +534,7 @@ impl Bvh {
                         best.u = L::select(m, v.mul(inv_det), best.u);
                         best.v = L::select(m, w.mul(inv_det), best.v);
                         best.cull = L::select(m, cull_limits(t, r.reach), best.cull);
+                        farthest = best.cull.max_lane();
                         while take != 0 {
                             best.id[take.trailing_zeros() as usize] = id;
                             take &= take - 1;
@@ -463,6 +558,12 @@ impl Bvh {
     fn any8<L: Lanes8>(&self, rays: &[Ray], out: &mut [bool]) {
         let r = Rays8::<L>::new(rays);
         let limit = cull_limits(r.t_max, r.reach);
+        let farthest = L::select(
+            L::Mask::from_bits(r.active),
+            limit,
+            L::splat(f32::NEG_INFINITY),
+        )
+        .max_lane();
         let mut done = 0u32;
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
         let mut stack: Stack<Entry<L>> = Stack::new(buf);
@@ -478,7 +579,10 @@ impl Bvh {
             }
             if e.child & LEAF_BIT == 0 {
                 let node = &self.nodes[e.child as usize];
-                for c in 0..WIDTH {
+                let mut candidates = r.candidates(node, farthest);
+                while candidates != 0 {
+                    let c = candidates.trailing_zeros() as usize;
+                    candidates &= candidates - 1;
                     let child = node.children[c];
                     if child == EMPTY {
                         break;

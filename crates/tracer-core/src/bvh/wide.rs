@@ -87,6 +87,14 @@ impl WideNode {
         _pad: [0; WIDTH],
     };
 
+    /// Row `row` (min x, y, z, max x, y, z) of every child, child `c` in element `c`.
+    #[inline(always)]
+    pub fn row(&self, row: usize) -> [f32; WIDTH] {
+        let mut out = [0.0; WIDTH];
+        out.copy_from_slice(self.bounds[row].as_flattened());
+        out
+    }
+
     /// Row `row` (min x, y, z, max x, y, z) of child `lane`.
     pub fn bound_mut(&mut self, row: usize, lane: usize) -> &mut f32 {
         &mut self.bounds[row][lane / LANES][lane % LANES]
