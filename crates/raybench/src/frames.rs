@@ -35,6 +35,8 @@ pub struct Options {
     pub width: u32,
     pub height: u32,
     pub spp: u32,
+    /// Only this workload ("F1" or "F2"); None: both.
+    pub only: Option<String>,
 }
 
 fn settings(opts: &Options) -> RenderSettings {
@@ -292,10 +294,15 @@ pub fn run(opts: &Options) -> anyhow::Result<()> {
         "# frames: {} runs interleaved, medians; {}x{} {} spp direct",
         opts.runs, opts.width, opts.height, opts.spp
     ));
-    frame_workload("F1", "cornell", opts)?;
-    match crate::shared::shared_dir() {
-        Some(_) => frame_workload("F2", "stanford-bunny", opts)?,
-        None => emit("# F2 skipped: the shared folder was not found (RAYGINE_SHARED)"),
+    let wanted = |id: &str| opts.only.as_deref().is_none_or(|only| only == id);
+    if wanted("F1") {
+        frame_workload("F1", "cornell", opts)?;
+    }
+    if wanted("F2") {
+        match crate::shared::shared_dir() {
+            Some(_) => frame_workload("F2", "stanford-bunny", opts)?,
+            None => emit("# F2 skipped: the shared folder was not found (RAYGINE_SHARED)"),
+        }
     }
     Ok(())
 }

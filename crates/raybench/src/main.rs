@@ -89,6 +89,9 @@ enum Command {
         height: u32,
         #[arg(long, default_value_t = 16)]
         spp: u32,
+        /// Only this workload (F1 or F2), for profiling one scene.
+        #[arg(long, value_parser = ["F1", "F2"])]
+        only: Option<String>,
     },
     /// L1 and L2 after a light move, and the restart storm.
     Interactive {
@@ -132,6 +135,7 @@ fn main() -> anyhow::Result<()> {
             width,
             height,
             spp,
+            only,
         } => frames::run(&frames::Options {
             runs: runs as usize,
             threads,
@@ -145,6 +149,7 @@ fn main() -> anyhow::Result<()> {
             width,
             height,
             spp,
+            only,
         }),
         Command::Interactive {
             common,

@@ -41,8 +41,6 @@ pub(crate) trait Lanes8: Copy {
     /// Eight rows of eight lanes into eight columns: lane `i` of column `j` is lane `j` of row
     /// `i` (its own inverse).
     fn transpose(rows: [Self; 8]) -> [Self; 8];
-    /// The least lane (no lane may be NaN).
-    fn min_lane(self) -> f32;
     /// The greatest lane (no lane may be NaN).
     fn max_lane(self) -> f32;
 }
@@ -55,16 +53,16 @@ pub(crate) fn fract_step(base: f64, n: u32, step: f64) -> f32 {
     (x - (x as i64) as f64) as f32
 }
 
-/// Eight rays in lanes, lane `i` from `ray(i)`: the columns origin x, y, z, direction x, y, z,
-/// `t_min`, `t_max`, by one transpose. (`ray` only loads, so it needs no AVX of its own.)
+/// Eight rays as rows, row `i` from `ray(i)`: origin x, y, z, direction x, y, z, `t_min`,
+/// `t_max`. (`ray` only loads, so it needs no AVX of its own.)
 #[inline(always)]
-pub(crate) fn ray_columns<'r, L: Lanes8>(ray: impl Fn(usize) -> &'r Ray) -> [L; 8] {
+pub(crate) fn ray_rows<'r, L: Lanes8>(ray: impl Fn(usize) -> &'r Ray) -> [L; 8] {
     let row = |i: usize| {
         let r = ray(i);
         let (o, d) = (r.origin, r.dir);
         [o.x, o.y, o.z, d.x, d.y, d.z, r.t_min, r.t_max]
     };
-    L::transpose([
+    [
         L::from_array(row(0)),
         L::from_array(row(1)),
         L::from_array(row(2)),
@@ -73,7 +71,14 @@ pub(crate) fn ray_columns<'r, L: Lanes8>(ray: impl Fn(usize) -> &'r Ray) -> [L; 
         L::from_array(row(5)),
         L::from_array(row(6)),
         L::from_array(row(7)),
-    ])
+    ]
+}
+
+/// Eight rays in lanes, lane `i` from `ray(i)`: the columns origin x, y, z, direction x, y, z,
+/// `t_min`, `t_max` ([`ray_rows`] by one transpose).
+#[inline(always)]
+pub(crate) fn ray_columns<'r, L: Lanes8>(ray: impl Fn(usize) -> &'r Ray) -> [L; 8] {
+    L::transpose(ray_rows(ray))
 }
 
 /// A per-lane condition.
@@ -199,12 +204,6 @@ impl Lanes8 for Scalar8 {
     #[inline(always)]
     fn transpose(rows: [Self; 8]) -> [Self; 8] {
         std::array::from_fn(|j| Self(std::array::from_fn(|i| rows[i].0[j])))
-    }
-    #[inline(always)]
-    fn min_lane(self) -> f32 {
-        self.0
-            .into_iter()
-            .fold(f32::INFINITY, |a, b| if b < a { b } else { a })
     }
     #[inline(always)]
     fn max_lane(self) -> f32 {
@@ -382,17 +381,6 @@ mod avx {
             })
         }
         #[inline(always)]
-        fn min_lane(self) -> f32 {
-            avx!({
-                let m = _mm_min_ps(
-                    _mm256_castps256_ps128(self.0),
-                    _mm256_extractf128_ps::<1>(self.0),
-                );
-                let m = _mm_min_ps(m, _mm_movehl_ps(m, m));
-                _mm_cvtss_f32(_mm_min_ss(m, _mm_shuffle_ps::<1>(m, m)))
-            })
-        }
-        #[inline(always)]
         fn max_lane(self) -> f32 {
             avx!({
                 let m = _mm_max_ps(
@@ -474,15 +462,14 @@ mod tests {
         }
     }
 
-    /// The least and greatest lane wherever they sit, infinite ones too.
-    fn extremes<L: Lanes8>() {
+    /// The greatest lane wherever it sits, infinite ones too.
+    fn greatest<L: Lanes8>() {
         for at in 0..8 {
             for (low, high) in [(-3.5, 9.25), (f32::NEG_INFINITY, f32::INFINITY)] {
                 let mut lanes = [1.0, 2.0, -1.0, 0.5, 4.0, -2.0, 3.0, 0.0];
                 lanes[at] = low;
                 lanes[7 - at] = high;
                 let l = L::from_array(lanes);
-                assert_eq!(l.min_lane(), low, "least of {lanes:?}");
                 assert_eq!(l.max_lane(), high, "greatest of {lanes:?}");
             }
         }
@@ -501,12 +488,12 @@ mod tests {
     #[test]
     fn transpose_and_masks_match_the_plain_lanes() {
         check::<Scalar8>();
-        extremes::<Scalar8>();
+        greatest::<Scalar8>();
         masks_round_trip::<Scalar8>();
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             check::<Avx8>();
-            extremes::<Avx8>();
+            greatest::<Avx8>();
             masks_round_trip::<Avx8>();
         } else {
             eprintln!("skipping the AVX lanes: this CPU has no AVX2");

@@ -26,6 +26,7 @@
 
 mod binary;
 mod build;
+mod frustum;
 mod packet;
 mod pages;
 mod simd;

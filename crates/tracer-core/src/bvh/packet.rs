@@ -19,6 +19,7 @@
 
 use std::mem::MaybeUninit;
 
+use super::frustum::Frustum;
 use super::stack::Stack;
 use super::traverse::{CULL_SLACK, EXIT_SCALE, STACK_LEVELS, STACK_SIZE};
 use super::triangle::{PACK, Tri4};
@@ -27,7 +28,7 @@ use super::{Bvh, Hit, PADDING};
 use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;
-use crate::lanes8::{Lanes8, Mask8, Scalar8, ray_columns};
+use crate::lanes8::{Lanes8, Mask8, Scalar8, ray_rows};
 
 /// Rays per packet.
 pub const PACKET: usize = 8;
@@ -35,13 +36,14 @@ pub const PACKET: usize = 8;
 /// Stack entries: a packet pushes at most every child of a node.
 const PACKET_STACK: usize = STACK_SIZE + WIDTH;
 
-/// Eight rays prepared for box and triangle tests. Lanes past the rays given repeat the first
-/// ray and are never active.
+/// Eight rays prepared for box tests. Lanes past the rays given repeat the first ray and are
+/// never active.
 #[derive(Clone, Copy)]
 struct Rays8<L: Lanes8> {
     /// Bit per lane holding a ray.
     active: u32,
     origin: [L; 3],
+    dir: [L; 3],
     inv_dir: [L; 3],
     inv_dir_exit: [L; 3],
     /// Per axis: lanes whose direction is negative (entering a box through its maximum).
@@ -54,38 +56,20 @@ struct Rays8<L: Lanes8> {
     t_max: L,
     /// See `cull_reach`.
     reach: L,
-    /// The triangle test's frame per lane: the origin's coordinates along kx, ky, kz and the
-    /// shear; which lanes take x (`axis_is[j][0]`) or y (`axis_is[j][1]`) as axis j (else z),
-    /// and the axes when every lane has the same (the common case: plain broadcasts).
-    origin_k: [L; 3],
-    shear: [L; 3],
-    axis_is: [[L::Mask; 2]; 3],
-    uniform_axes: Option<[usize; 3]>,
-    /// The packet as a whole, when its rays share their signs and move along every axis.
+    /// The packet as a whole, when its rays share their signs and all is finite.
     frustum: Option<Frustum>,
 }
 
-/// Bounds over a packet's lanes (interval arithmetic) that tell, with one vector test per node,
-/// which children no ray of the packet can enter, before each child is tested lane by lane.
-///
-/// Per axis the entry distance of a lane is `(entry plane - origin) · (1 / d)`, each step
-/// rounded. Rounding keeps order, so over lanes whose origin lies in `[lo, hi]` and whose `1 /
-/// d` (of one sign) lies in `[a, b]`, it is at least the lesser of `(plane - o*) · a` and
-/// `(plane - o*) · b`, rounded the same way, with `o*` the origin end that makes the first
-/// factor least (the greatest origin when moving positively). The exit distance is bounded
-/// above likewise. A child whose greatest entry exceeds its least exit, or the farthest cull
-/// limit, is entered by no lane: skipping it changes no hit.
-#[derive(Clone, Copy)]
-struct Frustum {
-    /// Per axis the `WideNode::bounds` rows of the entry planes (`[..3]`) and the exit planes.
-    rows: [usize; 6],
-    entry_origin: [f32; 3],
-    exit_origin: [f32; 3],
-    /// Per axis the least and the greatest `1 / d`, and the same of `inv_dir_exit`.
-    inv: [[f32; 2]; 3],
-    inv_exit: [[f32; 2]; 3],
-    /// The least `t_min` of the lanes.
-    t_min: f32,
+/// Whether the lanes `active` of `bits` are all set (`Some(true)`), all clear, or mixed.
+#[inline(always)]
+fn uniform(bits: u32, active: u32) -> Option<bool> {
+    if bits & active == active {
+        Some(true)
+    } else if bits & active == 0 {
+        Some(false)
+    } else {
+        None
+    }
 }
 
 impl<L: Lanes8> Rays8<L> {
@@ -98,8 +82,8 @@ impl<L: Lanes8> Rays8<L> {
         let n = rays.len();
         let active = (1u32 << n) - 1;
         // One lane per ray (lanes past the rays repeat the first).
-        let [ox, oy, oz, dx, dy, dz, t_min, t_max] =
-            ray_columns::<L>(|i| rays.get(i).unwrap_or(&rays[0]));
+        let rows = ray_rows::<L>(|i| rays.get(i).unwrap_or(&rays[0]));
+        let [ox, oy, oz, dx, dy, dz, t_min, t_max] = L::transpose(rows);
         let (zero, one) = (L::splat(0.0), L::splat(1.0));
         let d = [dx, dy, dz];
         let o = [ox, oy, oz];
@@ -110,19 +94,10 @@ impl<L: Lanes8> Rays8<L> {
             inv_dir[1].lt(zero),
             inv_dir[2].lt(zero),
         ];
-        let uniform = |bits: u32| {
-            if bits & active == active {
-                Some(true)
-            } else if bits & active == 0 {
-                Some(false)
-            } else {
-                None
-            }
-        };
         let planes = match [
-            uniform(negative[0].bits()),
-            uniform(negative[1].bits()),
-            uniform(negative[2].bits()),
+            uniform(negative[0].bits(), active),
+            uniform(negative[1].bits(), active),
+            uniform(negative[2].bits(), active),
         ] {
             [Some(nx), Some(ny), Some(nz)] => {
                 // Entering through the minimum on axes moved along positively.
@@ -143,41 +118,24 @@ impl<L: Lanes8> Rays8<L> {
         // The cull margin's reach (`cull_reach`): origin over direction on the axes moved along.
         let infinity = L::splat(f32::INFINITY);
         let mut reach = zero;
+        // Whether every origin and 1/d is finite and every t_min below infinity (no NaN).
+        let mut finite = t_min.lt(infinity);
         for a in 0..3 {
             let along = o[a].mul(inv_dir[a]).abs();
-            let finite = inv_dir[a].abs().lt(infinity);
-            reach = L::select(finite, along, zero).max_or(reach);
+            let moves = inv_dir[a].abs().lt(infinity);
+            reach = L::select(moves, along, zero).max_or(reach);
+            finite = finite.and(moves).and(o[a].abs().lt(infinity));
         }
         let reach = reach.mul(L::splat(CULL_SLACK));
-        // The watertight test's frame (`RayTriangles::new`, per lane): kz the dominant axis
-        // (x when |dx| is largest, ties to the earlier axis), kx and ky the next two.
-        let (ax, ay, az) = (d[0].abs(), d[1].abs(), d[2].abs());
-        let kz_x = ax.ge(ay).and(ax.ge(az));
-        let kz_y = ay.ge(az).and_not(kz_x);
-        let kz_z = zero.le(zero).and_not(kz_x.or(kz_y));
-        // Along kx: y, z, x for kz = x, y, z; along ky: z, x, y.
-        let dir_k = [
-            by_axis(kz_x, kz_y, d[1], d[2], d[0]),
-            by_axis(kz_x, kz_y, d[2], d[0], d[1]),
-            by_axis(kz_x, kz_y, d[0], d[1], d[2]),
-        ];
-        let origin_k = [
-            by_axis(kz_x, kz_y, o[1], o[2], o[0]),
-            by_axis(kz_x, kz_y, o[2], o[0], o[1]),
-            by_axis(kz_x, kz_y, o[0], o[1], o[2]),
-        ];
-        let inv_z = one.div(dir_k[2]);
-        let uniform_axes = match (uniform(kz_x.bits()), uniform(kz_y.bits())) {
-            (Some(true), _) => Some([1, 2, 0]),
-            (Some(false), Some(true)) => Some([2, 0, 1]),
-            (Some(false), Some(false)) => Some([0, 1, 2]),
+        let frustum = match planes {
+            Some(p) if finite.bits() == 0xff => Some(Frustum::new(p, &rows)),
             _ => None,
         };
         let exit = L::splat(EXIT_SCALE);
-        let frustum = planes.and_then(|rows| Frustum::new(rows, o, inv_dir, t_min));
         Self {
             active,
             origin: o,
+            dir: d,
             inv_dir,
             inv_dir_exit: [
                 inv_dir[0].mul(exit),
@@ -189,36 +147,19 @@ impl<L: Lanes8> Rays8<L> {
             t_min,
             t_max,
             reach,
-            origin_k,
-            shear: [dir_k[0].mul(inv_z), dir_k[1].mul(inv_z), inv_z],
-            // Which lanes take x, y as axis kx (kz = z, x), ky (kz = y, z) and kz (x, y).
-            axis_is: [[kz_z, kz_x], [kz_y, kz_z], [kz_x, kz_y]],
-            uniform_axes,
             frustum,
         }
     }
 
     /// The children of `node` that some lane may enter before `limit` (the farthest cull
-    /// limit of the lanes): a bit per child, empty children never set. Without a frustum, every
-    /// child (the caller stops at the first empty one).
+    /// limit of the lanes). Without a frustum, every child (the caller stops at the first
+    /// empty one).
     #[inline(always)]
     fn candidates(&self, node: &WideNode, limit: f32) -> u32 {
-        let Some(f) = &self.frustum else {
-            return (1 << WIDTH) - 1;
-        };
-        let (mut near, mut far) = (L::splat(f.t_min), L::splat(limit));
-        for axis in 0..3 {
-            let entry = L::from_array(node.row(f.rows[axis]));
-            let exit = L::from_array(node.row(f.rows[3 + axis]));
-            let dn = entry.sub(L::splat(f.entry_origin[axis]));
-            let df = exit.sub(L::splat(f.exit_origin[axis]));
-            let [a, b] = f.inv[axis];
-            let tn = dn.mul(L::splat(a)).min_or(dn.mul(L::splat(b)));
-            let [a, b] = f.inv_exit[axis];
-            let tf = df.mul(L::splat(a)).max_or(df.mul(L::splat(b)));
-            (near, far) = (tn.max_or(near), tf.min_or(far));
+        match &self.frustum {
+            Some(f) => f.candidates::<L>(node, limit),
+            None => (1 << WIDTH) - 1,
         }
-        near.le(far).bits()
     }
 
     /// Which lanes of `lanes` meet child `c`'s box of `node` within `[t_min, limit[lane]]`
@@ -257,6 +198,73 @@ impl<L: Lanes8> Rays8<L> {
         let tf = fp.sub(o).mul(self.inv_dir_exit[axis]);
         // NaN (origin on the plane, zero direction) keeps the other side.
         (tn.max_or(near), tf.min_or(far))
+    }
+}
+
+/// The watertight triangle test's frame per lane (`RayTriangles::new`, per lane): the
+/// origin's coordinates along kx, ky, kz and the shear; which lanes take x (`axis_is[j][0]`)
+/// or y (`axis_is[j][1]`) as axis j (else z), and the axes when every lane has the same (the
+/// common case: plain broadcasts). Made when a packet reaches its first leaf: most packets of
+/// a frame around a small object reach none.
+#[derive(Clone, Copy)]
+struct TriangleFrame<L: Lanes8> {
+    origin_k: [L; 3],
+    shear: [L; 3],
+    axis_is: [[L::Mask; 2]; 3],
+    uniform_axes: Option<[usize; 3]>,
+    t_min: L,
+}
+
+/// The triangle frame of `r`, made on first use.
+#[inline(always)]
+fn triangle_frame<'f, L: Lanes8>(
+    slot: &'f mut Option<TriangleFrame<L>>,
+    r: &Rays8<L>,
+) -> &'f TriangleFrame<L> {
+    match slot {
+        Some(f) => f,
+        None => slot.insert(TriangleFrame::new(r)),
+    }
+}
+
+impl<L: Lanes8> TriangleFrame<L> {
+    #[inline(always)]
+    fn new(r: &Rays8<L>) -> Self {
+        let (d, o) = (r.dir, r.origin);
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        // kz the dominant axis (x when |dx| is largest, ties to the earlier axis), kx and ky
+        // the next two.
+        let (ax, ay, az) = (d[0].abs(), d[1].abs(), d[2].abs());
+        let kz_x = ax.ge(ay).and(ax.ge(az));
+        let kz_y = ay.ge(az).and_not(kz_x);
+        let kz_z = zero.le(zero).and_not(kz_x.or(kz_y));
+        // Along kx: y, z, x for kz = x, y, z; along ky: z, x, y.
+        let dir_k = [
+            by_axis(kz_x, kz_y, d[1], d[2], d[0]),
+            by_axis(kz_x, kz_y, d[2], d[0], d[1]),
+            by_axis(kz_x, kz_y, d[0], d[1], d[2]),
+        ];
+        let origin_k = [
+            by_axis(kz_x, kz_y, o[1], o[2], o[0]),
+            by_axis(kz_x, kz_y, o[2], o[0], o[1]),
+            by_axis(kz_x, kz_y, o[0], o[1], o[2]),
+        ];
+        let inv_z = one.div(dir_k[2]);
+        let active = r.active;
+        let uniform_axes = match (uniform(kz_x.bits(), active), uniform(kz_y.bits(), active)) {
+            (Some(true), _) => Some([1, 2, 0]),
+            (Some(false), Some(true)) => Some([2, 0, 1]),
+            (Some(false), Some(false)) => Some([0, 1, 2]),
+            _ => None,
+        };
+        Self {
+            origin_k,
+            shear: [dir_k[0].mul(inv_z), dir_k[1].mul(inv_z), inv_z],
+            // Which lanes take x, y as axis kx (kz = z, x), ky (kz = y, z) and kz (x, y).
+            axis_is: [[kz_z, kz_x], [kz_y, kz_z], [kz_x, kz_y]],
+            uniform_axes,
+            t_min: r.t_min,
+        }
     }
 
     /// One vertex in every lane's ray frame: (x, y) sheared, z along the ray (the single-ray
@@ -307,41 +315,6 @@ impl<L: Lanes8> Rays8<L> {
         let t = t_scaled.mul(inv_det);
         let hit = inside.and(t.ge(self.t_min)).and(t.le(t_max));
         (hit.bits() & lanes, [t, v, w, inv_det])
-    }
-}
-
-impl Frustum {
-    /// For rays that enter and leave through the rows `rows` (every lane the same signs), when
-    /// every origin and `1 / d` is finite (so no distance is NaN) and `t_min` below infinity.
-    #[inline(always)]
-    fn new<L: Lanes8>(rows: [usize; 6], o: [L; 3], inv_dir: [L; 3], t_min: L) -> Option<Self> {
-        let infinity = L::splat(f32::INFINITY);
-        let mut finite = t_min.lt(infinity).bits();
-        for a in 0..3 {
-            finite &= o[a].abs().lt(infinity).bits() & inv_dir[a].abs().lt(infinity).bits();
-        }
-        if finite != 0xff {
-            return None;
-        }
-        let mut f = Self {
-            rows,
-            entry_origin: [0.0; 3],
-            exit_origin: [0.0; 3],
-            inv: [[0.0; 2]; 3],
-            inv_exit: [[0.0; 2]; 3],
-            t_min: t_min.min_lane(),
-        };
-        for a in 0..3 {
-            let (lo, hi) = (o[a].min_lane(), o[a].max_lane());
-            // Entering through the minimum (moving positively) the greatest origin is nearest.
-            let positive = rows[a] == a;
-            (f.entry_origin[a], f.exit_origin[a]) = if positive { (hi, lo) } else { (lo, hi) };
-            let (a_lo, a_hi) = (inv_dir[a].min_lane(), inv_dir[a].max_lane());
-            f.inv[a] = [a_lo, a_hi];
-            // Scaling keeps order, so the scaled ends are the ends of the scaled lanes.
-            f.inv_exit[a] = [a_lo * EXIT_SCALE, a_hi * EXIT_SCALE];
-        }
-        Some(f)
     }
 }
 
@@ -448,6 +421,7 @@ impl Bvh {
             cull: L::select(holds_ray, cull, L::splat(f32::NEG_INFINITY)),
         };
         let mut farthest = best.cull.max_lane();
+        let mut tri = None;
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
         let mut stack = Stack::new(buf);
         stack.push(Entry {
@@ -504,6 +478,7 @@ impl Bvh {
                     stack.push(found[k as usize]);
                 }
             } else {
+                let tri = triangle_frame(&mut tri, &r);
                 let (first, count) = leaf_range(e.child);
                 for pack in &self.triangles[first..first + count] {
                     for j in 0..PACK {
@@ -511,7 +486,7 @@ impl Bvh {
                         if id == PADDING {
                             continue;
                         }
-                        let (hit, [t, v, w, inv_det]) = r.triangle(pack, j, best.t, lanes);
+                        let (hit, [t, v, w, inv_det]) = tri.triangle(pack, j, best.t, lanes);
                         if hit == 0 {
                             continue;
                         }
@@ -564,6 +539,7 @@ impl Bvh {
             L::splat(f32::NEG_INFINITY),
         )
         .max_lane();
+        let mut tri = None;
         let mut done = 0u32;
         let buf = &mut [MaybeUninit::uninit(); PACKET_STACK];
         let mut stack: Stack<Entry<L>> = Stack::new(buf);
@@ -597,13 +573,14 @@ impl Bvh {
                     }
                 }
             } else {
+                let tri = triangle_frame(&mut tri, &r);
                 let (first, count) = leaf_range(e.child);
                 'packs: for pack in &self.triangles[first..first + count] {
                     for j in 0..PACK {
                         if pack.ids[j] == PADDING {
                             continue;
                         }
-                        done |= r.triangle(pack, j, r.t_max, lanes).0;
+                        done |= tri.triangle(pack, j, r.t_max, lanes).0;
                         if done & lanes == lanes {
                             break 'packs;
                         }
