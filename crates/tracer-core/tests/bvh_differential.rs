@@ -99,7 +99,8 @@ fn check_packets(name: &str, bvh: &Bvh, rays: &[Ray]) {
 }
 
 /// Bundles of eight rays like a pixel's camera samples: one origin, directions a little
-/// apart, towards random points of the box (some bundles with a finite `t_max`).
+/// apart, towards random points of the box (some bundles with a finite `t_max`, some looking
+/// away from it).
 fn coherent_rays(triangles: &[[Vec3; 3]], bundles: usize, seed: u64) -> Vec<Ray> {
     let b = bounds_of(triangles);
     if b.is_empty() {
@@ -111,7 +112,12 @@ fn coherent_rays(triangles: &[[Vec3; 3]], bundles: usize, seed: u64) -> Vec<Ray>
     let mut rays = Vec::new();
     for k in 0..bundles {
         let origin = centre + rng.unit_vector() * size * (0.6 + 2.0 * rng.f32());
-        let target = rng.in_box(&b);
+        // Some bundles look away from the scene (packets that end at the root).
+        let target = if k % 7 == 3 {
+            origin + (origin - centre)
+        } else {
+            rng.in_box(&b)
+        };
         let spread = size * 1e-3 * rng.f32();
         for _ in 0..PACKET {
             let aim = target + rng.unit_vector() * spread;

@@ -32,16 +32,25 @@ pub(super) struct Frustum {
 
 impl Frustum {
     /// From the packet's rows (row `i`: ray `i`'s origin, direction, `t_min` and `t_max`, as
-    /// `lanes8::ray_rows` lays them out), for rays that enter and leave boxes through the rows
-    /// `rows`. The caller checks that every origin and `1 / d` is finite and every `t_min`
-    /// below infinity, so no distance is NaN.
+    /// `lanes8::ray_rows` lays them out), when the rays share their direction's sign on every
+    /// axis and every origin, direction and `t_min` is finite (so no distance is NaN).
     #[inline(always)]
-    pub(super) fn new<L: Lanes8>(rows: [usize; 6], rays: &[L; 8]) -> Self {
-        // The least and greatest of each quantity over the rays: seven steps each, no shuffle.
-        let (mut lo, mut hi) = (rays[0], rays[0]);
+    pub(super) fn new<L: Lanes8>(rays: &[L; 8]) -> Option<Self> {
+        // The least and greatest of each quantity over the rays, and their sum, which is
+        // finite only when every term is (NaN and infinities carry through): seven steps
+        // each, no shuffle.
+        let (mut lo, mut hi, mut sum) = (rays[0], rays[0], rays[0]);
         for r in &rays[1..] {
             lo = lo.min_or(*r);
             hi = hi.max_or(*r);
+            sum = sum.add(*r);
+        }
+        let zero = L::splat(0.0);
+        let finite = sum.abs().lt(L::splat(f32::INFINITY)).bits();
+        let (positive, negative) = (lo.gt(zero).bits(), hi.lt(zero).bits());
+        // Lanes 0-6 finite; lanes 3-5 (the direction) of one sign, never zero.
+        if finite & 0x7f != 0x7f || (positive | negative) & 0x38 != 0x38 {
+            return None;
         }
         // 1/d falls as d grows on either side of zero, and the rounded division keeps that
         // order: the least 1/d is that of the greatest d, computed the lanes' way.
@@ -49,7 +58,7 @@ impl Frustum {
         let (inv_lo, inv_hi) = (one.div(hi).to_array(), one.div(lo).to_array());
         let (lo, hi) = (lo.to_array(), hi.to_array());
         let mut f = Self {
-            rows,
+            rows: [0; 6],
             entry_origin: [0.0; 3],
             exit_origin: [0.0; 3],
             inv: [[0.0; 2]; 3],
@@ -57,19 +66,27 @@ impl Frustum {
             t_min: lo[6],
         };
         for a in 0..3 {
-            // Entering through the minimum (moving positively) the greatest origin is nearest.
-            let positive = rows[a] == a;
-            (f.entry_origin[a], f.exit_origin[a]) = if positive {
-                (hi[a], lo[a])
+            // Moving positively: in through the minimum, out through the maximum, and the
+            // greatest origin nearest.
+            if positive & (8 << a) != 0 {
+                f.rows[a] = a;
+                f.rows[3 + a] = 3 + a;
+                (f.entry_origin[a], f.exit_origin[a]) = (hi[a], lo[a]);
             } else {
-                (lo[a], hi[a])
-            };
+                f.rows[a] = 3 + a;
+                f.rows[3 + a] = a;
+                (f.entry_origin[a], f.exit_origin[a]) = (lo[a], hi[a]);
+            }
             let (a_lo, a_hi) = (inv_lo[3 + a], inv_hi[3 + a]);
+            // Both ends finite: |d| is bounded away from zero by the end nearer to it.
+            if !(a_lo.is_finite() && a_hi.is_finite()) {
+                return None;
+            }
             f.inv[a] = [a_lo, a_hi];
             // Scaling keeps order, so the scaled ends are the ends of the scaled lanes.
             f.inv_exit[a] = [a_lo * EXIT_SCALE, a_hi * EXIT_SCALE];
         }
-        f
+        Some(f)
     }
 
     /// The children of `node` that some lane may enter before `limit` (the farthest cull

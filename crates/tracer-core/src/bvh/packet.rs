@@ -33,6 +33,9 @@ use crate::lanes8::{Lanes8, Mask8, Scalar8, ray_rows};
 /// Rays per packet.
 pub const PACKET: usize = 8;
 
+/// A bit for every child of a node.
+const ALL_CHILDREN: u32 = (1 << WIDTH) - 1;
+
 /// Stack entries: a packet pushes at most every child of a node.
 const PACKET_STACK: usize = STACK_SIZE + WIDTH;
 
@@ -77,13 +80,10 @@ impl<L: Lanes8> Rays8<L> {
     /// AVX target feature, and each intrinsic in it would become a call. The `row` closure
     /// only reads fields.)
     #[inline(always)]
-    fn new(rays: &[Ray]) -> Self {
-        debug_assert!((1..=PACKET).contains(&rays.len()));
-        let n = rays.len();
+    fn new(n: usize, rows: &[L; 8], frustum: Option<Frustum>) -> Self {
+        debug_assert!((1..=PACKET).contains(&n));
         let active = (1u32 << n) - 1;
-        // One lane per ray (lanes past the rays repeat the first).
-        let rows = ray_rows::<L>(|i| rays.get(i).unwrap_or(&rays[0]));
-        let [ox, oy, oz, dx, dy, dz, t_min, t_max] = L::transpose(rows);
+        let [ox, oy, oz, dx, dy, dz, t_min, t_max] = L::transpose(*rows);
         let (zero, one) = (L::splat(0.0), L::splat(1.0));
         let d = [dx, dy, dz];
         let o = [ox, oy, oz];
@@ -118,19 +118,12 @@ impl<L: Lanes8> Rays8<L> {
         // The cull margin's reach (`cull_reach`): origin over direction on the axes moved along.
         let infinity = L::splat(f32::INFINITY);
         let mut reach = zero;
-        // Whether every origin and 1/d is finite and every t_min below infinity (no NaN).
-        let mut finite = t_min.lt(infinity);
         for a in 0..3 {
             let along = o[a].mul(inv_dir[a]).abs();
             let moves = inv_dir[a].abs().lt(infinity);
             reach = L::select(moves, along, zero).max_or(reach);
-            finite = finite.and(moves).and(o[a].abs().lt(infinity));
         }
         let reach = reach.mul(L::splat(CULL_SLACK));
-        let frustum = match planes {
-            Some(p) if finite.bits() == 0xff => Some(Frustum::new(p, &rows)),
-            _ => None,
-        };
         let exit = L::splat(EXIT_SCALE);
         Self {
             active,
@@ -158,7 +151,7 @@ impl<L: Lanes8> Rays8<L> {
     fn candidates(&self, node: &WideNode, limit: f32) -> u32 {
         match &self.frustum {
             Some(f) => f.candidates::<L>(node, limit),
-            None => (1 << WIDTH) - 1,
+            None => ALL_CHILDREN,
         }
     }
 
@@ -407,9 +400,29 @@ impl Bvh {
         self.any8::<Avx8>(rays, out);
     }
 
+    /// The root's children that `frustum` (of a packet) may enter, all without a frustum. When
+    /// none, no ray of the packet hits anything: most packets aimed past a small object end
+    /// there, before the lanes' setup. The traversal takes these for its first node.
+    #[inline(always)]
+    fn root_candidates<L: Lanes8>(&self, frustum: &Option<Frustum>) -> u32 {
+        match frustum {
+            // No lane's cull limit exceeds f32::MAX (`cull_limits`).
+            Some(f) => f.candidates::<L>(&self.nodes[0], f32::MAX),
+            None => ALL_CHILDREN,
+        }
+    }
+
     #[inline(always)]
     fn closest8<L: Lanes8>(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
-        let r = Rays8::<L>::new(rays);
+        let rows = ray_rows::<L>(|i| rays.get(i).unwrap_or(&rays[0]));
+        let frustum = Frustum::new(&rows);
+        let root = self.root_candidates::<L>(&frustum);
+        if root == 0 {
+            out.fill(None);
+            return;
+        }
+        let mut root = Some(root);
+        let r = Rays8::<L>::new(rays.len(), &rows, frustum);
         // Lanes without a ray never open a box, so the farthest limit is that of the rays.
         let holds_ray = L::Mask::from_bits(r.active);
         let cull = cull_limits(r.t_max, r.reach);
@@ -446,7 +459,11 @@ impl Bvh {
             if e.child & LEAF_BIT == 0 {
                 let node = &self.nodes[e.child as usize];
                 let mut n = 0;
-                let mut candidates = r.candidates(node, farthest);
+                // The root's come with the packet (it is popped first, and once).
+                let mut candidates = match root.take() {
+                    Some(bits) => bits,
+                    None => r.candidates(node, farthest),
+                };
                 while candidates != 0 {
                     let c = candidates.trailing_zeros() as usize;
                     candidates &= candidates - 1;
@@ -531,7 +548,15 @@ impl Bvh {
 
     #[inline(always)]
     fn any8<L: Lanes8>(&self, rays: &[Ray], out: &mut [bool]) {
-        let r = Rays8::<L>::new(rays);
+        let rows = ray_rows::<L>(|i| rays.get(i).unwrap_or(&rays[0]));
+        let frustum = Frustum::new(&rows);
+        let root = self.root_candidates::<L>(&frustum);
+        if root == 0 {
+            out.fill(false);
+            return;
+        }
+        let mut root = Some(root);
+        let r = Rays8::<L>::new(rays.len(), &rows, frustum);
         let limit = cull_limits(r.t_max, r.reach);
         let farthest = L::select(
             L::Mask::from_bits(r.active),
@@ -555,7 +580,11 @@ impl Bvh {
             }
             if e.child & LEAF_BIT == 0 {
                 let node = &self.nodes[e.child as usize];
-                let mut candidates = r.candidates(node, farthest);
+                // The root's come with the packet (it is popped first, and once).
+                let mut candidates = match root.take() {
+                    Some(bits) => bits,
+                    None => r.candidates(node, farthest),
+                };
                 while candidates != 0 {
                     let c = candidates.trailing_zeros() as usize;
                     candidates &= candidates - 1;
