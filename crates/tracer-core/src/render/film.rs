@@ -12,7 +12,7 @@
 //! a sample beyond that, or not a finite number, is not added: it is counted in
 //! [`PixelSum::rejected`] and the film reports it ([`Film::rejected_samples`]).
 
-use super::run_sums::{RUN_SAMPLES, run_sums};
+use super::run_sums::{RUN_SAMPLES, run_sums, wide_run_sums};
 use super::tiles::Tile;
 use crate::integrator::Sample;
 use crate::light::LUMINANCE_WEIGHTS;
@@ -162,24 +162,21 @@ impl PixelSum {
 
     /// [`PixelSum::add_run`] for a run with a value past the 64-bit sums (very bright
     /// pixels: a lamp a few millimetres away gives millions of lux): the same fixed-point
-    /// values summed in 128 bits, where a run cannot overflow (1024 terms below 2^94 each),
-    /// and added once. A run with a value that cannot be represented at all (NaN, infinite,
-    /// beyond 2^94) goes sample by sample through [`PixelSum::add`], which rejects it.
+    /// values summed as whole parts and remainders ([`wide_run_sums`]), added once. A run with
+    /// a value beyond even those (NaN, infinite, or near the fixed-point limit) goes sample by
+    /// sample through [`PixelSum::add`], which rejects what cannot be represented.
     fn add_wide_run(&mut self, run: &[Sample]) -> u32 {
-        let mut sum = PixelSum {
-            count: run.len() as u32,
-            ..PixelSum::default()
+        let Some(sums) = wide_run_sums(run) else {
+            return run.iter().map(|s| u32::from(!self.add(s))).sum();
         };
-        for s in run {
-            let Some([r, g, b, e, q]) = fixed_values(s) else {
-                return run.iter().map(|s| u32::from(!self.add(s))).sum();
-            };
-            sum.rgb[0] += r;
-            sum.rgb[1] += g;
-            sum.rgb[2] += b;
-            sum.illuminance += e;
-            sum.luminance_sq += q;
-        }
+        let sum = PixelSum {
+            rgb: [sums[0], sums[1], sums[2]],
+            illuminance: sums[3],
+            luminance_sq: sums[4],
+            splat_rgb: [0; 3],
+            count: run.len() as u32,
+            rejected: 0,
+        };
         if self.merge(&sum) {
             0
         } else {

@@ -33,6 +33,70 @@ pub(super) fn run_sums(run: &[Sample]) -> Option<[i64; 5]> {
     scalar_run_sums(run)
 }
 
+/// Values whose whole part (in units of 2³² fixed-point units) is below 2^40 in size take
+/// [`wide_run_sums`]: 1024 of them stay far below 2^62.
+const WIDE_LIMIT: f64 = 1_099_511_627_776.0; // 2^40
+
+/// 2⁻³²: a scaled value times this is its whole part's scale (exact: a power of two).
+const SPLIT: f64 = 1.0 / 4_294_967_296.0;
+
+/// [`run_sums`] for runs with larger values (very bright pixels: a lamp millimetres away gives
+/// millions of lux): each scaled value `x` split into a whole number `h` of 2³² units and a
+/// remainder, `x = h · 2³² + l` with `|l| < 2³²`, both exact; `l` has the sign of `x`, so
+/// rounding `x` half away from zero is `h · 2³²` plus `l` rounded the same way. The sums of `h`
+/// and of the rounded `l` come back as one 128-bit sum per value; None when a value's `h` is
+/// 2^40 or more in size (or NaN, or infinite).
+pub(super) fn wide_run_sums(run: &[Sample]) -> Option<[i128; 5]> {
+    debug_assert!(run.len() <= RUN_SAMPLES);
+    #[cfg(target_arch = "x86_64")]
+    if is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2, the only feature `avx2::wide_run_sums` is compiled for.
+        return unsafe { avx2::wide_run_sums(run) };
+    }
+    scalar_wide_run_sums(run)
+}
+
+/// The whole part and the remainder of the scaled value `x`, as integers (`x` rounded half
+/// away from zero is `h · 2³² + l`); None when out of range.
+#[inline(always)]
+fn split(x: f64) -> Option<(i64, i64)> {
+    let m = x * SPLIT;
+    let in_range = m.abs() < WIDE_LIMIT;
+    if !in_range {
+        return None;
+    }
+    // SAFETY: |m| < 2^40 (false for NaN): the truncation is exact and in range.
+    let h: i64 = unsafe { m.to_int_unchecked() };
+    // m - h is m's fraction (exact), and times 2^32 exact: |l| < 2^32.
+    let l = (m - h as f64) * (1.0 / SPLIT);
+    Some((h, round_half_away(l)))
+}
+
+fn scalar_wide_run_sums(run: &[Sample]) -> Option<[i128; 5]> {
+    let (mut whole, mut rest) = ([0i64; 5], [0i64; 5]);
+    for s in run {
+        let scaled = [
+            f64::from(s.rgb.x) * VALUE_SCALE,
+            f64::from(s.rgb.y) * VALUE_SCALE,
+            f64::from(s.rgb.z) * VALUE_SCALE,
+            f64::from(s.illuminance_lx) * VALUE_SCALE,
+            scaled_luminance_sq(s),
+        ];
+        for k in 0..5 {
+            let (h, l) = split(scaled[k])?;
+            whole[k] += h;
+            rest[k] += l;
+        }
+    }
+    Some(join(whole, rest))
+}
+
+/// Σ h · 2³² + Σ l per value.
+#[inline(always)]
+fn join(whole: [i64; 5], rest: [i64; 5]) -> [i128; 5] {
+    std::array::from_fn(|k| (i128::from(whole[k]) << 32) + i128::from(rest[k]))
+}
+
 /// Luminance squared in units of 2⁻¹⁶ (cd/m²)², before rounding.
 #[inline(always)]
 fn scaled_luminance_sq(s: &Sample) -> f64 {
@@ -77,8 +141,8 @@ fn scalar_run_sums(run: &[Sample]) -> Option<[i64; 5]> {
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
     use super::{
-        LUMINANCE_WEIGHTS, RUN_SAMPLES, SQUARE_SCALE, Sample, VALUE_SCALE, add_scaled,
-        scaled_luminance_sq,
+        LUMINANCE_WEIGHTS, RUN_SAMPLES, SPLIT, SQUARE_SCALE, Sample, VALUE_SCALE, WIDE_LIMIT,
+        add_scaled, join, scaled_luminance_sq, split,
     };
     use std::arch::x86_64::*;
 
@@ -112,6 +176,78 @@ mod avx2 {
             );
             (_mm256_add_epi64(_mm256_sub_epi64(whole, up), down), ok)
         }
+    }
+
+    /// Four scaled values split as `super::split` does, as `i64` lanes: the whole parts, the
+    /// rounded remainders, and which were in range (all bits set); out-of-range lanes give 0.
+    #[inline(always)]
+    fn split_lanes(x: __m256d) -> (__m256i, __m256i, __m256d) {
+        // SAFETY: only called from `wide_run_sums`, compiled for AVX2; no memory operands.
+        unsafe {
+            let m = _mm256_mul_pd(x, _mm256_set1_pd(SPLIT));
+            let ok = _mm256_cmp_pd::<_CMP_LT_OQ>(
+                _mm256_andnot_pd(_mm256_set1_pd(-0.0), m),
+                _mm256_set1_pd(WIDE_LIMIT),
+            );
+            let m = _mm256_and_pd(m, ok);
+            let h = _mm256_round_pd::<{ _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC }>(m);
+            let l = _mm256_mul_pd(_mm256_sub_pd(m, h), _mm256_set1_pd(1.0 / SPLIT));
+            let magic = _mm256_set1_pd(MAGIC);
+            let whole = _mm256_sub_epi64(
+                _mm256_castpd_si256(_mm256_add_pd(h, magic)),
+                _mm256_castpd_si256(magic),
+            );
+            let (rest, _) = round_lanes(l);
+            (whole, rest, ok)
+        }
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub(super) fn wide_run_sums(run: &[Sample]) -> Option<[i128; 5]> {
+        debug_assert!(run.len() <= RUN_SAMPLES);
+        let (mut whole, mut rest) = (_mm256_setzero_si256(), _mm256_setzero_si256());
+        let (mut q_whole, mut q_rest) = (_mm256_setzero_si256(), _mm256_setzero_si256());
+        let mut ok_all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+        let value_scale = _mm256_set1_pd(VALUE_SCALE);
+        let square_scale = _mm256_set1_pd(SQUARE_SCALE);
+        let mut four = run.chunks_exact(4);
+        for quad in four.by_ref() {
+            for s in quad {
+                let v = _mm_set_ps(s.illuminance_lx, s.rgb.z, s.rgb.y, s.rgb.x);
+                let (h, l, ok) = split_lanes(_mm256_mul_pd(_mm256_cvtps_pd(v), value_scale));
+                ok_all = _mm256_and_pd(ok_all, ok);
+                whole = _mm256_add_epi64(whole, h);
+                rest = _mm256_add_epi64(rest, l);
+            }
+            let y = |s: &Sample| f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
+            let y = _mm256_set_pd(y(&quad[3]), y(&quad[2]), y(&quad[1]), y(&quad[0]));
+            let (h, l, ok) = split_lanes(_mm256_mul_pd(_mm256_mul_pd(y, y), square_scale));
+            ok_all = _mm256_and_pd(ok_all, ok);
+            q_whole = _mm256_add_epi64(q_whole, h);
+            q_rest = _mm256_add_epi64(q_rest, l);
+        }
+        let (mut q_h, mut q_l) = (
+            lanes_of(q_whole).iter().sum::<i64>(),
+            lanes_of(q_rest).iter().sum::<i64>(),
+        );
+        for s in four.remainder() {
+            let v = _mm_set_ps(s.illuminance_lx, s.rgb.z, s.rgb.y, s.rgb.x);
+            let (h, l, ok) = split_lanes(_mm256_mul_pd(_mm256_cvtps_pd(v), value_scale));
+            ok_all = _mm256_and_pd(ok_all, ok);
+            whole = _mm256_add_epi64(whole, h);
+            rest = _mm256_add_epi64(rest, l);
+            let (h, l) = split(scaled_luminance_sq(s))?;
+            q_h += h;
+            q_l += l;
+        }
+        if _mm256_movemask_pd(ok_all) != 0b1111 {
+            return None;
+        }
+        let (w, r) = (lanes_of(whole), lanes_of(rest));
+        Some(join(
+            [w[0], w[1], w[2], w[3], q_h],
+            [r[0], r[1], r[2], r[3], q_l],
+        ))
     }
 
     /// The four `i64` lanes of `v`.
@@ -260,6 +396,74 @@ mod tests {
         for bad in [f32::NAN, f32::INFINITY, 2.0e9] {
             assert_eq!(run_sums(&[sample([1.0, bad, 1.0], 0.0)]), None);
             assert_eq!(scalar_run_sums(&[sample([1.0, 1.0, 1.0], bad)]), None);
+        }
+    }
+
+    #[test]
+    fn wide_sums_match_the_exact_path() {
+        use super::super::film::PixelSum;
+        // Values past the 64-bit runs (up to 2 · 10^8 cd/m², whose square still fits), with
+        // remainders near halves of the fixed-point unit, both signs, mixed with ordinary
+        // ones; a few past the wide range.
+        let unit = (VALUE_SCALE as f32).recip();
+        let mut h = 5u64;
+        let mut values = Vec::new();
+        for i in 0..6000u32 {
+            h = crate::render::sample_hash(h, i);
+            let u = (h >> 40) as f32 / (1u64 << 24) as f32;
+            values.push(match i % 9 {
+                0 => u * 3.0e6,
+                1 => -u * 2.0e8,
+                2 => 1.0e8 * u,
+                3 => 4.0e5 + unit * 0.5,
+                4 => -(7.0e5 + u),
+                5 => u * 1.0e-3 + unit * 1.5,
+                6 if i % 5 == 0 => 3.0e12,
+                7 => -(u * 1.0e-3) - unit * 2.5,
+                _ => (u - 0.5) * 300.0,
+            });
+        }
+        let samples: Vec<Sample> = values
+            .chunks(4)
+            .filter(|c| c.len() == 4)
+            .map(|c| sample([c[0], c[1], c[2]], c[3]))
+            .collect();
+        let (mut compared, mut declined) = (0, 0);
+        for len in [1, 3, 4, 5, 64, 700] {
+            for run in samples.chunks(len) {
+                let mut exact = PixelSum::default();
+                for s in run {
+                    exact.add(s);
+                }
+                let expected = [
+                    exact.rgb[0],
+                    exact.rgb[1],
+                    exact.rgb[2],
+                    exact.illuminance,
+                    exact.luminance_sq,
+                ];
+                match (wide_run_sums(run), scalar_wide_run_sums(run)) {
+                    (Some(lanes), Some(scalar)) => {
+                        assert_eq!(lanes, scalar, "run of {len}");
+                        assert_eq!(lanes, expected, "run of {len}");
+                        compared += 1;
+                    }
+                    (None, None) => declined += 1,
+                    other => panic!("lanes and scalar disagree on a run of {len}: {other:?}"),
+                }
+            }
+        }
+        // Both outcomes happen, and most runs of one sample are compared.
+        assert!(
+            compared > samples.len() && declined > 0,
+            "{compared} {declined}"
+        );
+        let bright = [sample([1.0, 2.0, 3.0], 2.0e6)];
+        assert_eq!(run_sums(&bright), None, "past the 64-bit runs");
+        assert!(wide_run_sums(&bright).is_some());
+        for bad in [f32::NAN, f32::INFINITY, 3.0e12] {
+            assert_eq!(wide_run_sums(&[sample([1.0, bad, 1.0], 0.0)]), None);
+            assert_eq!(scalar_wide_run_sums(&[sample([1.0, 1.0, 1.0], bad)]), None);
         }
     }
 }
