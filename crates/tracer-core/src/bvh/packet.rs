@@ -400,29 +400,29 @@ impl Bvh {
         self.any8::<Avx8>(rays, out);
     }
 
-    /// The root's children that `frustum` (of a packet) may enter, all without a frustum. When
-    /// none, no ray of the packet hits anything: most packets aimed past a small object end
-    /// there, before the lanes' setup. The traversal takes these for its first node.
+    /// `rays` (lanes past them repeat the first) prepared for the tests, with the root's
+    /// children their frustum may enter (all without a frustum), which the traversal takes for
+    /// its first node. None when it enters none: no ray of the packet hits anything. Most
+    /// packets aimed past a small object end there, before the lanes' set-up.
     #[inline(always)]
-    fn root_candidates<L: Lanes8>(&self, frustum: &Option<Frustum>) -> u32 {
-        match frustum {
+    fn packet<L: Lanes8>(&self, rays: &[Ray]) -> Option<(Rays8<L>, u32)> {
+        let rows = ray_rows::<L>(|i| rays.get(i).unwrap_or(&rays[0]));
+        let frustum = Frustum::new(&rows);
+        let root = match &frustum {
             // No lane's cull limit exceeds f32::MAX (`cull_limits`).
             Some(f) => f.candidates::<L>(&self.nodes[0], f32::MAX),
             None => ALL_CHILDREN,
-        }
+        };
+        (root != 0).then(|| (Rays8::new(rays.len(), &rows, frustum), root))
     }
 
     #[inline(always)]
     fn closest8<L: Lanes8>(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
-        let rows = ray_rows::<L>(|i| rays.get(i).unwrap_or(&rays[0]));
-        let frustum = Frustum::new(&rows);
-        let root = self.root_candidates::<L>(&frustum);
-        if root == 0 {
+        let Some((r, root)) = self.packet::<L>(rays) else {
             out.fill(None);
             return;
-        }
+        };
         let mut root = Some(root);
-        let r = Rays8::<L>::new(rays.len(), &rows, frustum);
         // Lanes without a ray never open a box, so the farthest limit is that of the rays.
         let holds_ray = L::Mask::from_bits(r.active);
         let cull = cull_limits(r.t_max, r.reach);
@@ -548,15 +548,11 @@ impl Bvh {
 
     #[inline(always)]
     fn any8<L: Lanes8>(&self, rays: &[Ray], out: &mut [bool]) {
-        let rows = ray_rows::<L>(|i| rays.get(i).unwrap_or(&rays[0]));
-        let frustum = Frustum::new(&rows);
-        let root = self.root_candidates::<L>(&frustum);
-        if root == 0 {
+        let Some((r, root)) = self.packet::<L>(rays) else {
             out.fill(false);
             return;
-        }
+        };
         let mut root = Some(root);
-        let r = Rays8::<L>::new(rays.len(), &rows, frustum);
         let limit = cull_limits(r.t_max, r.reach);
         let farthest = L::select(
             L::Mask::from_bits(r.active),
