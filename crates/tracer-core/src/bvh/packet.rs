@@ -146,12 +146,14 @@ impl<L: Lanes8> Rays8<L> {
 
     /// The children of `node` that some lane may enter before `limit` (the farthest cull
     /// limit of the lanes). Without a frustum, every child (the caller stops at the first
-    /// empty one).
+    /// empty one). The root's come with the packet (`root`, taken when the root is popped:
+    /// first, and once).
     #[inline(always)]
-    fn candidates(&self, node: &WideNode, limit: f32) -> u32 {
-        match &self.frustum {
-            Some(f) => f.candidates::<L>(node, limit),
-            None => ALL_CHILDREN,
+    fn candidates(&self, node: &WideNode, limit: f32, root: &mut Option<u32>) -> u32 {
+        match (root.take(), &self.frustum) {
+            (Some(bits), _) => bits,
+            (None, Some(f)) => f.candidates::<L>(node, limit),
+            (None, None) => ALL_CHILDREN,
         }
     }
 
@@ -459,11 +461,7 @@ impl Bvh {
             if e.child & LEAF_BIT == 0 {
                 let node = &self.nodes[e.child as usize];
                 let mut n = 0;
-                // The root's come with the packet (it is popped first, and once).
-                let mut candidates = match root.take() {
-                    Some(bits) => bits,
-                    None => r.candidates(node, farthest),
-                };
+                let mut candidates = r.candidates(node, farthest, &mut root);
                 while candidates != 0 {
                     let c = candidates.trailing_zeros() as usize;
                     candidates &= candidates - 1;
@@ -576,11 +574,7 @@ impl Bvh {
             }
             if e.child & LEAF_BIT == 0 {
                 let node = &self.nodes[e.child as usize];
-                // The root's come with the packet (it is popped first, and once).
-                let mut candidates = match root.take() {
-                    Some(bits) => bits,
-                    None => r.candidates(node, farthest),
-                };
+                let mut candidates = r.candidates(node, farthest, &mut root);
                 while candidates != 0 {
                     let c = candidates.trailing_zeros() as usize;
                     candidates &= candidates - 1;
