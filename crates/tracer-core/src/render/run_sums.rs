@@ -75,13 +75,7 @@ fn split(x: f64) -> Option<(i64, i64)> {
 fn scalar_wide_run_sums(run: &[Sample]) -> Option<[i128; 5]> {
     let (mut whole, mut rest) = ([0i64; 5], [0i64; 5]);
     for s in run {
-        let scaled = [
-            f64::from(s.rgb.x) * VALUE_SCALE,
-            f64::from(s.rgb.y) * VALUE_SCALE,
-            f64::from(s.rgb.z) * VALUE_SCALE,
-            f64::from(s.illuminance_lx) * VALUE_SCALE,
-            scaled_luminance_sq(s),
-        ];
+        let scaled = scaled_values(s);
         for k in 0..5 {
             let (h, l) = split(scaled[k])?;
             whole[k] += h;
@@ -95,6 +89,19 @@ fn scalar_wide_run_sums(run: &[Sample]) -> Option<[i128; 5]> {
 #[inline(always)]
 fn join(whole: [i64; 5], rest: [i64; 5]) -> [i128; 5] {
     std::array::from_fn(|k| (i128::from(whole[k]) << 32) + i128::from(rest[k]))
+}
+
+/// A sample's five values scaled to fixed-point units, before rounding: r, g, b and
+/// illuminance times 2³², luminance squared times 2¹⁶.
+#[inline(always)]
+fn scaled_values(s: &Sample) -> [f64; 5] {
+    [
+        f64::from(s.rgb.x) * VALUE_SCALE,
+        f64::from(s.rgb.y) * VALUE_SCALE,
+        f64::from(s.rgb.z) * VALUE_SCALE,
+        f64::from(s.illuminance_lx) * VALUE_SCALE,
+        scaled_luminance_sq(s),
+    ]
 }
 
 /// Luminance squared in units of 2⁻¹⁶ (cd/m²)², before rounding.
@@ -117,13 +124,7 @@ fn scalar_run_sums(run: &[Sample]) -> Option<[i64; 5]> {
     let mut sums = [0i64; 5];
     let mut in_range = true;
     for s in run {
-        let scaled = [
-            f64::from(s.rgb.x) * VALUE_SCALE,
-            f64::from(s.rgb.y) * VALUE_SCALE,
-            f64::from(s.rgb.z) * VALUE_SCALE,
-            f64::from(s.illuminance_lx) * VALUE_SCALE,
-            scaled_luminance_sq(s),
-        ];
+        let scaled = scaled_values(s);
         for (sum, x) in sums.iter_mut().zip(scaled) {
             add_scaled(sum, x, &mut in_range);
         }
