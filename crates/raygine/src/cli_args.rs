@@ -32,9 +32,11 @@ pub struct SceneArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub threads: Option<u32>,
-    /// Light transport: direct (the coursework's model: direct light and mirrors), path or
-    /// bdpt (global illumination: path tracing, or bidirectional). Also spelled --gi.
-    #[arg(long, visible_alias = "gi", value_name = "direct|path|bdpt", default_value = "direct", value_parser = parse_integrator)]
+    /// Light transport: direct (the coursework's model: direct light and mirrors), or global
+    /// illumination by path tracing (path), bidirectional path tracing (bdpt) or light
+    /// tracing (light). Also spelled --gi; `--gi` alone (or `--gi gi`) is the default
+    /// global illumination.
+    #[arg(long, visible_alias = "gi", value_name = "direct|path|bdpt|light", default_value = "direct", num_args = 0..=1, default_missing_value = "gi", value_parser = parse_integrator)]
     pub integrator: IntegratorKind,
     /// Path mode: at most N diffuse or glossy bounces (1: direct light only; mirrors do not
     /// count). Default: no limit.
@@ -70,7 +72,7 @@ pub struct DisplayArgs {
 
 fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
     IntegratorKind::from_name(s)
-        .ok_or_else(|| format!("unknown integrator `{s}` (direct, path, bdpt)"))
+        .ok_or_else(|| format!("unknown integrator `{s}` (direct, path, bdpt, light)"))
 }
 
 fn parse_seconds(s: &str) -> Result<f64, String> {
@@ -85,7 +87,9 @@ impl SceneArgs {
     pub fn samples_or(&self, fallback: u32) -> u32 {
         self.samples.unwrap_or(match self.integrator {
             IntegratorKind::Direct => fallback,
-            IntegratorKind::Path | IntegratorKind::Bidirectional => PATH_DEFAULT_SAMPLES,
+            IntegratorKind::Path | IntegratorKind::Bidirectional | IntegratorKind::Light => {
+                PATH_DEFAULT_SAMPLES
+            }
         })
     }
 }

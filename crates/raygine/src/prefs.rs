@@ -43,7 +43,7 @@ impl Default for Prefs {
 /// The light transport a new user starts with: global illumination, bidirectional (lamps close
 /// to surfaces converge in seconds, as in the built-in Cornell box).
 pub fn default_integrator() -> IntegratorKind {
-    IntegratorKind::Bidirectional
+    IntegratorKind::DEFAULT_GI
 }
 
 impl Prefs {

@@ -122,10 +122,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let scene = &loaded.scene;
     let transport = match settings.integrator {
         IntegratorKind::Direct => format!("direct, mirror depth {}", settings.max_depth),
-        IntegratorKind::Path | IntegratorKind::Bidirectional => match settings.max_bounces {
-            Some(n) => format!("{}, at most {n} bounces", settings.integrator),
-            None => format!("{}, unlimited bounces", settings.integrator),
-        },
+        IntegratorKind::Path | IntegratorKind::Bidirectional | IntegratorKind::Light => {
+            match settings.max_bounces {
+                Some(n) => format!("{}, at most {n} bounces", settings.integrator),
+                None => format!("{}, unlimited bounces", settings.integrator),
+            }
+        }
     };
     println!(
         "{}: {} triangles, {} breps, BVH {:.1} ms; {}x{} px, {} spp, {transport}, {} threads",

@@ -1,10 +1,11 @@
-//! The bidirectional integrator (and glass in both global-illumination integrators) against
-//! exact answers and an independent renderer: furnaces, CIE 171:2006 case 5.8 through grids,
-//! a glass slab at normal incidence, the built-in Cornell box against Mitsuba 3's light tracer,
+//! The integrators that trace light subpaths, bidirectional and light tracing (and glass in
+//! every global-illumination integrator), against exact answers and an independent renderer:
+//! furnaces (diffuse, and diffuse with a mirror lobe), CIE 171:2006 case 5.8 through grids, a
+//! glass slab at normal incidence, the built-in Cornell box against Mitsuba 3's light tracer,
 //! one bounce against direct mode, and bit-identical results across threads and sample ranges.
 //!
-//! Splats (light subpaths landing in other pixels) are not in a pixel's summed squares, so image
-//! errors here come from independent batches of samples instead of the film's own estimate.
+//! Image errors here come from independent batches of samples, not from the film's own
+//! estimate (which `std_error_honesty.rs` checks against such batches).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod gi_support;
@@ -24,6 +25,33 @@ fn bdpt_settings(w: u32, h: u32, spp: u32) -> RenderSettings {
         samples_per_pixel: spp,
         integrator: IntegratorKind::Bidirectional,
         ..RenderSettings::default()
+    }
+}
+
+/// The integrators that splat light subpaths.
+const SPLATTING: [IntegratorKind; 2] = [IntegratorKind::Bidirectional, IntegratorKind::Light];
+
+/// Samples light tracing takes for as many of the bidirectional integrator's: its samples are
+/// cheaper and noisier (no camera subpath, one connection a light vertex).
+fn samples_for(kind: IntegratorKind, bdpt_samples: u32) -> u32 {
+    match kind {
+        IntegratorKind::Light => bdpt_samples * 8,
+        _ => bdpt_samples,
+    }
+}
+
+/// The largest relative standard error a check accepts: light tracing's is looser.
+fn max_se_for(kind: IntegratorKind, bdpt_se: f64) -> f64 {
+    match kind {
+        IntegratorKind::Light => bdpt_se * 1.5,
+        _ => bdpt_se,
+    }
+}
+
+fn settings_for(kind: IntegratorKind, w: u32, h: u32, spp: u32) -> RenderSettings {
+    RenderSettings {
+        integrator: kind,
+        ..bdpt_settings(w, h, spp)
     }
 }
 
@@ -74,31 +102,78 @@ fn image_stats(film: &Film) -> [f64; 2] {
 /// Furnace: surfaces that all emit Le and reflect diffusely with ρ show L = Le / (1 − ρ), and
 /// every pixel's illuminance is π L.
 #[test]
-fn bidirectional_furnace_shows_le_over_one_minus_rho() {
+fn splatting_furnace_shows_le_over_one_minus_rho() {
     let sc = box_scene(2.0, 2.0, 2.0, vec![]);
     let le = 100.0;
-    for rho in [0.5f32, 0.9] {
-        let mats = vec![emitting(diffuse(rho), le); 6];
-        let cam = camera([1.0, 1.0, 1.5], [1.0, 1.0, 0.0], 70.0);
-        let st = setup(&sc, cam, vec![], mats);
-        let [(l, l_se), (e, e_se)] =
-            batched(&sc, &st, &bdpt_settings(16, 16, 0), 8, 64, image_stats);
-        let exact = f64::from(le) / (1.0 - f64::from(rho));
+    for kind in SPLATTING {
+        for rho in [0.5f32, 0.9] {
+            let mats = vec![emitting(diffuse(rho), le); 6];
+            let cam = camera([1.0, 1.0, 1.5], [1.0, 1.0, 0.0], 70.0);
+            let st = setup(&sc, cam, vec![], mats);
+            let [(l, l_se), (e, e_se)] = batched(
+                &sc,
+                &st,
+                &settings_for(kind, 16, 16, 0),
+                8,
+                samples_for(kind, 64),
+                image_stats,
+            );
+            let exact = f64::from(le) / (1.0 - f64::from(rho));
+            check(
+                &format!("{kind} furnace rho {rho}"),
+                l,
+                l_se,
+                exact,
+                0.005,
+                max_se_for(kind, 0.002),
+            );
+            check(
+                &format!("{kind} furnace E, rho {rho}"),
+                e,
+                e_se,
+                PI * exact,
+                0.005,
+                0.002,
+            );
+        }
+    }
+}
+
+/// Furnace with two lobes: every surface emits Le, reflects diffusely with Kd and mirrors
+/// with Ks, so L = Le / (1 − Kd − Ks). Light tracing joins light vertices to the camera
+/// through the diffuse lobe only and follows the mirror lobe from the camera: both halves
+/// must add up, in every pixel's mean.
+#[test]
+fn splatting_furnace_with_a_mirror_lobe() {
+    let sc = box_scene(2.0, 2.0, 2.0, vec![]);
+    let le = 100.0;
+    let (kd, ks) = (0.5f32, 0.3f32);
+    let m = Material {
+        kd: [kd; 3],
+        ks: [ks; 3],
+        glossiness: 0.0,
+        emission_cd_m2: le,
+        ..Material::default()
+    };
+    let cam = camera([1.0, 1.0, 1.5], [1.0, 1.0, 0.0], 70.0);
+    let st = setup(&sc, cam, vec![], vec![m; 6]);
+    let exact = f64::from(le) / (1.0 - f64::from(kd + ks));
+    for kind in SPLATTING {
+        let [(l, l_se), _] = batched(
+            &sc,
+            &st,
+            &settings_for(kind, 16, 16, 0),
+            8,
+            samples_for(kind, 64),
+            image_stats,
+        );
         check(
-            &format!("bdpt furnace rho {rho}"),
+            &format!("{kind} furnace, Kd {kd} + mirror {ks}"),
             l,
             l_se,
             exact,
             0.005,
-            0.002,
-        );
-        check(
-            &format!("bdpt furnace E, rho {rho}"),
-            e,
-            e_se,
-            PI * exact,
-            0.005,
-            0.002,
+            max_se_for(kind, 0.002),
         );
     }
 }
@@ -107,18 +182,23 @@ fn bidirectional_furnace_shows_le_over_one_minus_rho() {
 /// area-mean indirect illuminance of a 4 m cube with a 10,000 lm point source at its centre is
 /// ρ Φ / (S (1 − ρ)), S = 96 m²; the exact direct part is subtracted point by point.
 #[test]
-fn bidirectional_cie_5_8_through_grids() {
+fn splatting_cie_5_8_through_grids() {
     let sc = box_scene(4.0, 4.0, 4.0, vec![]);
     let flux = 10_000.0f32;
     let source = Light::point([2.0, 2.0, 2.0], flux / (4.0 * std::f32::consts::PI));
-    for rho in [0.5f32, 0.9] {
+    for (kind, rho) in SPLATTING.into_iter().flat_map(|k| [(k, 0.5f32), (k, 0.9)]) {
         let cam = camera([2.0, 2.0, 3.9], [2.0, 2.0, 0.0], 60.0);
         let mut st = setup(&sc, cam, vec![source.clone()], vec![diffuse(rho); 6]);
         st.grids = face_grids(4.0, 4.0, 4.0, 32);
         let settings = MeasureSettings {
-            integrator: IntegratorKind::Bidirectional,
+            integrator: kind,
             max_bounces: None,
-            samples: 40,
+            // A light subpath reaches a given grid point's surroundings rarely.
+            samples: if kind == IntegratorKind::Light {
+                800
+            } else {
+                40
+            },
             time_limit: None,
             target_error: None,
         };
@@ -136,12 +216,12 @@ fn bidirectional_cie_5_8_through_grids() {
         }
         let exact = f64::from(rho) * f64::from(flux) / (96.0 * (1.0 - f64::from(rho)));
         check(
-            &format!("bdpt CIE 5.8 rho {rho}"),
+            &format!("{kind} CIE 5.8 rho {rho}"),
             sum / n,
             var.sqrt() / n,
             exact,
             0.005,
-            0.002,
+            max_se_for(kind, 0.002) * 1.5,
         );
     }
 }
@@ -176,7 +256,11 @@ fn glass_slab_transmits_one_minus_r_over_one_plus_r() {
     let cam = camera([2.0, 2.0, 3.0], [2.0, 2.0, 0.0], 2.0);
     let st = setup(&sc, cam, vec![], vec![glass, lamp]);
     let exact = 1000.0 * (1.0 - 0.04) / (1.0 + 0.04);
-    for kind in [IntegratorKind::Path, IntegratorKind::Bidirectional] {
+    for kind in [
+        IntegratorKind::Path,
+        IntegratorKind::Bidirectional,
+        IntegratorKind::Light,
+    ] {
         let settings = RenderSettings {
             integrator: kind,
             ..bdpt_settings(4, 4, 4096)
@@ -222,52 +306,56 @@ fn regions(film: &Film) -> [f64; 6] {
 }
 
 /// The case: part 1's path tracer leaves these regions 20-60 % low for minutes; the
-/// bidirectional method gets within 1 % of the light tracer in seconds.
+/// bidirectional method and light tracing get within 1 % of Mitsuba's light tracer in seconds.
 #[test]
 fn cornell_box_regions_match_mitsubas_light_tracer() {
     let loaded = builtin_cornell_box(None).unwrap();
-    let settings = RenderSettings {
-        pixel_illuminance: false,
-        ..bdpt_settings(160, 120, 0)
-    };
-    let results = batched(&loaded.scene, &loaded.setup, &settings, 6, 12, regions);
-    for ((name, .., reference), (mean, se)) in MITSUBA_PTRACER_REGIONS.iter().zip(results) {
-        println!(
-            "{name}: {mean:.3} ± {se:.3} cd/m² vs Mitsuba {reference} ({:+.2} %)",
-            (mean / reference - 1.0) * 100.0
-        );
-        assert!(
-            (mean / reference - 1.0).abs() < 0.01,
-            "{name}: {mean} vs {reference}"
-        );
-        assert!(
-            (mean - reference).abs() < 4.0 * se + 0.002 * reference,
-            "{name}"
-        );
+    for (kind, per) in [
+        (IntegratorKind::Bidirectional, 12),
+        (IntegratorKind::Light, 24),
+    ] {
+        let settings = RenderSettings {
+            pixel_illuminance: false,
+            ..settings_for(kind, 160, 120, 0)
+        };
+        let results = batched(&loaded.scene, &loaded.setup, &settings, 6, per, regions);
+        for ((name, .., reference), (mean, se)) in MITSUBA_PTRACER_REGIONS.iter().zip(results) {
+            println!(
+                "{kind} {name}: {mean:.3} ± {se:.3} cd/m² vs Mitsuba {reference} ({:+.2} %)",
+                (mean / reference - 1.0) * 100.0
+            );
+            assert!(
+                (mean / reference - 1.0).abs() < 0.01,
+                "{kind} {name}: {mean} vs {reference}"
+            );
+            assert!(
+                (mean - reference).abs() < 4.0 * se + 0.002 * reference,
+                "{kind} {name}"
+            );
+        }
     }
 }
 
 /// With the light 49 mm under the ceiling, where part 1's path tracer converges, both
 /// integrators agree region by region.
 #[test]
-fn bidirectional_agrees_with_the_path_tracer_where_it_converges() {
+fn splatting_agrees_with_the_path_tracer_where_it_converges() {
     let mut loaded = builtin_cornell_box(None).unwrap();
     loaded.setup.lights[0].position[1] = 500.0;
     let (sc, st) = (&loaded.scene, &loaded.setup);
-    let b = batched(sc, st, &bdpt_settings(80, 60, 0), 6, 8, regions);
-    let p_settings = RenderSettings {
-        integrator: IntegratorKind::Path,
-        ..bdpt_settings(80, 60, 0)
-    };
+    let p_settings = settings_for(IntegratorKind::Path, 80, 60, 0);
     let p = batched(sc, st, &p_settings, 6, 48, regions);
-    for (i, (name, ..)) in MITSUBA_PTRACER_REGIONS.iter().enumerate() {
-        let ((mb, sb), (mp, sp)) = (b[i], p[i]);
-        println!("{name}: bdpt {mb:.3} ± {sb:.3}, path {mp:.3} ± {sp:.3}");
-        let se = (sb * sb + sp * sp).sqrt();
-        assert!(
-            (mb - mp).abs() < 4.0 * se + 0.002 * mp,
-            "{name}: {mb} vs {mp}"
-        );
+    for kind in SPLATTING {
+        let b = batched(sc, st, &settings_for(kind, 80, 60, 0), 6, 8, regions);
+        for (i, (name, ..)) in MITSUBA_PTRACER_REGIONS.iter().enumerate() {
+            let ((mb, sb), (mp, sp)) = (b[i], p[i]);
+            println!("{name}: {kind} {mb:.3} ± {sb:.3}, path {mp:.3} ± {sp:.3}");
+            let se = (sb * sb + sp * sp).sqrt();
+            assert!(
+                (mb - mp).abs() < 4.0 * se + 0.002 * mp,
+                "{kind} {name}: {mb} vs {mp}"
+            );
+        }
     }
 }
 
@@ -275,48 +363,53 @@ fn bidirectional_agrees_with_the_path_tracer_where_it_converges() {
 /// light 49 mm under the ceiling: at 0.1 mm its hot spot is far smaller than a pixel, and
 /// direct mode's few samples a pixel would miss it).
 #[test]
-fn bidirectional_with_one_bounce_equals_direct() {
+fn splatting_with_one_bounce_equals_direct() {
     let mut loaded = builtin_cornell_box(None).unwrap();
     loaded.setup.lights[0].position[1] = 500.0;
     let (sc, st) = (&loaded.scene, &loaded.setup);
-    let mut one = bdpt_settings(48, 36, 0);
-    one.max_bounces = Some(1);
     let direct = RenderSettings {
         integrator: IntegratorKind::Direct,
         ..bdpt_settings(48, 36, 64)
     };
-    let b = batched(sc, st, &one, 6, 16, regions);
     let (d, _) = render(sc, st, &direct);
-    for (i, (name, ..)) in MITSUBA_PTRACER_REGIONS.iter().enumerate() {
-        let reference = regions(&d)[i];
-        let (mean, se) = b[i];
-        println!("{name}: bdpt one bounce {mean:.3} ± {se:.3}, direct {reference:.3}");
-        assert!(
-            (mean - reference).abs() < 4.0 * se + 0.003 * reference,
-            "{name}: {mean} vs {reference}"
-        );
+    for kind in SPLATTING {
+        let mut one = settings_for(kind, 48, 36, 0);
+        one.max_bounces = Some(1);
+        let b = batched(sc, st, &one, 6, 16, regions);
+        for (i, (name, ..)) in MITSUBA_PTRACER_REGIONS.iter().enumerate() {
+            let reference = regions(&d)[i];
+            let (mean, se) = b[i];
+            println!("{name}: {kind} one bounce {mean:.3} ± {se:.3}, direct {reference:.3}");
+            assert!(
+                (mean - reference).abs() < 4.0 * se + 0.003 * reference,
+                "{kind} {name}: {mean} vs {reference}"
+            );
+        }
     }
 }
 
 /// Bit-identical films (splats included) for 1 and 2 threads, and when sample ranges are
 /// rendered apart and added.
 #[test]
-fn bidirectional_is_bit_identical_across_threads_and_ranges() {
+fn splatting_is_bit_identical_across_threads_and_ranges() {
     let loaded = builtin_cornell_box(None).unwrap();
-    let settings = bdpt_settings(40, 30, 5);
-    let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| render(&loaded.scene, &loaded.setup, &settings).0)
-    };
-    let one = run(1);
-    assert!(one.pixels.iter().any(|p| p.splat_rgb != [0; 3]));
-    assert_eq!(one, run(2));
-    let (mut a, _) = render_samples(&loaded.scene, &loaded.setup, &settings, 3..5);
-    let (b, _) = render_samples(&loaded.scene, &loaded.setup, &settings, 0..3);
-    a.merge(&b).unwrap();
-    assert_eq!(one, a);
-    assert_eq!(one.rejected_samples(), 0);
+    for kind in SPLATTING {
+        let settings = settings_for(kind, 40, 30, 5);
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| render(&loaded.scene, &loaded.setup, &settings).0)
+        };
+        let one = run(1);
+        assert!(one.pixels.iter().any(|p| p.splat_rgb != [0; 3]));
+        assert!(one.pixels.iter().any(|p| p.splat_luminance_sq != 0));
+        assert_eq!(one, run(2), "{kind}");
+        let (mut a, _) = render_samples(&loaded.scene, &loaded.setup, &settings, 3..5);
+        let (b, _) = render_samples(&loaded.scene, &loaded.setup, &settings, 0..3);
+        a.merge(&b).unwrap();
+        assert_eq!(one, a, "{kind}");
+        assert_eq!(one.rejected_samples(), 0);
+    }
 }

@@ -6,6 +6,8 @@
 //! - [`IntegratorKind::Path`]: global illumination by unbiased path tracing.
 //! - [`IntegratorKind::Bidirectional`]: global illumination by bidirectional path tracing
 //!   (light subpaths too, splatted to the film), for lamps close to surfaces and caustics.
+//! - [`IntegratorKind::Light`]: global illumination by light tracing: light subpaths joined to
+//!   the camera (splats) and to sensors, for diffuse rooms lit by lamps close to surfaces.
 
 mod bdpt;
 mod direct;
@@ -51,14 +53,25 @@ pub enum IntegratorKind {
     Path,
     /// Global illumination (bidirectional path tracing).
     Bidirectional,
+    /// Global illumination (light tracing).
+    Light,
 }
 
 impl IntegratorKind {
-    pub const ALL: [IntegratorKind; 3] = [
+    /// The global-illumination integrator the viewer opens in and `--gi` names by default.
+    pub const DEFAULT_GI: IntegratorKind = IntegratorKind::Bidirectional;
+
+    pub const ALL: [IntegratorKind; 4] = [
         IntegratorKind::Direct,
         IntegratorKind::Path,
         IntegratorKind::Bidirectional,
+        IntegratorKind::Light,
     ];
+
+    /// Whether light subpaths are traced and splatted to the film.
+    pub fn splats(self) -> bool {
+        matches!(self, IntegratorKind::Bidirectional | IntegratorKind::Light)
+    }
 
     /// The command line's name.
     pub fn name(self) -> &'static str {
@@ -66,6 +79,7 @@ impl IntegratorKind {
             IntegratorKind::Direct => "direct",
             IntegratorKind::Path => "path",
             IntegratorKind::Bidirectional => "bdpt",
+            IntegratorKind::Light => "light",
         }
     }
 
@@ -75,6 +89,7 @@ impl IntegratorKind {
             IntegratorKind::Direct => "Direct (coursework)",
             IntegratorKind::Path => "Global illumination (path)",
             IntegratorKind::Bidirectional => "Global illumination (bidirectional)",
+            IntegratorKind::Light => "Global illumination (light tracing)",
         }
     }
 
@@ -82,7 +97,9 @@ impl IntegratorKind {
         match s {
             "direct" => Some(IntegratorKind::Direct),
             "path" => Some(IntegratorKind::Path),
-            "bdpt" | "bidirectional" | "gi" => Some(IntegratorKind::Bidirectional),
+            "bdpt" | "bidirectional" => Some(IntegratorKind::Bidirectional),
+            "light" | "ptracer" | "light-tracing" => Some(IntegratorKind::Light),
+            "gi" => Some(IntegratorKind::DEFAULT_GI),
             _ => None,
         }
     }
@@ -111,7 +128,7 @@ pub struct Integrator<'a> {
 
 impl<'a> Integrator<'a> {
     pub fn new(kind: IntegratorKind, prep: Prepared<'a>, max_bounces: Option<u32>) -> Self {
-        let lights = if kind == IntegratorKind::Bidirectional {
+        let lights = if kind.splats() {
             LightPicker::new(&prep)
         } else {
             LightPicker::default()
@@ -134,6 +151,7 @@ impl<'a> Integrator<'a> {
             max_bounces: self.max_bounces.unwrap_or(u32::MAX),
             rr_threshold,
             strategies: self.strategies,
+            light_tracing: self.kind == IntegratorKind::Light,
         }
     }
 
@@ -147,21 +165,32 @@ impl<'a> Integrator<'a> {
         sample_index: u32,
         splats: &mut Vec<Splat>,
     ) -> Sample {
-        if self.kind != IntegratorKind::Bidirectional {
+        if !self.kind.splats() {
             return self.sample(ray, rng, sample_index);
         }
         let camera = self.bidirectional(Eye::Camera(*basis), BDPT_RR_THRESHOLD);
         let mut rays = 0;
-        let light_path = camera.light_subpath(&mut bdpt::light_stream(rng), &mut rays);
-        let (estimate, first) = camera.camera_sample(ray, rng, &light_path, splats);
+        let first_splat = splats.len();
+        let (estimate, first, illuminance_lx) = bdpt::with_subpaths(|paths| {
+            camera.light_subpath(&mut bdpt::light_stream(rng), &mut rays, paths);
+            let (estimate, first) = camera.camera_sample(ray, rng, paths, splats);
+            let mut illuminance_lx = 0.0;
+            if let Some((p, n)) = first.filter(|_| self.pixel_illuminance) {
+                // Bidirectional in both modes: a pixel's surface point often lies close to
+                // other surfaces (corners, glowing walls), where joining light vertices to it
+                // alone is heavy-tailed. It reuses the sample's light subpath.
+                let sensor = Bidirectional {
+                    light_tracing: false,
+                    ..self.bidirectional(Eye::Sensor, BDPT_RR_THRESHOLD)
+                };
+                let e = sensor.sensor_sample(p, n, &mut bdpt::sensor_stream(rng), paths);
+                rays += e.rays;
+                illuminance_lx = crate::light::luminance(e.value);
+            }
+            (estimate, first, illuminance_lx)
+        });
+        combine_splats(splats, first_splat);
         rays += estimate.rays;
-        let mut illuminance_lx = 0.0;
-        if let Some((p, n)) = first.filter(|_| self.pixel_illuminance) {
-            let sensor = self.bidirectional(Eye::Sensor, BDPT_RR_THRESHOLD);
-            let e = sensor.sensor_sample(p, n, &mut bdpt::sensor_stream(rng), &light_path);
-            rays += e.rays;
-            illuminance_lx = crate::light::luminance(e.value);
-        }
         Sample {
             rgb: estimate.value,
             illuminance_lx,
@@ -184,7 +213,7 @@ impl<'a> Integrator<'a> {
         match self.kind {
             IntegratorKind::Direct => direct::trace(&self.prep, ray, rng),
             // Without a film to splat to (previews) the bidirectional mode path-traces.
-            IntegratorKind::Path | IntegratorKind::Bidirectional => {
+            IntegratorKind::Path | IntegratorKind::Bidirectional | IntegratorKind::Light => {
                 let rr = if sample_index == 0 { 1.0 } else { RR_THRESHOLD };
                 self.path(rr).trace(ray, rng)
             }
@@ -202,14 +231,39 @@ impl<'a> Integrator<'a> {
                 rr_threshold: RR_THRESHOLD,
             },
             IntegratorKind::Path => self.path(RR_THRESHOLD),
-            IntegratorKind::Bidirectional => {
+            IntegratorKind::Bidirectional | IntegratorKind::Light => {
                 let sensor = self.bidirectional(Eye::Sensor, BDPT_RR_THRESHOLD);
-                let light_path = sensor.light_subpath(&mut bdpt::light_stream(rng), &mut rays);
-                let e = sensor.sensor_sample(p, n, rng, &light_path);
+                let e = bdpt::with_subpaths(|paths| {
+                    sensor.light_subpath(&mut bdpt::light_stream(rng), &mut rays, paths);
+                    sensor.sensor_sample(p, n, rng, paths)
+                });
                 return (crate::light::luminance(e.value), rays + e.rays);
             }
         };
         let e = tracer.irradiance(p, n, rng, &mut rays);
         (crate::light::luminance(e), rays)
     }
+}
+
+/// Joins the splats from `first` on (one light subpath's) that land in the same pixel, so that
+/// each pixel receives one value per light subpath: the film's variance of the splats squares
+/// whole subpaths' contributions (see `PixelSum::luminance_std_error`).
+fn combine_splats(splats: &mut Vec<Splat>, first: usize) {
+    let mut end = splats.len();
+    let mut i = first;
+    while i < end {
+        let mut j = i + 1;
+        while j < end {
+            if (splats[j].x, splats[j].y) == (splats[i].x, splats[i].y) {
+                let rgb = splats[j].rgb;
+                splats[i].rgb += rgb;
+                splats.swap(j, end - 1);
+                end -= 1;
+            } else {
+                j += 1;
+            }
+        }
+        i += 1;
+    }
+    splats.truncate(end);
 }

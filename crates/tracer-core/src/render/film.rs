@@ -92,6 +92,10 @@ pub struct PixelSum {
     /// Σ luminance per channel that light subpaths of every pixel's samples splatted here
     /// (bidirectional mode), units of 2⁻³² cd/m²; divided by this pixel's count like its own.
     pub splat_rgb: [i128; 3],
+    /// Σ over light subpaths of the squared Rec. 709 luminance each splatted here (all of one
+    /// subpath's splats into this pixel count as one value), units of 2⁻¹⁶ (cd/m²)²: the
+    /// variance the splats add to the pixel's mean (see [`PixelSum::luminance_std_error`]).
+    pub splat_luminance_sq: i128,
     /// Samples added.
     pub count: u32,
     /// Samples refused (not finite, or beyond the fixed-point range).
@@ -150,6 +154,7 @@ impl PixelSum {
                 illuminance: i128::from(sums[3]),
                 luminance_sq: i128::from(sums[4]),
                 splat_rgb: [0; 3],
+                splat_luminance_sq: 0,
                 count: run.len() as u32,
                 rejected: 0,
             };
@@ -174,6 +179,7 @@ impl PixelSum {
             illuminance: sums[3],
             luminance_sq: sums[4],
             splat_rgb: [0; 3],
+            splat_luminance_sq: 0,
             count: run.len() as u32,
             rejected: 0,
         };
@@ -184,23 +190,35 @@ impl PixelSum {
         }
     }
 
-    /// Adds a splat (luminance per channel); false (and counted as rejected) when it cannot be
-    /// represented.
+    /// Adds a splat (luminance per channel: everything one light subpath splatted into this
+    /// pixel); false (and counted as rejected) when it cannot be represented.
     pub fn add_splat(&mut self, rgb: Vec3) -> bool {
+        let y = f64::from(rgb.dot(LUMINANCE_WEIGHTS));
         let fixed = (
             to_fixed(f64::from(rgb.x), VALUE_SCALE),
             to_fixed(f64::from(rgb.y), VALUE_SCALE),
             to_fixed(f64::from(rgb.z), VALUE_SCALE),
+            to_fixed(y * y, SQUARE_SCALE),
         );
-        let (Some(r), Some(g), Some(b)) = fixed else {
-            self.rejected += 1;
+        let (Some(r), Some(g), Some(b), Some(q)) = fixed else {
+            self.rejected = self.rejected.saturating_add(1);
             return false;
         };
-        let sum = PixelSum {
-            splat_rgb: [r, g, b],
-            ..PixelSum::default()
+        let sums = (|| {
+            Some((
+                self.splat_rgb[0].checked_add(r)?,
+                self.splat_rgb[1].checked_add(g)?,
+                self.splat_rgb[2].checked_add(b)?,
+                self.splat_luminance_sq.checked_add(q)?,
+            ))
+        })();
+        let Some((r, g, b, q)) = sums else {
+            self.rejected = self.rejected.saturating_add(1);
+            return false;
         };
-        self.merge(&sum)
+        self.splat_rgb = [r, g, b];
+        self.splat_luminance_sq = q;
+        true
     }
 
     /// Adds another sum of the same pixel; false when the result would overflow (the sum is
@@ -220,6 +238,9 @@ impl PixelSum {
                     self.splat_rgb[1].checked_add(other.splat_rgb[1])?,
                     self.splat_rgb[2].checked_add(other.splat_rgb[2])?,
                 ],
+                splat_luminance_sq: self
+                    .splat_luminance_sq
+                    .checked_add(other.splat_luminance_sq)?,
                 count: self.count.checked_add(other.count)?,
                 rejected: self.rejected.saturating_add(other.rejected),
             })
@@ -298,9 +319,18 @@ impl PixelSum {
         sum / f64::from(self.count)
     }
 
-    /// Standard error of the mean luminance (cd/m²) from the summed squares; None with fewer
-    /// than two samples. Splats are not in the squares: this is the error of the pixel's own
+    /// Standard error of the mean luminance (cd/m²), splats included; None with fewer than two
     /// samples.
+    ///
+    /// The mean is (Σ own samples + Σ splats) / n. The n own samples are independent and alike,
+    /// so their part contributes their sample variance / n. The splats come from the light
+    /// subpaths of every pixel's samples: independent and alike too, each adding a value c_j
+    /// (zero for most), so their part of the variance of the mean is Σ_j Var(c_j) / n², which
+    /// Σ_j c_j² / n² estimates. It leaves out −Σ_j E[c_j]² / n², which is the squared mean of
+    /// the splats over the number of light subpaths (the image's samples): negligible, and it
+    /// errs on the side of a larger error. A light subpath also lights its own pixel's sample
+    /// through other connections; that correlation is ignored (a subpath rarely splats into
+    /// its own pixel).
     pub fn luminance_std_error(&self) -> Option<f64> {
         if self.count < 2 {
             return None;
@@ -309,7 +339,8 @@ impl PixelSum {
         let mean = self.own_mean_luminance();
         let mean_sq = from_fixed(self.luminance_sq, SQUARE_SCALE) / n;
         let var = (mean_sq - mean * mean).max(0.0) * n / (n - 1.0);
-        Some((var / n).sqrt())
+        let splat_var = from_fixed(self.splat_luminance_sq, SQUARE_SCALE) / (n * n);
+        Some((var / n + splat_var).sqrt())
     }
 }
 
@@ -357,7 +388,8 @@ impl Film {
         }
     }
 
-    /// Adds light-subpath splats (bidirectional mode). Exact and order-independent like
+    /// Adds light-subpath splats (bidirectional mode): each is everything one light subpath
+    /// sent to its pixel ([`crate::integrator::Splat`]). Exact and order-independent like
     /// samples.
     pub fn add_splats(&mut self, splats: &[crate::integrator::Splat]) {
         for s in splats {

@@ -97,8 +97,13 @@ pub fn render(scene: &Scene, setup: &Setup, settings: &RenderSettings) -> (Film,
 }
 
 /// Renders sample after sample of the whole image until `settings.samples_per_pixel` or until
-/// `time_limit` has passed (checked after each full pass, at least one pass). The film equals
-/// [`render`]'s with the number of samples reached.
+/// `time_limit` has passed (at least one pass). The film equals [`render`]'s with the number
+/// of samples reached.
+///
+/// After a first pass alone, passes are rendered in chunks sized from the measured time per
+/// pass to end by the limit (at most twice the passes done so far): one pass at a time, each a
+/// parallel job of its own, left a quarter of a small image's time in thread start-up and
+/// stragglers.
 pub fn render_for(
     scene: &Scene,
     setup: &Setup,
@@ -109,16 +114,27 @@ pub fn render_for(
         return render(scene, setup, settings);
     };
     let started = std::time::Instant::now();
+    let frame = FrameSampler::new(scene, setup, settings);
+    let target = settings.samples_per_pixel.max(1);
     let mut film = Film::new(settings.width, settings.height);
     let mut rays = 0;
     let mut done = 0;
-    while done < settings.samples_per_pixel.max(1) {
-        let (pass, stats) = render_samples(scene, setup, settings, done..done + 1);
-        // Same size, one sample a pixel: only an overflow can fail, and it is counted as
-        // rejected samples in the film.
-        let _ = film.merge(&pass);
-        rays += stats.rays;
-        done += 1;
+    let limit_secs = limit.as_secs_f64();
+    while done < target {
+        let elapsed = started.elapsed().as_secs_f64();
+        let chunk = if done == 0 {
+            1
+        } else {
+            let per_pass = elapsed / f64::from(done);
+            let fit = ((limit_secs - elapsed) / per_pass.max(1e-9)).floor();
+            (fit.min(f64::from(done) * 2.0) as u32).clamp(1, target - done)
+        };
+        let (part, part_rays) = render_range(&frame, settings, done..done + chunk);
+        // Same size: only an overflow can fail, and it is counted as rejected samples in the
+        // film.
+        let _ = film.merge(&part);
+        rays += part_rays;
+        done += chunk;
         if started.elapsed() >= limit {
             break;
         }
@@ -142,6 +158,21 @@ pub fn render_samples(
 ) -> (Film, RenderStats) {
     let started = std::time::Instant::now();
     let frame = FrameSampler::new(scene, setup, settings);
+    let (film, rays) = render_range(&frame, settings, samples.clone());
+    let stats = RenderStats {
+        rays,
+        elapsed_secs: started.elapsed().as_secs_f64(),
+        samples_per_pixel: samples.len() as u32,
+    };
+    (film, stats)
+}
+
+/// [`render_samples`] with a frame sampler made once; returns the film and the rays traced.
+fn render_range(
+    frame: &FrameSampler<'_>,
+    settings: &RenderSettings,
+    samples: Range<u32>,
+) -> (Film, u64) {
     let mut film = Film::new(settings.width, settings.height);
     let width = settings.width as usize;
     let band_len = width * BAND_ROWS as usize;
@@ -192,10 +223,5 @@ pub fn render_samples(
     for band in &splats {
         film.add_splats(band);
     }
-    let stats = RenderStats {
-        rays,
-        elapsed_secs: started.elapsed().as_secs_f64(),
-        samples_per_pixel: samples.len() as u32,
-    };
-    (film, stats)
+    (film, rays)
 }

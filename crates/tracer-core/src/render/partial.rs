@@ -8,7 +8,7 @@ use super::film::{Film, PixelSum};
 use crate::shard::varint::{Decoder, Encoder};
 
 /// Integers a pixel holds in a part.
-pub const PIXEL_FIELDS: usize = 10;
+pub const PIXEL_FIELDS: usize = 11;
 
 /// A pixel's sums in file order.
 pub fn pixel_fields(p: &PixelSum) -> [i128; PIXEL_FIELDS] {
@@ -21,6 +21,7 @@ pub fn pixel_fields(p: &PixelSum) -> [i128; PIXEL_FIELDS] {
         p.splat_rgb[0],
         p.splat_rgb[1],
         p.splat_rgb[2],
+        p.splat_luminance_sq,
         i128::from(p.count),
         i128::from(p.rejected),
     ]
@@ -33,8 +34,9 @@ pub fn pixel_from_fields(f: &[i128; PIXEL_FIELDS]) -> Option<PixelSum> {
         illuminance: f[3],
         luminance_sq: f[4],
         splat_rgb: [f[5], f[6], f[7]],
-        count: u32::try_from(f[8]).ok()?,
-        rejected: u32::try_from(f[9]).ok()?,
+        splat_luminance_sq: f[8],
+        count: u32::try_from(f[9]).ok()?,
+        rejected: u32::try_from(f[10]).ok()?,
     })
 }
 

@@ -24,7 +24,19 @@ impl Bidirectional<'_, '_> {
         rays: &mut u32,
     ) -> Vec3 {
         let mut total = Vec3::ZERO;
-        for t in 1..=eye.len() {
+        // Light tracing: past t = 1 only paths that a delta lobe scattered at the first
+        // surface, whose strategies joining at or before that surface are impossible (so the
+        // remaining weights add up to 1 over t ≥ 3). t = 2 joins at the first surface's smooth
+        // part, which t = 1 carries.
+        let eye_strategies = if !self.light_tracing || eye.get(1).is_some_and(|v| v.delta) {
+            eye.len()
+        } else {
+            1
+        };
+        for t in 1..=eye_strategies {
+            if self.light_tracing && t == 2 {
+                continue;
+            }
             for s in 0..=light.len() {
                 if s + t < 2 || !self.strategies.allowed(s, t) {
                     continue;
@@ -70,7 +82,7 @@ impl Bidirectional<'_, '_> {
 
     /// s = 0: the eye subpath found a glowing surface.
     fn hit_light(&self, eye: &[Vertex], t: usize) -> Vec3 {
-        let pt = eye[t - 1];
+        let pt = &eye[t - 1];
         let le = pt.emission(self);
         if le.max_element() <= 0.0 {
             return Vec3::ZERO;
@@ -127,11 +139,11 @@ impl Bidirectional<'_, '_> {
         s: usize,
         rays: &mut u32,
     ) -> Option<Splat> {
-        let qs = light[s - 1];
+        let qs = &light[s - 1];
         if !qs.connectible() {
             return None;
         }
-        let e = eye[0];
+        let e = &eye[0];
         if matches!(self.eye, Eye::Camera(_)) && qs.is_delta_light() {
             return None;
         }
@@ -143,11 +155,15 @@ impl Bidirectional<'_, '_> {
                 (y as u32).min(b.height.saturating_sub(1)),
             );
         }
-        let c = self.join(&qs, &e);
-        if c.max_element() <= 0.0 || !self.visible(&qs, &e, rays) {
+        let c = self.join(qs, e);
+        if c.max_element() <= 0.0 || !self.visible(qs, e, rays) {
             return None;
         }
-        let w = self.mis_weight(eye, light, None, s, 1);
+        let w = if self.light_tracing {
+            1.0
+        } else {
+            self.mis_weight(eye, light, None, s, 1)
+        };
         Some(Splat {
             x: pixel.0,
             y: pixel.1,
@@ -164,7 +180,7 @@ impl Bidirectional<'_, '_> {
         rng: &mut SampleRng,
         rays: &mut u32,
     ) -> Vec3 {
-        let pt = eye[t - 1];
+        let pt = &eye[t - 1];
         if !pt.connectible() {
             return Vec3::ZERO;
         }
@@ -181,11 +197,11 @@ impl Bidirectional<'_, '_> {
             Vec3::splat(1.0 / start.pdf_origin),
             start.pdf_origin,
         );
-        let c = self.join(&sampled, &pt);
-        if c.max_element() <= 0.0 || !self.visible(&sampled, &pt, rays) {
+        let c = self.join(&sampled, pt);
+        if c.max_element() <= 0.0 || !self.visible(&sampled, pt, rays) {
             return Vec3::ZERO;
         }
-        c * self.mis_weight(eye, light, Some(sampled), 1, t)
+        c * self.mis_weight(eye, light, Some(&sampled), 1, t)
     }
 
     /// s, t ≥ 2: light vertex s − 1 joined to eye vertex t − 1.
@@ -197,12 +213,12 @@ impl Bidirectional<'_, '_> {
         t: usize,
         rays: &mut u32,
     ) -> Vec3 {
-        let (qs, pt) = (light[s - 1], eye[t - 1]);
+        let (qs, pt) = (&light[s - 1], &eye[t - 1]);
         if !qs.connectible() || !pt.connectible() {
             return Vec3::ZERO;
         }
-        let c = self.join(&qs, &pt);
-        if c.max_element() <= 0.0 || !self.visible(&qs, &pt, rays) {
+        let c = self.join(qs, pt);
+        if c.max_element() <= 0.0 || !self.visible(qs, pt, rays) {
             return Vec3::ZERO;
         }
         c * self.mis_weight(eye, light, None, s, t)
@@ -215,32 +231,32 @@ impl Bidirectional<'_, '_> {
         &self,
         eye: &[Vertex],
         light: &[Vertex],
-        sampled: Option<Vertex>,
+        sampled: Option<&Vertex>,
         s: usize,
         t: usize,
     ) -> f32 {
-        let light_at = |i: usize| -> Vertex {
+        let light_at = |i: usize| -> &Vertex {
             match (i, sampled) {
                 (0, Some(v)) => v,
-                _ => light[i],
+                _ => &light[i],
             }
         };
-        let pt = eye[t - 1];
-        let pt_minus = (t >= 2).then(|| eye[t - 2]);
+        let pt = &eye[t - 1];
+        let pt_minus = (t >= 2).then(|| &eye[t - 2]);
         let qs = (s >= 1).then(|| light_at(s - 1));
         let qs_minus = (s >= 2).then(|| light_at(s - 2));
         // Reverse densities of the vertices next to the connection.
-        let pt_rev = match &qs {
-            Some(q) => q.pdf(self, qs_minus.as_ref(), &pt),
+        let pt_rev = match qs {
+            Some(q) => q.pdf(self, qs_minus, pt),
             None => pt.pdf_light_origin(self),
         };
-        let pt_minus_rev = pt_minus.map(|pm| match &qs {
-            Some(q) => pt.pdf(self, Some(q), &pm),
-            None => pt.pdf_light(self, &pm),
+        let pt_minus_rev = pt_minus.map(|pm| match qs {
+            Some(q) => pt.pdf(self, Some(q), pm),
+            None => pt.pdf_light(self, pm),
         });
-        let qs_rev = qs.map(|q| pt.pdf(self, pt_minus.as_ref(), &q));
-        let qs_minus_rev = match (&qs, &qs_minus) {
-            (Some(q), Some(qm)) => Some(q.pdf(self, Some(&pt), qm)),
+        let qs_rev = qs.map(|q| pt.pdf(self, pt_minus, q));
+        let qs_minus_rev = match (qs, qs_minus) {
+            (Some(q), Some(qm)) => Some(q.pdf(self, Some(pt), qm)),
             _ => None,
         };
         let eye_rev = |i: usize| {

@@ -26,7 +26,28 @@ use crate::sampling::SampleRng;
 use crate::scene::CameraBasis;
 use crate::shading::Prepared;
 use glam::Vec3;
+use std::cell::RefCell;
 use vertex::Vertex;
+
+/// A sample's subpaths, reused from sample to sample (one set per thread): no allocation per
+/// sample.
+#[derive(Debug, Default)]
+pub struct Subpaths {
+    light: Vec<Vertex>,
+    eye: Vec<Vertex>,
+}
+
+thread_local! {
+    static SUBPATHS: RefCell<Subpaths> = RefCell::default();
+}
+
+/// Runs `f` with this thread's subpath buffers (fresh ones if they are in use).
+pub fn with_subpaths<R>(f: impl FnOnce(&mut Subpaths) -> R) -> R {
+    SUBPATHS.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut paths) => f(&mut paths),
+        Err(_) => f(&mut Subpaths::default()),
+    })
+}
 
 /// Stream purpose of the light subpath of a sample.
 const LIGHT_STREAM: u64 = 0x004C_4947_4854;
@@ -94,6 +115,11 @@ pub struct Bidirectional<'p, 'a> {
     /// Relative throughput below which roulette starts.
     pub rr_threshold: f32,
     pub strategies: Strategies,
+    /// Light tracing: every light vertex is joined to the eye (t = 1) with weight 1, and the
+    /// eye subpath goes on past its first surface only when a delta lobe (mirror, glass)
+    /// scattered it there; such paths, which no light vertex can be joined to, take the
+    /// bidirectional strategies with t ≥ 3 and their usual weights (see `connect_all`).
+    pub light_tracing: bool,
 }
 
 /// What one camera sample of the bidirectional integrator gives.
@@ -160,13 +186,14 @@ impl Bidirectional<'_, '_> {
         }
     }
 
-    /// Luminance along the camera ray `ray` (unit direction) by every strategy; light-tracing
-    /// contributions to other pixels go to `splats`. Also returns the first surface vertex.
+    /// Luminance along the camera ray `ray` (unit direction) by every strategy, with the light
+    /// subpath in `paths` ([`Bidirectional::light_subpath`]); light-tracing contributions to
+    /// other pixels go to `splats`. Also returns the first surface vertex.
     pub fn camera_sample(
         &self,
         ray: &Ray,
         rng: &mut SampleRng,
-        light_path: &[Vertex],
+        paths: &mut Subpaths,
         splats: &mut Vec<Splat>,
     ) -> (EyeEstimate, Option<(Vec3, Vec3)>) {
         let mut rays = 0;
@@ -178,27 +205,31 @@ impl Bidirectional<'_, '_> {
             1.0,
         );
         eye.pdf_fwd = 1.0;
-        let mut camera = vec![eye];
+        let camera = &mut paths.eye;
+        camera.clear();
+        camera.push(eye);
         let pdf_dir = self.eye_direction_pdf(&eye, ray.dir);
-        self.walk(*ray, Vec3::ONE, pdf_dir, false, rng, &mut camera, &mut rays);
+        self.walk(*ray, Vec3::ONE, pdf_dir, false, rng, camera, &mut rays);
         let first = camera.get(1).map(|v| (v.p, v.shading_facing(v.wo)));
         let mut connect_rng = rng.split(CONNECT_STREAM);
-        let value = self.connect_all(&camera, light_path, &mut connect_rng, splats, &mut rays);
+        let value = self.connect_all(camera, &paths.light, &mut connect_rng, splats, &mut rays);
         (EyeEstimate { value, rays }, first)
     }
 
     /// Irradiance per channel at `p` from the side of unit `n` (a sensor), by every strategy,
-    /// with the given light subpath.
+    /// with the light subpath in `paths`.
     pub fn sensor_sample(
         &self,
         p: Vec3,
         n: Vec3,
         rng: &mut SampleRng,
-        light_path: &[Vertex],
+        paths: &mut Subpaths,
     ) -> EyeEstimate {
         let mut rays = 0;
         let eye = Vertex::new(vertex::Kind::Eye, p, n, Vec3::ONE, 1.0);
-        let mut sensor = vec![eye];
+        let sensor = &mut paths.eye;
+        sensor.clear();
+        sensor.push(eye);
         let (u, v) = rng.next_2d();
         let wi = crate::sampling::to_world(crate::sampling::cosine_hemisphere(u, v), n);
         let pdf = vertex::cosine_pdf(n, wi);
@@ -212,15 +243,16 @@ impl Bidirectional<'_, '_> {
                 pdf,
                 false,
                 rng,
-                &mut sensor,
+                sensor,
                 &mut rays,
             );
         }
         let mut connect_rng = rng.split(CONNECT_STREAM);
+        // A sensor adds its t = 1 strategies to its own value: nothing is pushed here.
         let mut no_splats = Vec::new();
         let value = self.connect_all(
-            &sensor,
-            light_path,
+            sensor,
+            &paths.light,
             &mut connect_rng,
             &mut no_splats,
             &mut rays,

@@ -2,21 +2,23 @@
 
 use super::emit::{emission_cosine, emitted, sample_direction};
 use super::vertex::{Kind, Vertex};
-use super::{Bidirectional, MAX_SUBPATH};
+use super::{Bidirectional, MAX_SUBPATH, Subpaths};
 use crate::geometry::Ray;
 use crate::sampling::SampleRng;
 use crate::shading::{Surface, bsdf_at};
 use glam::Vec3;
 
 impl Bidirectional<'_, '_> {
-    /// A light subpath: a light picked by flux, a direction, then a walk. Empty without lights.
-    pub fn light_subpath(&self, rng: &mut SampleRng, rays: &mut u32) -> Vec<Vertex> {
-        let mut path = Vec::new();
+    /// A light subpath into `paths`: a light picked by flux, a direction, then a walk. Empty
+    /// without lights.
+    pub fn light_subpath(&self, rng: &mut SampleRng, rays: &mut u32, paths: &mut Subpaths) {
+        let path = &mut paths.light;
+        path.clear();
         let Some(start) = self.lights.sample(self.prep, rng) else {
-            return path;
+            return;
         };
         if start.pdf_origin <= 0.0 {
-            return path;
+            return;
         }
         let beta0 = Vec3::splat(1.0 / start.pdf_origin);
         path.push(Vertex::new(
@@ -27,15 +29,15 @@ impl Bidirectional<'_, '_> {
             start.pdf_origin,
         ));
         let Some((dir, pdf_dir)) = sample_direction(self.prep, &start, rng) else {
-            return path;
+            return;
         };
         if pdf_dir <= 0.0 {
-            return path;
+            return;
         }
         let le = emitted(self.prep, start.light, dir);
         let beta = beta0 * le * (emission_cosine(start.light, start.n, dir) / pdf_dir);
         if beta.max_element() <= 0.0 {
-            return path;
+            return;
         }
         let origin = if start.n == Vec3::ZERO {
             // A lamp mounted on a surface must not hit that surface at distance 0.
@@ -43,16 +45,7 @@ impl Bidirectional<'_, '_> {
         } else {
             start.p + start.n * (self.prep.epsilon * start.n.dot(dir).signum())
         };
-        self.walk(
-            Ray::new(origin, dir),
-            beta,
-            pdf_dir,
-            true,
-            rng,
-            &mut path,
-            rays,
-        );
-        path
+        self.walk(Ray::new(origin, dir), beta, pdf_dir, true, rng, path, rays);
     }
 
     /// Extends `path` from its last vertex along `ray` (unit direction), sampled with density
@@ -111,6 +104,11 @@ impl Bidirectional<'_, '_> {
                 // The shading normal sent the subpath through the mesh: it ends (no leak).
                 break;
             }
+            if self.light_tracing && !importance && path.len() == 2 && !s.delta {
+                // Light tracing: light vertices joined to the eye carry every path whose first
+                // surface scatters smoothly.
+                break;
+            }
             let k = path.len() - 1;
             let pdf_rev_dir = if s.delta {
                 path[k].delta = true;
@@ -123,11 +121,12 @@ impl Bidirectional<'_, '_> {
             let here = path[k];
             path[k - 1].pdf_rev = here.area_density(pdf_rev_dir, &path[k - 1]);
             // A light subpath's adjoint BSDF with a shading normal (Veach §5.3):
-            // |ns·wo| |ng·wi| / (|ng·wo| |ns·wi|).
+            // |ns·wo| |ng·wi| / (|ng·wo| |ns·wi|), which goes to 0 as wi grazes the geometric
+            // surface. (Written as the ratio of two corrections with a floor under the second,
+            // it jumped to 10⁶ there instead: the fireflies of BENCHMARK.md G1, from the
+            // Cornell box's smoothed walls.)
             let weight = if importance && nsf != nf && !s.delta {
-                s.weight
-                    * (super::vertex::shading_correction(nsf, nf, v.wo)
-                        / super::vertex::shading_correction(nsf, nf, s.wi).max(1e-6))
+                s.weight * adjoint_correction(nsf, nf, v.wo, s.wi)
             } else {
                 s.weight
             };
@@ -153,5 +152,17 @@ impl Bidirectional<'_, '_> {
             };
             ray = Ray::new(origin, s.wi);
         }
+    }
+}
+
+/// The factor Veach's adjoint BSDF (§5.3) puts on a light subpath's sampled weight at a
+/// surface with shading normal `ns` and geometric normal `ng`, for light arriving from `wo` and
+/// leaving along `wi`: |ns·wo| |ng·wi| / (|ng·wo| |ns·wi|); 0 when the denominator vanishes.
+pub(super) fn adjoint_correction(ns: Vec3, ng: Vec3, wo: Vec3, wi: Vec3) -> f32 {
+    let den = ng.dot(wo).abs() * ns.dot(wi).abs();
+    if den > 0.0 {
+        ns.dot(wo).abs() * ng.dot(wi).abs() / den
+    } else {
+        0.0
     }
 }

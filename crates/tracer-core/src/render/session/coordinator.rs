@@ -120,7 +120,7 @@ fn run_generation(
             }
             Pass::Full { index } => {
                 st.stats.samples_per_pixel = index + 1;
-                if s.integrator == crate::integrator::IntegratorKind::Bidirectional {
+                if s.integrator.splats() {
                     // The pass's last splats landed all over the picture.
                     st.dirty.push(full_frame(s));
                 }
