@@ -395,13 +395,7 @@ fn splatting_is_bit_identical_across_threads_and_ranges() {
     let loaded = builtin_cornell_box(None).unwrap();
     for kind in SPLATTING {
         let settings = settings_for(kind, 40, 30, 5);
-        let run = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| render(&loaded.scene, &loaded.setup, &settings).0)
-        };
+        let run = |threads| render_on_threads(&loaded.scene, &loaded.setup, &settings, threads);
         let one = run(1);
         assert!(one.pixels.iter().any(|p| p.splat_rgb != [0; 3]));
         assert!(one.pixels.iter().any(|p| p.splat_luminance_sq != 0));

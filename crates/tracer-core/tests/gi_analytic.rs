@@ -387,13 +387,7 @@ fn error_falls_as_one_over_root_n() {
 fn path_mode_is_bit_identical_across_threads_and_ranges() {
     let loaded = builtin_cornell_box(None).unwrap();
     let settings = path_settings(40, 30, 6);
-    let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| render(&loaded.scene, &loaded.setup, &settings).0)
-    };
+    let run = |threads| render_on_threads(&loaded.scene, &loaded.setup, &settings, threads);
     let one = run(1);
     assert_eq!(one, run(2));
     assert_eq!(one, run(3));

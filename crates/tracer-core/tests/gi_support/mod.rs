@@ -4,6 +4,7 @@
 
 use glam::{DVec3, Vec3};
 use tracer_core::measure::Grid;
+use tracer_core::render::{Film, RenderSettings};
 use tracer_core::scene::{Camera, Handedness, LengthUnit, Light, Material, Scene, Setup};
 use tracer_core::shp::{BrepDef, ShpDescription};
 
@@ -228,4 +229,18 @@ pub fn check(what: &str, estimate: f64, std_error: f64, exact: f64, rel_tol: f64
         (estimate - exact).abs() < 4.0 * std_error,
         "{what}: {estimate} is more than 4 standard errors ({std_error}) from {exact}"
     );
+}
+
+/// Renders on a pool of `threads` worker threads.
+pub fn render_on_threads(
+    scene: &Scene,
+    setup: &Setup,
+    settings: &RenderSettings,
+    threads: usize,
+) -> Film {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| tracer_core::render::render(scene, setup, settings).0)
 }
