@@ -6,12 +6,18 @@
 # their own key, socket, ports, configuration, state and logs in a temporary folder (nothing
 # under /etc is touched), submits a 4-shard array and its merge job, waits (at most
 # RAYGINE_SLURM_TIMEOUT seconds, default 300), compares, and stops the daemons it started.
-# Needs root (apt-get, daemons); otherwise it says why and skips. scripts/check.sh runs it.
+# Needs root (apt-get, daemons); otherwise it says why and skips (fails under CI=true).
+# The shards run the headless build (`--no-default-features`), as cluster nodes do.
+# scripts/check.sh runs it.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root="$(pwd)"
 
 skip() {
+    if [ "${CI:-}" = true ]; then
+        echo "test-local.sh: FAILED: cannot run under CI=true: $*" >&2
+        exit 1
+    fi
     echo "test-local.sh: skipped: $*"
     exit 0
 }
@@ -38,8 +44,10 @@ fi
 export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
 export CARGO_PROFILE_DEV_DEBUG="${CARGO_PROFILE_DEV_DEBUG:-line-tables-only}"
 export CARGO_TERM_COLOR="${CARGO_TERM_COLOR:-never}"
-cargo build -q -p raygine --bin raygine
-raygine="${CARGO_TARGET_DIR:-$root/target}/debug/raygine"
+# The headless build, as on cluster nodes; its own target folder keeps the viewer's binary.
+headless_target="${CARGO_TARGET_DIR:-$root/target}/headless"
+cargo build -q -p raygine --bin raygine --no-default-features --target-dir "$headless_target"
+raygine="$headless_target/debug/raygine"
 [ -x "$raygine" ] || fail "no raygine binary at $raygine"
 
 started=$SECONDS

@@ -153,23 +153,13 @@ pub fn temp_dir() -> tempfile::TempDir {
         .expect("cannot make a temporary folder")
 }
 
-/// `../shared` beside the project (course scenes; not part of the project).
-pub fn shared_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared")
-}
+/// `relative` in `../shared` beside the project (course scenes; not part of the project), or
+/// `None` with the reason printed when it is absent; a failure instead under `CI=true`.
+pub use raygine_fixtures::shared;
 
 /// The course's Cornell box, or `None` (with the reason printed) when `../shared` is absent.
 pub fn course_cornell_box() -> Option<PathBuf> {
-    let p = shared_dir().join("scenes/cornell/cornel_box0.shp");
-    if p.is_file() {
-        Some(p)
-    } else {
-        println!(
-            "skipped: {} is absent (the shared course scenes are not here)",
-            p.display()
-        );
-        None
-    }
+    shared("scenes/cornell/cornel_box0.shp")
 }
 
 /// An RGB8 image read back from disk.

@@ -233,12 +233,9 @@ fn a_room_keeps_the_front_view() {
 /// largest, the one along Z (the top) 29 % smaller.
 #[test]
 fn nefertiti_is_seen_from_the_side() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/scenes/meshes/nefertiti.shp");
-    if !path.is_file() {
-        eprintln!("skipping: {} not found", path.display());
+    let Some(path) = raygine_fixtures::shared("scenes/meshes/nefertiti.shp") else {
         return;
-    }
+    };
     let loaded = tracer_core::scene::load(&path, &Default::default()).unwrap();
     let [x, y, z] = outline_areas(&loaded.scene);
     assert!(z < 0.9 * x && y < x, "{:?}", [x, y, z]);

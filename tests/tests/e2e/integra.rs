@@ -2,17 +2,11 @@
 //! and a broken bundle.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use raygine_e2e::{raygine_in, read_png, shared_dir, temp_dir};
+use raygine_e2e::{raygine_in, read_png, shared, temp_dir};
 use std::path::PathBuf;
 
 fn room2() -> Option<PathBuf> {
-    let path = shared_dir().join("scenes/ipur-room2/room2.shp");
-    if path.is_file() {
-        Some(path)
-    } else {
-        eprintln!("skipped: {} is absent", path.display());
-        None
-    }
+    shared("scenes/ipur-room2/room2.shp")
 }
 
 /// `raygine info --json`: 20 named materials, nine fixtures of 5,920 lm, room2.cam's camera.

@@ -4,7 +4,7 @@
 //! light shows L = Kd E / π; the shared OBJ models load and render; bad files give one line.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use raygine_e2e::{raygine_in, read_exr, read_png, render_in, shared_dir, temp_dir};
+use raygine_e2e::{raygine_in, read_exr, read_png, render_in, shared, temp_dir};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -185,11 +185,9 @@ fn obj_floor_with_an_mtl_kd_shows_kd_e_over_pi() {
 
 #[test]
 fn the_shared_obj_models_load_and_render() {
-    let models = shared_dir().join("models");
-    if !models.is_dir() {
-        println!("skipped: {} is absent", models.display());
+    let Some(models) = shared("models") else {
         return;
-    }
+    };
     let dir = temp_dir();
     for name in [
         "teapot",

@@ -3,7 +3,7 @@
 
 #![allow(dead_code)]
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use glam::Vec3;
 use tracer_core::{Aabb, Ray};
@@ -57,13 +57,7 @@ pub fn bounds_of(triangles: &[[Vec3; 3]]) -> Aabb {
 
 /// `../shared` beside the repository, if present.
 pub fn shared_dir() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        println!("skipping: ../shared not found");
-        None
-    }
+    raygine_fixtures::shared("scenes").and_then(|p| Some(p.parent()?.to_path_buf()))
 }
 
 /// The shared meshes as (file stem, triangles), smallest first.

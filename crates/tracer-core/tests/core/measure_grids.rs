@@ -2,9 +2,7 @@
 //! work-plane shorthand with EN 12464-1 spacing, and the maintenance factor.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod gi_support;
-
-use gi_support::*;
+use crate::gi_support::*;
 use tracer_core::integrator::IntegratorKind;
 use tracer_core::measure::{MeasureSettings, TARGET_MIN_SAMPLES, measure_grids};
 use tracer_core::scene::{Light, Sidecar, builtin_cornell_box, en12464_spacing_m};

@@ -432,15 +432,9 @@ fn opening_a_scene_by_typed_path_lists_its_breps() {
 
 #[test]
 fn opening_the_course_cornell_box_lists_its_breps() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/scenes/cornell/cornel_box0.shp");
-    if !path.is_file() {
-        eprintln!(
-            "skipped: {} is absent (the shared scenes are not on this machine)",
-            path.display()
-        );
+    let Some(path) = raygine_fixtures::shared("scenes/cornell/cornel_box0.shp") else {
         return;
-    }
+    };
     let (mut h, _mirror) = viewer();
     open(&mut h, &path);
     h.step();
@@ -493,15 +487,9 @@ fn a_broken_file_shows_an_error_and_keeps_the_scene() {
 
 #[test]
 fn opening_the_integra_room_lists_its_twenty_materials() {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes/ipur-room2/room2.shp");
-    if !path.is_file() {
-        eprintln!(
-            "skipped: {} is absent (the shared scenes are not on this machine)",
-            path.display()
-        );
+    let Some(path) = raygine_fixtures::shared("scenes/ipur-room2/room2.shp") else {
         return;
-    }
+    };
     let (mut h, _mirror) = viewer();
     // Loaded but not rendered to the end: 11,452 triangles under nine lights take long in a
     // debug build, and the list does not depend on the picture.

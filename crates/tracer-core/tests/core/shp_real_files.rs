@@ -1,19 +1,13 @@
 //! The reader against the real scenes in `../shared/scenes/` (skipped when absent).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use tracer_core::shp::{self, ShpDescription};
 
 fn shared() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipping: ../shared not found");
-        None
-    }
+    raygine_fixtures::shared("scenes").and_then(|p| Some(p.parent()?.to_path_buf()))
 }
 
 fn totals(desc: &ShpDescription) -> (usize, usize) {

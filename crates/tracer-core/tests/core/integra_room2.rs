@@ -8,14 +8,7 @@ use tracer_core::light::luminance;
 use tracer_core::scene::{self, Handedness, LengthUnit, LoadOptions, LoadedScene, Sidecar};
 
 fn room2() -> Option<PathBuf> {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes/ipur-room2/room2.shp");
-    if path.is_file() {
-        Some(path)
-    } else {
-        eprintln!("skipping: ../shared/scenes/ipur-room2 not found");
-        None
-    }
+    raygine_fixtures::shared("scenes/ipur-room2/room2.shp")
 }
 
 fn load(path: &Path) -> LoadedScene {

@@ -8,9 +8,7 @@
 //! estimate (which `std_error_honesty.rs` checks against such batches).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod gi_support;
-
-use gi_support::*;
+use crate::gi_support::*;
 use glam::DVec3;
 use std::f64::consts::PI;
 use tracer_core::integrator::IntegratorKind;

@@ -2,9 +2,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod bvh_support;
-
-use bvh_support::{Rng, bounds_of, shared_meshes};
+use crate::bvh_support::{Rng, bounds_of, shared_meshes};
 use glam::Vec3;
 use rayon::prelude::*;
 use tracer_core::bvh::{

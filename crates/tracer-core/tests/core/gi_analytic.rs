@@ -5,9 +5,7 @@
 //! errors, the reported standard error below 0.2 %.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod gi_support;
-
-use gi_support::*;
+use crate::gi_support::*;
 use glam::{DVec3, Vec3};
 use std::f64::consts::PI;
 use tracer_core::integrator::IntegratorKind;

@@ -3,9 +3,7 @@
 //! left- and right-handed scenes, and one test per kind of bad file.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod gi_support;
-
-use gi_support::*;
+use crate::gi_support::*;
 use glam::Vec3;
 use std::f64::consts::PI;
 use std::fmt::Write as _;

@@ -3,11 +3,9 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod bvh_support;
-
 use std::time::Instant;
 
-use bvh_support::{bounds_of, shared_meshes, w1_rays};
+use crate::bvh_support::{bounds_of, shared_meshes, w1_rays};
 use glam::Vec3;
 use rayon::prelude::*;
 use tracer_core::bvh::{Bvh, uv_sphere};

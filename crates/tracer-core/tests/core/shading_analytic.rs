@@ -11,8 +11,7 @@ use tracer_core::scene::{Camera, Handedness, LengthUnit, Light, Material, Scene,
 use tracer_core::shading::Prepared;
 use tracer_core::shp::BrepDef;
 
-mod gi_support;
-use gi_support::{brep, scene};
+use crate::gi_support::{brep, scene};
 
 /// A floor at y = 0, 200 x 200 units centred on the origin, scaled by `s`.
 fn floor(s: f64) -> BrepDef {

@@ -196,11 +196,9 @@ fn round_trip_through_write_shp() {
 
 #[test]
 fn real_files_round_trip() {
-    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
-    if !shared.is_dir() {
-        eprintln!("skipping: ../shared not found");
+    let Some(shared) = raygine_fixtures::shared("scenes") else {
         return;
-    }
+    };
     for file in [
         "cornell/cornel_box0.shp",
         "ipur-room2/room2.shp",

@@ -265,11 +265,9 @@ fn readers_pick_by_extension_and_content() {
 /// with a message naming the file: never a panic.
 #[test]
 fn truncated_real_files_never_panic() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes/ipur-room2/room2");
-    if !dir.is_dir() {
-        eprintln!("skipping: ../shared/scenes/ipur-room2 not found");
+    let Some(dir) = raygine_fixtures::shared("scenes/ipur-room2/room2") else {
         return;
-    }
+    };
     for ext in ["atr", "prb", "lgt", "cam"] {
         let path = dir.join(format!("room2.{ext}"));
         let bytes = std::fs::read(&path).unwrap();

@@ -1,0 +1,5 @@
+//! The viewer's tests through egui_kittest, built as one test binary (the GUI stack is linked
+//! once): `viewer` (widgets, files, rendering) and `commands` (the command path).
+
+mod commands;
+mod viewer;

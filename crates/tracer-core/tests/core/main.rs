@@ -1,0 +1,32 @@
+//! tracer-core's integration tests, one module per suite, built as one test binary: one link
+//! instead of 24, and the shared helpers compiled once. Run one suite with
+//! `cargo test -p tracer-core --test core SUITE::` (e.g. `bdpt_analytic::`).
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod bvh_support;
+mod gi_support;
+
+mod bdpt_analytic;
+mod bvh_differential;
+mod bvh_speed;
+mod cornell_reference;
+mod default_setup;
+mod direct_wavefront;
+mod fuzz_corpus;
+mod gi_analytic;
+mod integra_bundle;
+mod integra_room2;
+mod luminaires;
+mod measure_grids;
+mod proptest_shp;
+mod session;
+mod shading_analytic;
+mod shp_errors;
+mod shp_format;
+mod shp_real_files;
+mod shp_robustness;
+mod shp_speed;
+mod std_error_honesty;
+mod stress_limits;
+mod stress_session;
