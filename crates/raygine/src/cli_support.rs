@@ -4,7 +4,7 @@
 use crate::cli_args::{DisplayArgs, SceneArgs};
 use anyhow::{Context, Result, bail};
 use std::path::Path;
-use tracer_core::display::{DisplayMapper, DisplaySettings, luminance_sum_max};
+use tracer_core::display::{DisplayMapper, DisplaySettings};
 use tracer_core::render::{Film, RenderSettings};
 use tracer_core::scene::{self, LoadOptions, LoadedScene};
 
@@ -114,8 +114,8 @@ pub struct MappedImage {
 /// Maps the film to display pixels through the one display path ([`DisplayMapper`]) and
 /// gathers its luminance figures.
 pub fn map_film_rgb(film: &Film, display: &DisplaySettings, exposure_stops: f32) -> MappedImage {
-    let rgb = DisplayMapper::new(display, exposure_stops).map_film::<3>(film);
-    let (luminance_sum, luminance_max) = luminance_sum_max(film);
+    let (rgb, luminance_sum, luminance_max) =
+        DisplayMapper::new(display, exposure_stops).map_film_and_luminance::<3>(film);
     MappedImage {
         rgb,
         luminance_sum,

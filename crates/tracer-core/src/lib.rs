@@ -32,6 +32,7 @@ pub mod integrator;
 mod lanes8;
 pub mod light;
 pub mod measure;
+mod pages;
 pub mod render;
 pub mod sampling;
 pub mod scene;

@@ -372,7 +372,7 @@ fn pack_leaves(
     prims: &[PrimRef],
     triangles: &[[Vec3; 3]],
 ) -> Vec<Tri4> {
-    let mut packs = super::pages::vec_on_huge_pages(prims.len() / 2 + 1);
+    let mut packs = crate::pages::vec_on_huge_pages(prims.len() / 2 + 1);
     let mut scratch = Vec::with_capacity(PACK);
     let mut ids = Vec::with_capacity(PACK);
     for node in nodes {

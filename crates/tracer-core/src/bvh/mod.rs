@@ -28,7 +28,6 @@ mod binary;
 mod build;
 mod frustum;
 mod packet;
-mod pages;
 mod simd;
 mod sphere;
 mod stack;

@@ -129,7 +129,7 @@ pub(crate) fn collapse(binary: &[binary::Node]) -> Vec<WideNode> {
     if binary.is_empty() {
         return Vec::new();
     }
-    let mut nodes = super::pages::vec_on_huge_pages(binary.len() / 3 + 1);
+    let mut nodes = crate::pages::vec_on_huge_pages(binary.len() / 3 + 1);
     nodes.push(WideNode::EMPTY);
     let mut todo = vec![(0usize, 0usize)];
     while let Some((b, slot)) = todo.pop() {

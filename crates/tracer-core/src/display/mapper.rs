@@ -67,13 +67,96 @@ impl DisplayMapper {
             });
         out
     }
+
+    /// [`Self::map_film`] and [`luminance_sum_max`] in one pass over the film (each pixel's
+    /// mean read once): the same bytes and the same figures.
+    pub fn map_film_and_luminance<const CHANNELS: usize>(
+        &self,
+        film: &Film,
+    ) -> (Vec<u8>, f64, f32) {
+        let width = (film.width as usize).max(1);
+        let mut out = vec![0u8; film.pixels.len() * CHANNELS];
+        let rows: Vec<(f64, f32)> = out
+            .par_chunks_mut(width * CHANNELS)
+            .zip(film.pixels.par_chunks(width))
+            .map(|(row, sums)| {
+                let (mut sum, mut max) = (0.0f64, 0.0f32);
+                for (o, p) in row.chunks_exact_mut(CHANNELS).zip(sums) {
+                    let rgb = p.mean_rgb();
+                    let y = luminance(rgb);
+                    sum += f64::from(y);
+                    max = max.max(y);
+                    let code = self.map(rgb, p.mean_illuminance());
+                    o.copy_from_slice(&code[..CHANNELS]);
+                }
+                (sum, max)
+            })
+            .collect();
+        let (sum, max) = add_rows(&rows);
+        (out, sum, max)
+    }
 }
 
 /// Luminance figures of a film: the sum over pixels of the mean Rec. 709 luminance and the
-/// largest pixel luminance, cd/m². Summed in pixel order, so they do not depend on threads.
+/// largest pixel luminance, cd/m². Each row is summed in pixel order and the rows' sums in row
+/// order, so the figures do not depend on threads.
 pub fn luminance_sum_max(film: &Film) -> (f64, f32) {
-    film.pixels.iter().fold((0.0f64, 0.0f32), |(sum, max), p| {
-        let y = luminance(p.mean_rgb());
-        (sum + f64::from(y), max.max(y))
-    })
+    let width = (film.width as usize).max(1);
+    let rows: Vec<(f64, f32)> = film
+        .pixels
+        .par_chunks(width)
+        .map(|sums| {
+            sums.iter().fold((0.0f64, 0.0f32), |(sum, max), p| {
+                let y = luminance(p.mean_rgb());
+                (sum + f64::from(y), max.max(y))
+            })
+        })
+        .collect();
+    add_rows(&rows)
+}
+
+/// The rows' luminance figures added in row order.
+fn add_rows(rows: &[(f64, f32)]) -> (f64, f32) {
+    rows.iter()
+        .fold((0.0, 0.0), |(sum, max), &(s, m)| (sum + s, max.max(m)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_pass_maps_and_sums_like_the_two_passes() {
+        let (w, h) = (37u32, 23u32);
+        let n = (w * h) as usize;
+        // Values from black to far over white, with a few hot pixels.
+        let rgb: Vec<Vec3> = (0..n)
+            .map(|i| {
+                let t = i as f32 * 0.37;
+                let hot = if i % 101 == 7 { 5.0e4 } else { 1.0 };
+                Vec3::new(t.sin().abs() * 300.0, t * 0.5, (i % 13) as f32) * hot
+            })
+            .collect();
+        let lx: Vec<f32> = (0..n).map(|i| i as f32 * 2.5).collect();
+        let film = Film::from_values(w, h, &rgb, &lx);
+        for display in [
+            DisplaySettings::default(),
+            DisplaySettings {
+                exposure_stops: -2.5,
+                ..DisplaySettings::default()
+            },
+        ] {
+            let mapper = DisplayMapper::new(&display, display.exposure_stops);
+            let (bytes, sum, max) = mapper.map_film_and_luminance::<3>(&film);
+            assert_eq!(bytes, mapper.map_film::<3>(&film));
+            let (want_sum, want_max) = luminance_sum_max(&film);
+            assert_eq!(sum.to_bits(), want_sum.to_bits());
+            assert_eq!(max.to_bits(), want_max.to_bits());
+            // Against the plain definition (summation order aside).
+            let plain: f64 = rgb.iter().map(|c| f64::from(luminance(*c))).sum();
+            assert!((sum - plain).abs() <= 1e-9 * plain, "{sum} vs {plain}");
+            let plain_max = rgb.iter().map(|c| luminance(*c)).fold(0.0f32, f32::max);
+            assert!((max - plain_max).abs() <= 1e-3 * plain_max);
+        }
+    }
 }

@@ -32,7 +32,17 @@ pub(super) fn take(len: usize) -> Vec<PixelSum> {
             return pixels;
         }
     }
-    vec![PixelSum::default(); len]
+    fresh(len)
+}
+
+/// `len` empty pixel sums in new memory: for a large film, zeroed pages straight from the
+/// system (on huge pages where it has them), so nothing writes them before the render does,
+/// and their page faults are taken by the threads that render into them, side by side.
+fn fresh(len: usize) -> Vec<PixelSum> {
+    if len < MIN_RECYCLED_PIXELS {
+        return vec![PixelSum::default(); len];
+    }
+    crate::pages::zeroed_vec_on_huge_pages(len)
 }
 
 /// Keeps the buffer of a dropped film when it is large, in place of the one kept before.
@@ -50,6 +60,15 @@ pub(super) fn give(pixels: Vec<PixelSum>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn fresh_large_buffers_are_empty() {
+        // Past the huge-page threshold (32 MiB), from zeroed system memory.
+        let len = (40 << 20) / size_of::<PixelSum>();
+        let pixels = fresh(len);
+        assert_eq!(pixels.len(), len);
+        assert!(pixels.iter().all(|p| *p == PixelSum::default()));
+    }
 
     #[test]
     fn recycled_buffers_come_back_empty() {

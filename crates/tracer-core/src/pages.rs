@@ -1,5 +1,7 @@
-//! Huge pages for the large arrays traversal reads at random (nodes and triangle packs): with
-//! 4 KiB pages almost every node visit of an incoherent ray also misses the TLB. Linux backs a
+//! Huge pages for large arrays: those traversal reads at random (BVH nodes and triangle packs),
+//! where with 4 KiB pages almost every node visit of an incoherent ray also misses the TLB, and
+//! films, whose fresh memory would otherwise arrive one 4 KiB fault at a time (a 1000x1000
+//! film is 160 MB: about 40,000 faults, each charged and cleared by the kernel). Linux backs a
 //! range with 2 MiB pages when asked with `madvise(MADV_HUGEPAGE)` before the memory is first
 //! touched (transparent huge pages in `madvise` mode, the common default); elsewhere this is a
 //! no-op. Nothing depends on it but speed.
@@ -47,4 +49,31 @@ pub(crate) fn vec_on_huge_pages<T>(capacity: usize) -> Vec<T> {
     }
     #[cfg(not(target_os = "linux"))]
     Vec::with_capacity(capacity)
+}
+
+/// `len` zeroed elements (`vec![T::zeroed(); len]`), the 2 MiB-aligned part of a large one
+/// advised onto huge pages. The allocator takes memory this large straight from the system as
+/// zero pages (calloc), so nothing is written here: each page is faulted in (and cleared by the
+/// kernel) when it is first written, by whichever thread writes it.
+pub(crate) fn zeroed_vec_on_huge_pages<T: bytemuck::Zeroable>(len: usize) -> Vec<T> {
+    let v: Vec<T> = bytemuck::zeroed_vec(len);
+    #[cfg(target_os = "linux")]
+    {
+        let bytes = len.saturating_mul(size_of::<T>());
+        let start = v.as_ptr() as usize;
+        let first = start.next_multiple_of(HUGE_PAGE);
+        let last = (start + bytes) / HUGE_PAGE * HUGE_PAGE;
+        if bytes >= MIN_BYTES && last > first {
+            // SAFETY: as in `vec_on_huge_pages`: `[first, last)` lies inside `v`'s allocation,
+            // and the advice changes only how the kernel backs untouched pages.
+            unsafe {
+                libc::madvise(
+                    first as *mut libc::c_void,
+                    last - first,
+                    libc::MADV_HUGEPAGE,
+                );
+            }
+        }
+    }
+    v
 }
