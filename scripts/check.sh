@@ -15,6 +15,23 @@ if command -v rustup >/dev/null 2>&1; then
         echo "check.sh: could not add rustfmt/clippy with rustup; using what is installed"
 fi
 
+echo "== Open Image Denoise for the denoiser's tests (pip, outside the repository)"
+if [ -z "${RAYGINE_OIDN:-}" ]; then
+    if lib=$(scripts/oidn.sh); then
+        export RAYGINE_OIDN="$lib"
+        echo "check.sh: RAYGINE_OIDN=$RAYGINE_OIDN"
+    elif [ "${CI:-}" = true ]; then
+        echo "check.sh: FAIL: CI needs Open Image Denoise (scripts/oidn.sh failed)" >&2
+        exit 1
+    else
+        echo "check.sh: no Open Image Denoise: the denoiser's tests skip with the reason"
+    fi
+fi
+# Tests that need the denoiser fail instead of skipping under CI.
+if [ "${CI:-}" = true ]; then
+    export RAYGINE_REQUIRE_OIDN=1
+fi
+
 echo "== cargo fmt --check"
 cargo fmt --all -- --check
 

@@ -48,6 +48,7 @@ fn settings(opts: &Options) -> RenderSettings {
         integrator: IntegratorKind::Direct,
         max_bounces: None,
         pixel_illuminance: true,
+        guides: false,
     }
 }
 

@@ -38,6 +38,7 @@ fn settings(integrator: IntegratorKind) -> RenderSettings {
         integrator,
         max_bounces: None,
         pixel_illuminance: true,
+        guides: false,
     }
 }
 

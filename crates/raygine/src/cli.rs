@@ -117,6 +117,12 @@ pub struct RenderArgs {
     /// Also write the linear image (cd/m² per channel) as OpenEXR.
     #[arg(long, value_name = "PATH")]
     pub exr: Option<PathBuf>,
+    /// Denoise the PNG with Intel Open Image Denoise 2.x (albedo and normal guides); the EXR
+    /// keeps the raw R, G, B and adds denoised.R, .G, .B. Printed figures stay the raw image's.
+    /// With --time-limit, the limit includes denoising. With --partial, the part keeps the
+    /// guides for `merge --denoise`.
+    #[arg(long)]
+    pub denoise: bool,
     /// Light position, camera position and vertical field of view (degrees):
     /// `lx ly lz cx cy cz cf`, or any prefix of them.
     #[arg(value_name = "LX LY LZ CX CY CZ CF", num_args = 0..=7)]

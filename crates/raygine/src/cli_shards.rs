@@ -38,6 +38,10 @@ pub struct MergeArgs {
     /// Render parts: also write the linear image (cd/m² per channel) as OpenEXR.
     #[arg(long, value_name = "PATH")]
     pub exr: Option<PathBuf>,
+    /// Render parts: denoise the PNG (and add denoised.R, .G, .B to the EXR); the parts must
+    /// have been rendered with --denoise, which keeps the denoiser's guides in them.
+    #[arg(long)]
+    pub denoise: bool,
     #[command(flatten)]
     pub display: DisplayArgs,
     /// Measurement parts: write every grid point's illuminance here (CSV).

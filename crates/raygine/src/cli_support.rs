@@ -4,6 +4,7 @@
 use crate::cli_args::{DisplayArgs, SceneArgs};
 use anyhow::{Context, Result, bail};
 use std::path::Path;
+use tracer_core::denoise::{Denoiser, Quality};
 use tracer_core::display::{DisplayMapper, DisplaySettings};
 use tracer_core::render::{Film, RenderSettings};
 use tracer_core::scene::{self, LoadOptions, LoadedScene};
@@ -66,20 +67,45 @@ pub fn display_settings(args: &DisplayArgs) -> Result<DisplaySettings> {
 
 /// Writes the film as the displayed PNG (and the linear EXR); returns the image and the
 /// exposure used. The same film gives the same bytes, whoever rendered it.
+///
+/// With `denoised` (the film's denoised colours), the PNG shows those at the raw film's
+/// exposure and the EXR adds them as `denoised.R/G/B`; the returned figures stay the raw
+/// film's.
 pub fn write_images(
     film: &Film,
     display: &DisplaySettings,
     png: &Path,
     exr: Option<&Path>,
     pool: &rayon::ThreadPool,
+    denoised: Option<&[glam::Vec3]>,
 ) -> Result<(MappedImage, f32)> {
     let exposure = display.effective_exposure(film);
     let image = pool.install(|| map_film_rgb(film, display, exposure));
-    tracer_core::export::write_png_rgb(png, &image.rgb, film.width, film.height)?;
+    match denoised {
+        None => tracer_core::export::write_png_rgb(png, &image.rgb, film.width, film.height)?,
+        Some(d) => {
+            let shown = Film::from_values(film.width, film.height, d, &[]);
+            let picture = pool.install(|| map_film_rgb(&shown, display, exposure));
+            tracer_core::export::write_png_rgb(png, &picture.rgb, film.width, film.height)?;
+        }
+    }
     if let Some(exr) = exr {
-        tracer_core::export::write_exr(exr, film)?;
+        tracer_core::export::write_exr_with_denoised(exr, film, denoised)?;
     }
     Ok((image, exposure))
+}
+
+/// Loads the denoiser for `--denoise`, or says why it cannot.
+pub fn load_denoiser(threads: usize) -> Result<Denoiser> {
+    Denoiser::load(threads).map_err(|e| anyhow::anyhow!("--denoise: {e}"))
+}
+
+/// The denoised colours of a film rendered with guides, and the seconds it took.
+pub fn denoise(denoiser: &Denoiser, film: &Film) -> Result<(Vec<glam::Vec3>, f64)> {
+    let t = std::time::Instant::now();
+    let out = tracer_core::denoise::denoise_film(denoiser, film, Quality::High)
+        .map_err(|e| anyhow::anyhow!("--denoise: {e}"))?;
+    Ok((out, t.elapsed().as_secs_f64()))
 }
 
 /// Fails before rendering when an output path cannot be written (a folder, or a folder that does

@@ -32,6 +32,8 @@ pub enum Command {
     FrameScene,
     /// Pause or resume rendering.
     TogglePause,
+    /// Flip between the denoised and the raw picture (D).
+    ToggleDenoise,
     /// Open the "Render image…" form for the current view.
     OpenRenderImageForm,
     /// Start the "Render image…" job with the form's values, writing `path`.

@@ -33,6 +33,8 @@ pub mod camera_control;
 #[cfg(feature = "viewer")]
 pub mod command;
 #[cfg(feature = "viewer")]
+pub mod denoise_view;
+#[cfg(feature = "viewer")]
 pub mod document;
 #[cfg(feature = "viewer")]
 pub mod file_ops;

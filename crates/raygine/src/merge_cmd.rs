@@ -61,6 +61,11 @@ fn merge_render(args: &MergeArgs, first: &PartHeader, started: Instant) -> Resul
     if let Some(exr) = &args.exr {
         check_output_path(exr)?;
     }
+    let denoiser = if args.denoise {
+        Some(crate::cli_support::load_denoiser(0)?)
+    } else {
+        None
+    };
     let mut film: Option<Film> = None;
     for path in &args.parts {
         let part = partial::decode_film(&payload(path)?)
@@ -91,7 +96,26 @@ fn merge_render(args: &MergeArgs, first: &PartHeader, started: Instant) -> Resul
     let pool = rayon::ThreadPoolBuilder::new()
         .build()
         .map_err(|e| anyhow::anyhow!("cannot start threads: {e}"))?;
-    let (image, exposure) = write_images(&film, &display, png, args.exr.as_deref(), &pool)?;
+    let denoised = match &denoiser {
+        None => None,
+        Some(d) => {
+            if film.guides.is_none() {
+                bail!(
+                    "--denoise: the parts have no denoiser guides; render them with \
+                     `raygine render --partial ... --denoise`"
+                );
+            }
+            Some(crate::cli_support::denoise(d, &film)?)
+        }
+    };
+    let (image, exposure) = write_images(
+        &film,
+        &display,
+        png,
+        args.exr.as_deref(),
+        &pool,
+        denoised.as_ref().map(|(d, _)| d.as_slice()),
+    )?;
     println!(
         "{}: {} parts, {}x{} px, {} spp, {}; luminance mean {:.3} cd/m², max {:.3} cd/m²; exposure {:+.2} stops",
         first.scene,
@@ -110,9 +134,21 @@ fn merge_render(args: &MergeArgs, first: &PartHeader, started: Instant) -> Resul
             noise * 100.0
         );
     }
+    if let Some((_, secs)) = &denoised {
+        println!(
+            "denoised in {:.1} ms (Open Image Denoise): the PNG shows the denoised picture; \
+             the figures above are the raw image's",
+            secs * 1e3
+        );
+    }
     println!("wrote {}", png.display());
     if let Some(exr) = &args.exr {
-        println!("wrote {} (linear cd/m² per channel)", exr.display());
+        let layers = if denoised.is_some() {
+            "; denoised.R/G/B: denoised"
+        } else {
+            ""
+        };
+        println!("wrote {} (linear cd/m² per channel{layers})", exr.display());
     }
     println!("merged in {:.2} s", started.elapsed().as_secs_f64());
     Ok(())
@@ -123,6 +159,7 @@ fn merge_measure(args: &MergeArgs, first: &PartHeader, started: Instant) -> Resu
         &[
             (args.render_path.is_some(), "-R/--render_path"),
             (args.exr.is_some(), "--exr"),
+            (args.denoise, "--denoise"),
             (args.display.exposure.is_some(), "--exposure"),
             (args.display.auto_exposure, "--auto-exposure"),
         ],

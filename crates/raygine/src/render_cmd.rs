@@ -2,11 +2,13 @@
 
 use crate::cli::RenderArgs;
 use crate::cli_support::{
-    check_output_path, display_settings, load_scene, sampling_settings, thread_pool, write_images,
+    check_output_path, denoise, display_settings, load_denoiser, load_scene, sampling_settings,
+    thread_pool, write_images,
 };
 use anyhow::{Result, bail};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use tracer_core::denoise::{Denoiser, Images, Quality};
 use tracer_core::integrator::IntegratorKind;
 use tracer_core::render::{RenderSettings, render_for};
 use tracer_core::scene::{LightKind, LoadedScene};
@@ -88,6 +90,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         max_depth: args.depth,
         // The PNG and the EXR show luminance only.
         pixel_illuminance: false,
+        guides: args.denoise,
         ..sampling_settings(&args.scene, direct_samples)
     };
     if args.shard.partial.is_some() {
@@ -104,10 +107,21 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     let pool = thread_pool(&args.scene)?;
     let threads = pool.current_num_threads();
-    let time_limit = args
+    let denoiser = if args.denoise {
+        Some(load_denoiser(threads)?)
+    } else {
+        None
+    };
+    let mut time_limit = args
         .scene
         .time_limit
         .map(std::time::Duration::from_secs_f64);
+    if let (Some(limit), Some(d)) = (time_limit.as_mut(), &denoiser) {
+        // The limit includes denoising: one denoise of this size, timed before the clock
+        // starts (like loading the scene), is kept back from the render's share.
+        let secs = warm_up_denoise(d, settings.width, settings.height)?;
+        *limit = limit.saturating_sub(std::time::Duration::from_secs_f64(secs * 1.1));
+    }
     let (film, stats) =
         pool.install(|| render_for(&loaded.scene, &loaded.setup, &settings, time_limit));
     if film.rejected_samples() > 0 {
@@ -117,8 +131,19 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             film.rejected_samples()
         );
     }
+    let denoised = match &denoiser {
+        Some(d) => Some(denoise(d, &film)?),
+        None => None,
+    };
     let rendered_at = Instant::now();
-    let (image, exposure) = write_images(&film, &display, &png_path, args.exr.as_deref(), &pool)?;
+    let (image, exposure) = write_images(
+        &film,
+        &display,
+        &png_path,
+        args.exr.as_deref(),
+        &pool,
+        denoised.as_ref().map(|(d, _)| d.as_slice()),
+    )?;
     let scene = &loaded.scene;
     let transport = match settings.integrator {
         IntegratorKind::Direct => format!("direct, mirror depth {}", settings.max_depth),
@@ -161,6 +186,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         stats.elapsed_secs * 1e3,
         rendered_at.elapsed().as_secs_f64() * 1e3,
     );
+    if let (Some((_, secs)), Some(d)) = (&denoised, &denoiser) {
+        println!(
+            "denoised in {:.1} ms (Open Image Denoise {}): the PNG shows the denoised picture; \
+             the figures above are the raw image's; render and denoise {:.2} s",
+            secs * 1e3,
+            d.version_text(),
+            stats.elapsed_secs + secs
+        );
+    }
     println!("wrote {}", png_path.display());
     if image.luminance_max <= 0.0 {
         let outside = crate::picture_hints::lights_outside(&loaded.setup, &loaded.scene.bounds);
@@ -177,7 +211,31 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         eprintln!("warning: every pixel is 0 cd/m²: no light reaches what the camera sees{lights}");
     }
     if let Some(exr) = &args.exr {
-        println!("wrote {} (linear cd/m² per channel)", exr.display());
+        let layers = if denoised.is_some() {
+            "; denoised.R/G/B: denoised"
+        } else {
+            ""
+        };
+        println!("wrote {} (linear cd/m² per channel{layers})", exr.display());
     }
     Ok(())
+}
+
+/// Seconds one denoise of a `width` x `height` picture takes (a black one: the network's cost
+/// does not depend on the picture).
+fn warm_up_denoise(d: &Denoiser, width: u32, height: u32) -> Result<f64> {
+    let black = vec![glam::Vec3::ZERO; width as usize * height as usize];
+    let t = Instant::now();
+    d.denoise(
+        &Images {
+            width,
+            height,
+            color: &black,
+            albedo: &black,
+            normal: &black,
+        },
+        Quality::High,
+    )
+    .map_err(|e| anyhow::anyhow!("--denoise: {e}"))?;
+    Ok(t.elapsed().as_secs_f64())
 }

@@ -3,7 +3,9 @@
 //! uploading only the tiles that changed. Never blocks the UI thread for long: the film lock is
 //! held only while a changed rectangle is mapped.
 
+use crate::denoise_view::Picture;
 use egui::{ColorImage, TextureHandle, TextureOptions};
+use glam::Vec3;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use tracer_core::display::{DisplayMapper, DisplaySettings};
@@ -48,6 +50,10 @@ pub struct RenderWorker {
     /// The first generation of the current scene: older films show another scene and are never
     /// drawn (a scene opened while paused, or before its first preview lands).
     scene_first_generation: u64,
+    /// The denoised picture to show instead of the film's means (see `denoise_view`), and
+    /// whether the texture must be remapped for a change of it.
+    denoised: Option<Arc<Picture>>,
+    denoised_changed: bool,
 }
 
 impl std::fmt::Debug for RenderWorker {
@@ -79,7 +85,28 @@ impl RenderWorker {
             started_at: None,
             last_change_to_pixels: None,
             scene_first_generation: 0,
+            denoised: None,
+            denoised_changed: false,
         })
+    }
+
+    /// Shows `picture` (a denoised picture of the current generation) instead of the film's
+    /// means, or the means again for None.
+    pub fn set_denoised(&mut self, picture: Option<Arc<Picture>>) {
+        let same = match (&self.denoised, &picture) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (None, None) => true,
+            _ => false,
+        };
+        if !same {
+            self.denoised = picture;
+            self.denoised_changed = true;
+        }
+    }
+
+    /// The denoised picture the texture shows, if any.
+    pub fn denoised_shown(&self) -> Option<&Arc<Picture>> {
+        self.denoised.as_ref()
     }
 
     /// Starts a new generation when `key` differs from the running one. Returns whether it did.
@@ -189,7 +216,19 @@ impl RenderWorker {
                 .with_film(|f| f.map(|f| exposure_stops(display, f)))
                 .unwrap_or(0.0);
         }
+        // A denoised picture of this generation, of this size, replaces the means.
+        let denoised = self
+            .denoised
+            .as_ref()
+            .filter(|p| p.generation == generation)
+            .filter(|p| {
+                self.current
+                    .as_ref()
+                    .is_some_and(|k| (k.settings.width, k.settings.height) == (p.width, p.height))
+            })
+            .cloned();
         let full = new_generation
+            || std::mem::take(&mut self.denoised_changed)
             || self.shown_display.as_ref() != Some(display)
             || (exposure - self.shown_exposure).abs() > 0.02
             || self.texture.is_none();
@@ -205,9 +244,10 @@ impl RenderWorker {
             return;
         };
         if full {
-            let image = self
-                .session
-                .with_film(|f| f.map(|f| texture_rect(f, display, exposure, None, Some(mapper))));
+            let colours = denoised.as_ref().map(|p| p.rgb.as_slice());
+            let image = self.session.with_film(|f| {
+                f.map(|f| texture_rect(f, display, exposure, None, Some(mapper), colours))
+            });
             let Some(image) = image else {
                 return;
             };
@@ -225,10 +265,12 @@ impl RenderWorker {
                     self.last_change_to_pixels = Some(t.elapsed().as_secs_f64());
                 }
             }
-        } else if let Some(texture) = &mut self.texture {
+        } else if let Some(texture) = self.texture.as_mut().filter(|_| denoised.is_none()) {
+            // (A denoised picture stays as it is until the next one: new samples change the
+            // readouts at once, the picture with the next denoise.)
             for rect in merge_rows(dirty) {
                 let image = self.session.with_film(|f| {
-                    f.map(|f| texture_rect(f, display, exposure, Some(rect), Some(mapper)))
+                    f.map(|f| texture_rect(f, display, exposure, Some(rect), Some(mapper), None))
                 });
                 if let Some(image) = image {
                     texture.set_partial(
@@ -267,13 +309,15 @@ pub fn exposure_stops(display: &DisplaySettings, film: &ProgressiveFilm) -> f32 
 
 /// What the viewport shows of a rectangle of the film (all of it for `None`): its display
 /// mapping (through `mapper` when one made for `display` at `exposure` is at hand) with the
-/// backdrop where the camera saw nothing. Exports use [`map_rect`] instead.
+/// backdrop where the camera saw nothing. Exports use [`map_rect`] instead. With `colours` (a
+/// denoised picture, one per pixel), those are shown instead of the film's means.
 pub fn texture_rect(
     film: &ProgressiveFilm,
     display: &DisplaySettings,
     exposure: f32,
     rect: Option<Tile>,
     mapper: Option<&DisplayMapper>,
+    colours: Option<&[Vec3]>,
 ) -> ColorImage {
     let made;
     let mapper = match mapper {
@@ -283,20 +327,21 @@ pub fn texture_rect(
             &made
         }
     };
-    let mut image = map_rect_with(film, mapper, rect);
+    let mut image = map_rect_with(film, mapper, rect, colours);
     crate::backdrop::draw(&mut image, film, mapper, rect);
     image
 }
 
 /// Maps a rectangle of the film (all of it for `None`) to display pixels at `exposure` stops,
-/// as exports write them (no backdrop).
+/// as exports write them (no backdrop); `colours` as in [`texture_rect`].
 pub fn map_rect(
     film: &ProgressiveFilm,
     display: &DisplaySettings,
     exposure: f32,
     rect: Option<Tile>,
+    colours: Option<&[Vec3]>,
 ) -> ColorImage {
-    map_rect_with(film, &DisplayMapper::new(display, exposure), rect)
+    map_rect_with(film, &DisplayMapper::new(display, exposure), rect, colours)
 }
 
 /// [`map_rect`] through a mapping already made: the one display path of
@@ -305,7 +350,9 @@ pub fn map_rect_with(
     film: &ProgressiveFilm,
     mapper: &DisplayMapper,
     rect: Option<Tile>,
+    colours: Option<&[Vec3]>,
 ) -> ColorImage {
+    let colours = colours.filter(|c| c.len() == film.accum.pixels.len());
     let rect = rect.unwrap_or(Tile {
         x0: 0,
         y0: 0,
@@ -316,7 +363,8 @@ pub fn map_rect_with(
         .pixels()
         .map(|(x, y)| {
             let i = film.accum.index(x, y);
-            let [r, g, b, _] = mapper.map(film.shown_rgb(i), film.shown_illuminance(i));
+            let rgb = colours.map_or_else(|| film.shown_rgb(i), |c| c[i]);
+            let [r, g, b, _] = mapper.map(rgb, film.shown_illuminance(i));
             egui::Color32::from_rgb(r, g, b)
         })
         .collect();

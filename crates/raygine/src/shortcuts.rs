@@ -1,7 +1,7 @@
 //! Keyboard shortcuts: what the user pressed this frame, read once before the panels draw.
 //!
 //! Typing never triggers a shortcut: while a text field (a path, a typed slider value) has
-//! keyboard focus, plain keys (F, P) and undo / redo belong to the field. Commands with Ctrl
+//! keyboard focus, plain keys (F, P, D) and undo / redo belong to the field. Commands with Ctrl
 //! (open, save, export, quit) still work, as they type nothing.
 
 use crate::command::{Command, Commands};
@@ -29,6 +29,7 @@ pub struct Pressed {
     pub redo: bool,
     pub frame_scene: bool,
     pub toggle_pause: bool,
+    pub toggle_denoise: bool,
 }
 
 impl Pressed {
@@ -49,6 +50,7 @@ impl Pressed {
                 redo,
                 frame_scene: !typing && i.consume_key(Modifiers::NONE, Key::F),
                 toggle_pause: !typing && i.consume_key(Modifiers::NONE, Key::P),
+                toggle_denoise: !typing && i.consume_key(Modifiers::NONE, Key::D),
             }
         })
     }
@@ -78,6 +80,9 @@ impl Pressed {
         }
         if self.toggle_pause {
             out.push(Command::TogglePause);
+        }
+        if self.toggle_denoise {
+            out.push(Command::ToggleDenoise);
         }
         out
     }

@@ -77,7 +77,7 @@ pub fn run(args: &SweepArgs) -> Result<()> {
             let exr = args
                 .exr
                 .then(|| args.out.join(format!("{}.exr", variant.name)));
-            write_images(&film, &display, &png, exr.as_deref(), &pool)?;
+            write_images(&film, &display, &png, exr.as_deref(), &pool, None)?;
             println!(
                 "variant {i} ({}): {} spp in {:.1} s, wrote {}",
                 variant.name,

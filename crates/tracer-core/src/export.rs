@@ -3,8 +3,9 @@
 //! any existing file at the destination is untouched.
 
 use crate::render::Film;
+use glam::Vec3;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-use image::{ExtendedColorType, ImageEncoder, ImageFormat, Rgb32FImage};
+use image::{ExtendedColorType, ImageEncoder};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
@@ -53,22 +54,52 @@ fn write_png_pixels(
 
 /// Writes the film's mean linear luminance per channel (cd/m²) as OpenEXR (32-bit float).
 pub fn write_exr(path: &Path, film: &Film) -> Result<(), ExportError> {
-    let data: Vec<f32> = film
-        .mean_rgb_all()
-        .iter()
-        .flat_map(|v| v.to_array())
-        .collect();
-    let img = Rgb32FImage::from_raw(film.width, film.height, data).ok_or_else(|| {
-        ExportError::Encode {
+    write_exr_with_denoised(path, film, None)
+}
+
+/// [`write_exr`], and when `denoised` is given (cd/m² per channel, one per pixel) the denoised
+/// picture beside it as the channels `denoised.R`, `denoised.G`, `denoised.B`. The raw R, G, B
+/// stay the film's unbiased means.
+pub fn write_exr_with_denoised(
+    path: &Path,
+    film: &Film,
+    denoised: Option<&[Vec3]>,
+) -> Result<(), ExportError> {
+    use exr::prelude::{
+        AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, SmallVec,
+        WritableImage,
+    };
+    let n = film.pixels.len();
+    if denoised.is_some_and(|d| d.len() != n) {
+        return Err(ExportError::Encode {
             path: path.to_owned(),
-            reason: "pixel buffer does not match the image size".to_owned(),
+            reason: "the denoised image does not match the film's size".to_owned(),
+        });
+    }
+    let raw = film.mean_rgb_all();
+    let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
+    let mut add = |prefix: &str, pixels: &[Vec3]| {
+        for (k, name) in ["R", "G", "B"].into_iter().enumerate() {
+            let samples = pixels.iter().map(|p| p[k]).collect();
+            channels.push(AnyChannel::new(
+                format!("{prefix}{name}").as_str(),
+                FlatSamples::F32(samples),
+            ));
         }
-    })?;
+    };
+    add("", &raw);
+    if let Some(d) = denoised {
+        add("denoised.", d);
+    }
+    let layer = Layer::new(
+        (film.width as usize, film.height as usize),
+        LayerAttributes::default(),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(channels),
+    );
+    let image = Image::from_layer(layer);
     write_atomically(path, |w| {
-        let mut buf = std::io::Cursor::new(Vec::new());
-        img.write_to(&mut buf, ImageFormat::OpenExr)
-            .map_err(|e| e.to_string())?;
-        w.write_all(buf.get_ref()).map_err(|e| e.to_string())
+        image.write().to_buffered(w).map_err(|e| e.to_string())
     })
 }
 

@@ -24,6 +24,7 @@
 //! This crate knows nothing of egui, dialogs or UI threads.
 
 pub mod bvh;
+pub mod denoise;
 pub mod display;
 pub mod export;
 pub mod formats;

@@ -31,6 +31,11 @@ impl RaygineApp {
             Command::Redo => self.redo(),
             Command::FrameScene => self.frame_scene(),
             Command::TogglePause => self.set_paused(!self.paused),
+            Command::ToggleDenoise => {
+                if self.denoise.available() {
+                    self.denoise.toggle(self.render.integrator);
+                }
+            }
             Command::OpenRenderImageForm => {
                 let [w, h] = self.viewport_px;
                 self.render_image_form = Some(RenderImageForm {

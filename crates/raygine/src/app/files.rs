@@ -175,9 +175,12 @@ impl RaygineApp {
     /// Writes the image as displayed (display mapping applied) to `path`.
     pub fn export_png(&mut self, ctx: &egui::Context, path: PathBuf) {
         let display = self.effective_display();
+        // What is shown: the denoised picture when the viewport shows one.
+        let denoised = self.worker.denoised_shown().cloned();
+        let colours = denoised.as_ref().map(|p| p.rgb.as_slice());
         let image = self.worker.with_film(|f| {
             f.map(|f| {
-                let img = map_rect(f, &display, exposure_stops(&display, f), None);
+                let img = map_rect(f, &display, exposure_stops(&display, f), None, colours);
                 (img, f.width(), f.height())
             })
         });
@@ -199,9 +202,23 @@ impl RaygineApp {
             self.error = Some("nothing rendered yet".to_owned());
             return;
         };
+        // The raw means as R, G, B; with denoise on, the denoised picture beside them.
+        let denoised = self
+            .worker
+            .denoised_shown()
+            .filter(|p| p.rgb.len() == film.pixels.len())
+            .cloned();
         self.writes.push(start_write(ctx, move || {
-            tracer_core::export::write_exr(&path, &film)
-                .map(|()| format!("exported linear EXR (cd/m²) to {}", path.display()))
+            let layers = denoised.as_ref().map(|p| p.rgb.as_slice());
+            tracer_core::export::write_exr_with_denoised(&path, &film, layers)
+                .map(|()| {
+                    let extra = if layers.is_some() {
+                        " with denoised.R/G/B"
+                    } else {
+                        ""
+                    };
+                    format!("exported linear EXR (cd/m²){extra} to {}", path.display())
+                })
                 .map_err(|e| e.to_string())
         }));
     }

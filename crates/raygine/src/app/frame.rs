@@ -63,11 +63,29 @@ impl RaygineApp {
     /// sync. Commands are applied as soon as what returned them has drawn: the shortcuts' before
     /// the panels, the panels' before the viewport (so the picture and a report screenshot show
     /// them this frame), the viewport's and the windows' before the unsaved-edits question.
+    /// Sends the next denoise when due and picks the picture the viewport shows: the
+    /// denoised one when the toggle is on and one of this render is ready, never in false
+    /// colour (its colours are values).
+    fn poll_denoise(&mut self, ctx: &egui::Context) {
+        let mode = self.render.integrator;
+        if let Some(wait) = self.denoise.poll(&self.worker, mode) {
+            ctx.request_repaint_after(wait);
+        }
+        let false_colour = self.effective_display().false_colour.is_some();
+        let shown = if false_colour {
+            None
+        } else {
+            self.denoise.shown(self.worker.generation(), mode).cloned()
+        };
+        self.worker.set_denoised(shown);
+    }
+
     pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
         let started = Instant::now();
         let ctx = ui.ctx().clone();
         self.record_frame_time();
         self.poll_background();
+        self.poll_denoise(&ctx);
         self.measure.update(
             &self.doc.scene,
             &self.doc.setup,
@@ -159,6 +177,7 @@ impl RaygineApp {
             viewport_px: self.viewport_px,
             loading: self.loading.as_ref(),
             p95_frame_ms: self.p95_frame_ms(),
+            denoised: self.worker.denoised_shown().map(|p| (p.samples, p.secs)),
         };
         crate::panels::status_bar(ui, status, out);
     }
@@ -176,6 +195,7 @@ impl RaygineApp {
             render: &mut self.render,
             display: &mut self.display,
             false_colour: &mut self.false_colour,
+            denoise: &mut self.denoise,
             show_grids: &mut self.show_grids,
             measure,
             state: &mut self.panels,

@@ -54,6 +54,8 @@ pub struct RaygineApp {
     pub display: DisplaySettings,
     pub false_colour: FalseColourUi,
     pub worker: RenderWorker,
+    /// The denoised display (Open Image Denoise on a background thread).
+    pub denoise: crate::denoise_view::DenoiseView,
     pub prefs: Prefs,
     pub selected_slot: Option<u32>,
     pub error: Option<String>,
@@ -147,6 +149,10 @@ impl RaygineApp {
             },
             false_colour: FalseColourUi::default(),
             worker,
+            denoise: crate::denoise_view::DenoiseView::new(
+                &cc.egui_ctx,
+                if threads == 0 { cores } else { threads },
+            ),
             prefs,
             selected_slot: None,
             error: None,
@@ -213,6 +219,7 @@ impl RaygineApp {
             integrator: self.render.integrator,
             max_bounces: None,
             pixel_illuminance: true,
+            guides: self.denoise.guides_wanted(self.render.integrator),
         }
     }
 

@@ -42,6 +42,7 @@ pub struct SidePanel<'a> {
     pub render: &'a mut RenderPrefs,
     pub display: &'a mut DisplaySettings,
     pub false_colour: &'a mut FalseColourUi,
+    pub denoise: &'a mut crate::denoise_view::DenoiseView,
     pub show_grids: &'a mut bool,
     pub measure: MeasureView,
     pub state: &'a mut PanelState,
@@ -55,6 +56,7 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         render,
         display,
         false_colour,
+        denoise,
         show_grids,
         measure,
         state,
@@ -91,6 +93,7 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
     egui::CollapsingHeader::new("Render")
         .default_open(true)
         .show(ui, |ui| {
-            render::render_ui(ui, render, display, false_colour)
+            render::render_ui(ui, render, display, false_colour);
+            render::denoise_ui(ui, denoise, render.integrator, false_colour.enabled);
         });
 }

@@ -151,3 +151,36 @@ pub fn render_ui(
         }
     });
 }
+
+/// The "Denoise" toggle (D): on by default in the GI modes, off in Direct; disabled, with the
+/// reason, without Open Image Denoise.
+pub fn denoise_ui(
+    ui: &mut egui::Ui,
+    dn: &mut crate::denoise_view::DenoiseView,
+    mode: IntegratorKind,
+    false_colour: bool,
+) {
+    use crate::denoise_view::Availability;
+    let mut on = dn.wanted(mode) && dn.available();
+    let response = ui.add_enabled(dn.available(), egui::Checkbox::new(&mut on, "denoise (D)"));
+    if response.changed() {
+        dn.toggle(mode);
+    }
+    match &dn.availability {
+        Availability::Loading => {
+            ui.weak("denoiser: loading Open Image Denoise…");
+        }
+        Availability::Unavailable(why) => {
+            ui.weak(format!("denoise unavailable: {why}"));
+        }
+        Availability::Ready(version) => {
+            response.on_hover_text(format!(
+                "Shows the picture denoised by {version} (albedo and normal guides). \
+                 Readouts (hover, meter, grids, noise) stay on the unbiased sums."
+            ));
+            if false_colour && on {
+                ui.weak("false colour shows the raw values");
+            }
+        }
+    }
+}

@@ -18,6 +18,9 @@ pub struct StatusBar<'a> {
     pub loading: Option<&'a PendingLoad>,
     /// The 95th percentile of recent frame intervals while rendering, ms.
     pub p95_frame_ms: Option<f32>,
+    /// The viewport shows a denoised picture: of how many samples per pixel, made in how many
+    /// seconds.
+    pub denoised: Option<(u32, f64)>,
 }
 
 /// One line at the bottom; what does not fit is cut off at the window's edge. It never wraps:
@@ -49,6 +52,13 @@ pub fn status_bar(ui: &mut egui::Ui, s: StatusBar<'_>, out: &mut Commands) {
                         "Remaining noise: RMS standard error of the pixels' luminance over the \
                      mean luminance, from the summed squares of the samples",
                     );
+            }
+            if let Some((spp, secs)) = s.denoised {
+                ui.label("denoised display · readouts unbiased")
+                    .on_hover_text(format!(
+                        "The picture is denoised (from {spp} spp, in {secs:.1} s); every number \
+                     shown comes from the raw, unbiased sums. D shows the raw picture."
+                    ));
             }
             ui.separator();
             ui.label(format!(

@@ -231,6 +231,7 @@ fn help_ui(ctx: &egui::Context, show_help: &mut bool) {
                     ("Ctrl+Z / Ctrl+Shift+Z", "undo / redo scene edits"),
                     ("F", "frame the scene"),
                     ("P", "pause / resume rendering"),
+                    ("D", "denoised / raw picture (readouts always raw)"),
                     ("Ctrl+Q", "quit (settings and recent files are kept)"),
                     ("drag", "orbit about the look-at point"),
                     ("shift-drag, middle-drag", "pan"),

@@ -193,7 +193,7 @@ fn expected_texture(app: &RaygineApp) -> ColorImage {
     assert!(!app.display.auto_exposure && !app.false_colour.enabled);
     let exposure = app.display.exposure_stops;
     app.worker
-        .with_film(|f| f.map(|f| texture_rect(f, &app.display, exposure, None, None)))
+        .with_film(|f| f.map(|f| texture_rect(f, &app.display, exposure, None, None, None)))
         .expect("no film yet")
 }
 
@@ -746,6 +746,7 @@ fn render_image_job_writes_the_chosen_size() {
         integrator: app.render.integrator,
         max_bounces: None,
         pixel_illuminance: true,
+        guides: false,
     };
     let (film, _) = tracer_core::render::render(&app.doc.scene, &app.doc.setup, &settings);
     let expected = app.effective_display().map_film(&film);

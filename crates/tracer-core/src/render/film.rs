@@ -12,6 +12,7 @@
 //! a sample beyond that, or not a finite number, is not added: it is counted in
 //! [`PixelSum::rejected`] and the film reports it ([`Film::rejected_samples`]).
 
+use super::guides::GuideFilm;
 use super::run_sums::{RUN_SAMPLES, run_sums, wide_run_sums};
 use super::tiles::Tile;
 use crate::integrator::Sample;
@@ -361,6 +362,9 @@ pub struct Film {
     pub height: u32,
     /// Row-major, top row first.
     pub pixels: Vec<PixelSum>,
+    /// The denoiser's albedo and normal guides of the same samples, when asked for
+    /// ([`super::RenderSettings::guides`]); None otherwise.
+    pub guides: Option<GuideFilm>,
 }
 
 impl Drop for Film {
@@ -384,7 +388,15 @@ impl Film {
             width,
             height,
             pixels: super::film_buffers::take(width as usize * height as usize),
+            guides: None,
         }
+    }
+
+    /// A film that also sums the denoiser's guides.
+    pub fn with_guides(width: u32, height: u32) -> Self {
+        let mut film = Film::new(width, height);
+        film.guides = Some(GuideFilm::new(width, height));
+        film
     }
 
     pub fn index(&self, x: u32, y: u32) -> usize {
@@ -430,6 +442,13 @@ impl Film {
                     y: (i / w) as u32,
                 });
             }
+        }
+        // Guides of only some of the samples would not describe the sum: kept only when both
+        // films have them.
+        match (&mut self.guides, &other.guides) {
+            (Some(a), Some(b)) => a.merge(b),
+            (Some(_), None) => self.guides = None,
+            _ => {}
         }
         Ok(())
     }

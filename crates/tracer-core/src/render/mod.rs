@@ -4,6 +4,7 @@
 mod camera_rays;
 mod film;
 mod film_buffers;
+mod guides;
 pub mod partial;
 mod passes;
 mod pixel;
@@ -14,6 +15,7 @@ mod session;
 mod tiles;
 
 pub use film::{Film, FilmError, PixelSum, SQUARE_SCALE, VALUE_SCALE};
+pub use guides::{GUIDE_SCALE, Guide, GuideFilm, GuideSum, trace_guide};
 pub use passes::{PREVIEW_BLOCKS, Pass};
 pub use pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler, SampleJob};
 pub use progressive_film::ProgressiveFilm;
@@ -47,6 +49,9 @@ pub struct RenderSettings {
     /// measures it with a second (sensor) subpath, which costs about as much as the luminance;
     /// images that only show luminance can switch it off (the pixels then read 0 lx).
     pub pixel_illuminance: bool,
+    /// Whether to sum the denoiser's albedo and normal guides beside the film (one more camera
+    /// ray per sample, 56 bytes per pixel). They change no pixel's sums.
+    pub guides: bool,
 }
 
 impl Default for RenderSettings {
@@ -59,6 +64,7 @@ impl Default for RenderSettings {
             integrator: IntegratorKind::Direct,
             max_bounces: None,
             pixel_illuminance: true,
+            guides: false,
         }
     }
 }
@@ -116,7 +122,7 @@ pub fn render_for(
     let started = std::time::Instant::now();
     let frame = FrameSampler::new(scene, setup, settings);
     let target = settings.samples_per_pixel.max(1);
-    let mut film = Film::new(settings.width, settings.height);
+    let mut film = new_film(settings);
     let mut rays = 0;
     let mut done = 0;
     let limit_secs = limit.as_secs_f64();
@@ -173,7 +179,7 @@ fn render_range(
     settings: &RenderSettings,
     samples: Range<u32>,
 ) -> (Film, u64) {
-    let mut film = Film::new(settings.width, settings.height);
+    let mut film = new_film(settings);
     let width = settings.width as usize;
     let band_len = width * BAND_ROWS as usize;
     let (rays, splats): (u64, Vec<Vec<crate::integrator::Splat>>) = film
@@ -223,5 +229,39 @@ fn render_range(
     for band in &splats {
         film.add_splats(band);
     }
+    if let Some(guides) = film.guides.as_mut() {
+        add_guides(frame, settings, guides, samples);
+    }
     (film, rays)
+}
+
+fn new_film(settings: &RenderSettings) -> Film {
+    if settings.guides {
+        Film::with_guides(settings.width, settings.height)
+    } else {
+        Film::new(settings.width, settings.height)
+    }
+}
+
+/// Adds the guides of samples `samples` of every pixel, band by band in parallel.
+fn add_guides(
+    frame: &FrameSampler<'_>,
+    settings: &RenderSettings,
+    guides: &mut GuideFilm,
+    samples: Range<u32>,
+) {
+    let width = settings.width as usize;
+    guides
+        .pixels
+        .par_chunks_mut((width * BAND_ROWS as usize).max(1))
+        .enumerate()
+        .for_each(|(band, pixels)| {
+            let y0 = band * BAND_ROWS as usize;
+            for (i, sum) in pixels.iter_mut().enumerate() {
+                let (x, y) = ((i % width) as u32, (y0 + i / width) as u32);
+                for s in samples.clone() {
+                    sum.add(&frame.guide(x, y, s));
+                }
+            }
+        });
 }

@@ -5,6 +5,7 @@
 
 use super::RenderSettings;
 use super::film::{Film, PixelSum};
+use super::guides::{GuideFilm, GuideSum};
 use crate::shard::varint::{Decoder, Encoder};
 
 /// Integers a pixel holds in a part.
@@ -64,7 +65,41 @@ pub fn encode_film(film: &Film) -> Vec<u8> {
     for p in &film.pixels {
         encode_pixel(&mut e, p);
     }
+    // Then the denoiser's guides, when the film has them: a flag, then per pixel albedo,
+    // normal and count.
+    match &film.guides {
+        None => e.u32(0),
+        Some(g) => {
+            e.u32(1);
+            for p in &g.pixels {
+                for v in p.albedo.iter().chain(&p.normal) {
+                    e.i128(i128::from(*v));
+                }
+                e.u32(p.count);
+            }
+        }
+    }
     e.bytes
+}
+
+fn decode_guides(d: &mut Decoder<'_>, width: u32, height: u32) -> Result<GuideFilm, String> {
+    let mut guides = GuideFilm::new(width, height);
+    for (i, p) in guides.pixels.iter_mut().enumerate() {
+        let bad = || format!("the guides of pixel {i} are unreadable");
+        let mut f = [0i64; 6];
+        for v in &mut f {
+            *v = d
+                .i128()
+                .and_then(|x| i64::try_from(x).ok())
+                .ok_or_else(bad)?;
+        }
+        *p = GuideSum {
+            albedo: [f[0], f[1], f[2]],
+            normal: [f[3], f[4], f[5]],
+            count: d.u32().ok_or_else(bad)?,
+        };
+    }
+    Ok(guides)
 }
 
 /// The film of a payload, or what is wrong with it.
@@ -79,6 +114,11 @@ pub fn decode_film(payload: &[u8]) -> Result<Film, String> {
     let mut film = Film::new(width, height);
     for (i, p) in film.pixels.iter_mut().enumerate() {
         *p = decode_pixel(&mut d).ok_or_else(|| format!("pixel {i} is unreadable"))?;
+    }
+    match d.u32() {
+        Some(0) => {}
+        Some(1) => film.guides = Some(decode_guides(&mut d, width, height)?),
+        _ => return Err("no guide flag after the last pixel".to_owned()),
     }
     if !d.is_at_end() {
         return Err("bytes after the last pixel".to_owned());
@@ -124,6 +164,16 @@ mod tests {
         film.pixels[5].rejected = 3;
         let payload = encode_film(&film);
         assert_eq!(decode_film(&payload).unwrap(), film);
+        let mut guided = Film::with_guides(3, 2);
+        if let Some(g) = guided.guides.as_mut() {
+            g.pixels[4].add(&crate::render::Guide {
+                albedo: Vec3::new(0.5, 0.25, 1.0),
+                normal: Vec3::new(0.0, -1.0, 0.0),
+            });
+        }
+        let back = decode_film(&encode_film(&guided)).unwrap();
+        assert_eq!(back, guided);
+        assert!(back.guides.is_some());
         assert!(decode_film(&payload[..payload.len() - 1]).is_err());
         let mut longer = payload.clone();
         longer.push(0);

@@ -6,6 +6,7 @@
 use super::RenderSettings;
 use super::camera_rays::camera_rays;
 use super::film::PixelSum;
+use super::guides::{Guide, trace_guide};
 use super::sampler::pixel_sample_offset;
 use crate::geometry::Ray;
 use crate::integrator::{
@@ -18,6 +19,8 @@ use std::ops::Range;
 
 /// Stream key of preview samples (never accumulated), apart from every pixel's.
 const PREVIEW_STREAM: u64 = 1 << 62;
+/// Stream key of the denoiser's guide rays, apart from every pixel's and the previews'.
+const GUIDE_STREAM: u64 = 1 << 61;
 
 /// Camera samples traced together: at most this many per batch. Big enough for the wavefront
 /// to keep the CPU busy, small enough for its working set to stay in the first-level caches.
@@ -45,6 +48,8 @@ pub struct BatchScratch {
 pub struct FrameSampler<'a> {
     pub integrator: Integrator<'a>,
     pub basis: CameraBasis,
+    /// Whether the denoiser's guides are traced too ([`super::RenderSettings::guides`]).
+    pub guides: bool,
 }
 
 impl<'a> FrameSampler<'a> {
@@ -57,6 +62,7 @@ impl<'a> FrameSampler<'a> {
             basis: setup
                 .camera
                 .basis(setup.handedness, settings.width, settings.height),
+            guides: settings.guides,
         }
     }
 
@@ -66,6 +72,15 @@ impl<'a> FrameSampler<'a> {
         let (ray, mut rng) = self.camera_ray(SampleJob { x, y, s });
         self.integrator
             .sample_camera(&self.basis, &ray, &mut rng, s, splats)
+    }
+
+    /// The denoiser's guide of sample `s` of pixel (`x`, `y`): the same camera ray as the
+    /// sample's, its own random stream.
+    pub fn guide(&self, x: u32, y: u32, s: u32) -> Guide {
+        let (ray, _) = self.camera_ray(SampleJob { x, y, s });
+        let key = u64::from(y) * u64::from(self.basis.width) + u64::from(x);
+        let mut rng = SampleRng::new(GUIDE_STREAM ^ key, s);
+        trace_guide(&self.integrator.prep, &ray, &mut rng)
     }
 
     /// The camera ray of a sample and its random stream.

@@ -2,6 +2,7 @@
 //! the latest coarse preview, shown where a pixel has no full sample yet.
 
 use super::film::{Film, PixelSum};
+use super::guides::{GuideFilm, GuideSum};
 use super::tiles::Tile;
 use crate::integrator::Sample;
 use glam::Vec3;
@@ -42,10 +43,32 @@ impl ProgressiveFilm {
         }
     }
 
+    /// Keeps (or drops) the denoiser's guides beside the samples; emptied either way.
+    pub fn set_guides(&mut self, on: bool) {
+        match (&mut self.accum.guides, on) {
+            (Some(g), true) => g.pixels.fill(GuideSum::default()),
+            (None, true) => self.accum.guides = Some(GuideFilm::new(self.width(), self.height())),
+            (_, false) => self.accum.guides = None,
+        }
+    }
+
+    /// Adds a tile's guide sums (the tile's row-major order), when the film keeps guides.
+    pub fn add_guide_tile(&mut self, tile: &Tile, sums: &[GuideSum]) {
+        let width = self.width() as usize;
+        if let Some(g) = self.accum.guides.as_mut() {
+            for ((x, y), s) in tile.pixels().zip(sums) {
+                g.pixels[y as usize * width + x as usize].merge(s);
+            }
+        }
+    }
+
     /// Empties the film for reuse by `generation` (no allocation).
     pub fn reset(&mut self, generation: u64) {
         self.generation = generation;
         self.accum.pixels.fill(PixelSum::default());
+        if let Some(g) = self.accum.guides.as_mut() {
+            g.pixels.fill(GuideSum::default());
+        }
         self.preview_rgb.fill(Vec3::ZERO);
         self.preview_lx.fill(0.0);
         self.misses.fill(0);
@@ -120,6 +143,13 @@ impl ProgressiveFilm {
         } else {
             self.preview_lx[i]
         }
+    }
+
+    /// Every pixel's shown colour, row-major (the denoiser's input).
+    pub fn shown_rgb_all(&self) -> Vec<Vec3> {
+        (0..self.accum.pixels.len())
+            .map(|i| self.shown_rgb(i))
+            .collect()
     }
 
     /// A plain film of what is shown (one "sample" per pixel), for display mapping and export.

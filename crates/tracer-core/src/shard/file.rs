@@ -24,7 +24,7 @@ use super::hash::StableHash;
 use std::path::{Path, PathBuf};
 
 /// The part format this build writes and reads.
-pub const PART_FORMAT: u32 = 3;
+pub const PART_FORMAT: u32 = 4;
 
 const MAGIC: &str = "raygine-partial";
 /// Longest header read before deciding a file is not a part.

@@ -12,6 +12,7 @@ mod bvh_differential;
 mod bvh_speed;
 mod cornell_reference;
 mod default_setup;
+mod denoise;
 mod direct_wavefront;
 mod fuzz_corpus;
 mod gi_analytic;

@@ -57,9 +57,14 @@ pub(super) fn prepare_film(shared: &Shared, generation: u64, s: &RenderSettings)
     let film = match recycled {
         Some(mut f) if f.width() == s.width && f.height() == s.height => {
             f.reset(generation);
+            f.set_guides(s.guides);
             f
         }
-        _ => ProgressiveFilm::new(generation, s.width, s.height),
+        _ => {
+            let mut f = ProgressiveFilm::new(generation, s.width, s.height);
+            f.set_guides(s.guides);
+            f
+        }
     };
     let mut st = shared.lock();
     if !shared.is_current(generation) {

@@ -2,6 +2,7 @@
 //! full sample per pixel, then the result applied to this generation's film under the lock.
 
 use super::super::film::PixelSum;
+use super::super::guides::GuideSum;
 use super::super::passes::Pass;
 use super::super::pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler, SampleJob};
 use super::super::progressive_film::ProgressiveFilm;
@@ -77,6 +78,7 @@ impl PassContext<'_> {
     fn full_tile(&self, tile: &Tile, index: u32) {
         let mut sums = Vec::with_capacity(tile.pixel_count());
         let mut missed = Vec::with_capacity(tile.pixel_count());
+        let mut guides = Vec::new();
         let mut splats = Vec::new();
         let mut rays = 0u64;
         let mut scratch = BatchScratch::default();
@@ -101,11 +103,19 @@ impl PassContext<'_> {
                 sums.push(sum);
                 missed.push(sample.missed);
             }
+            if self.frame.guides {
+                guides.extend(jobs.iter().map(|j| {
+                    let mut sum = GuideSum::default();
+                    sum.add(&self.frame.guide(j.x, j.y, j.s));
+                    sum
+                }));
+            }
         }
         self.rays.fetch_add(rays, Ordering::Relaxed);
         self.commit(tile, |film| {
             film.add_tile(tile, &sums);
             film.add_misses(tile, &missed);
+            film.add_guide_tile(tile, &guides);
             film.add_splats(&splats);
         });
         if !splats.is_empty() {
