@@ -101,9 +101,13 @@ pub fn load_denoiser(threads: usize) -> Result<Denoiser> {
 }
 
 /// The denoised colours of a film rendered with guides, and the seconds it took.
-pub fn denoise(denoiser: &Denoiser, film: &Film) -> Result<(Vec<glam::Vec3>, f64)> {
+pub fn denoise(
+    denoiser: &Denoiser,
+    film: &Film,
+    quality: Quality,
+) -> Result<(Vec<glam::Vec3>, f64)> {
     let t = std::time::Instant::now();
-    let out = tracer_core::denoise::denoise_film(denoiser, film, Quality::High)
+    let out = tracer_core::denoise::denoise_film(denoiser, film, quality)
         .map_err(|e| anyhow::anyhow!("--denoise: {e}"))?;
     Ok((out, t.elapsed().as_secs_f64()))
 }

@@ -105,7 +105,11 @@ fn merge_render(args: &MergeArgs, first: &PartHeader, started: Instant) -> Resul
                      `raygine render --partial ... --denoise`"
                 );
             }
-            Some(crate::cli_support::denoise(d, &film)?)
+            Some(crate::cli_support::denoise(
+                d,
+                &film,
+                tracer_core::denoise::Quality::High,
+            )?)
         }
     };
     let (image, exposure) = write_images(

@@ -2,4 +2,5 @@
 //! once): `viewer` (widgets, files, rendering) and `commands` (the command path).
 
 mod commands;
+mod denoise;
 mod viewer;
