@@ -9,7 +9,7 @@ export RUSTC_BOOTSTRAP=1
 secs="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(shp brs sidecar ies ldt atr prb lgt cam)
+[ ${#targets[@]} -gt 0 ] || targets=(shp brs sidecar ies ldt atr prb lgt cam part)
 mkdir -p logs
 for t in "${targets[@]}"; do
     dict=shp.dict

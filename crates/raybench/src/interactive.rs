@@ -27,9 +27,15 @@ pub struct Options {
     pub threads: Vec<usize>,
     pub storm_changes: usize,
     pub integrator: IntegratorKind,
+    /// The denoiser's guides traced too (the viewer with denoise on).
+    pub guides: bool,
 }
 
+/// `Options::guides` for this run (set once by [`run`], read by [`settings`]).
+static GUIDES: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
 fn settings(integrator: IntegratorKind) -> RenderSettings {
+    let guides = GUIDES.load(std::sync::atomic::Ordering::Relaxed);
     RenderSettings {
         width: 1280,
         height: 720,
@@ -38,7 +44,7 @@ fn settings(integrator: IntegratorKind) -> RenderSettings {
         integrator,
         max_bounces: None,
         pixel_illuminance: true,
-        guides: false,
+        guides,
     }
 }
 
@@ -187,6 +193,8 @@ fn storm(kind: IntegratorKind, threads: usize, changes: usize) -> anyhow::Result
 }
 
 pub fn run(opts: &Options) -> anyhow::Result<()> {
+    GUIDES.store(opts.guides, std::sync::atomic::Ordering::Relaxed);
+    println!("guides (denoise on): {}", opts.guides);
     for &threads in &opts.threads {
         latency(opts.integrator, "cornell", threads, opts.runs)?;
         if crate::shared::shared_dir().is_some() {

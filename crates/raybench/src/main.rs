@@ -103,6 +103,9 @@ enum Command {
         /// Light transport: direct or path.
         #[arg(long, default_value = "direct", value_parser = parse_integrator)]
         integrator: tracer_core::integrator::IntegratorKind,
+        /// Trace the denoiser's guides too, as the viewer does with denoise on.
+        #[arg(long)]
+        guides: bool,
     },
 }
 
@@ -155,11 +158,13 @@ fn main() -> anyhow::Result<()> {
             common,
             changes,
             integrator,
+            guides,
         } => interactive::run(&interactive::Options {
             runs: common.runs as usize,
             threads: common.threads,
             storm_changes: changes,
             integrator,
+            guides,
         }),
     }
 }

@@ -86,6 +86,14 @@ fn replay(data: &[u8], scene: &Scene) {
     }
     replay_integra(data);
     replay_obj_gltf(data);
+    // The `part` target: a payload that decodes encodes back to the same film.
+    if let Ok(film) = tracer_core::render::partial::decode_film(data) {
+        let again = tracer_core::render::partial::encode_film(&film);
+        assert_eq!(
+            tracer_core::render::partial::decode_film(&again).ok(),
+            Some(film)
+        );
+    }
     if let Ok(text) = std::str::from_utf8(data)
         && let Ok(sidecar) = Sidecar::parse(text, Path::new("fuzz.raygine.toml"))
     {
@@ -175,7 +183,7 @@ fn saved_fuzz_inputs_never_panic_or_hang() {
 #[test]
 fn every_target_has_a_corpus() {
     for target in [
-        "shp", "brs", "sidecar", "ies", "ldt", "atr", "prb", "lgt", "cam", "obj", "gltf",
+        "shp", "brs", "sidecar", "ies", "ldt", "atr", "prb", "lgt", "cam", "obj", "gltf", "part",
     ] {
         let dir = fuzz_dir().join("corpus").join(target);
         let count = fs::read_dir(&dir).map(|d| d.count()).unwrap_or(0);
