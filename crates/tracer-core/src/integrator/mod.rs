@@ -152,6 +152,7 @@ impl<'a> Integrator<'a> {
             rr_threshold,
             strategies: self.strategies,
             light_tracing: self.kind == IntegratorKind::Light,
+            splats: true,
         }
     }
 
@@ -169,8 +170,42 @@ impl<'a> Integrator<'a> {
             return self.sample(ray, rng, sample_index);
         }
         let camera = self.bidirectional(Eye::Camera(*basis), BDPT_RR_THRESHOLD);
-        let mut rays = 0;
         let first_splat = splats.len();
+        let sample = self.bidirectional_sample(&camera, ray, rng, splats);
+        combine_splats(splats, first_splat);
+        sample
+    }
+
+    /// A preview sample along `ray` (unit direction) of the camera `basis`, for a picture with
+    /// no film to splat to. Direct and path mode: their own sample. Bidirectional and light
+    /// tracing: bidirectional transport without the t = 1 strategies (the power heuristic
+    /// renormalised over the rest), so previews show what the mode converges to (a lamp's hot
+    /// spot on the ceiling, the light its shades throw), not a path tracer's guess.
+    pub fn preview_camera(&self, basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample {
+        if !self.kind.splats() {
+            return self.sample(ray, rng, 0);
+        }
+        let camera = Bidirectional {
+            light_tracing: false,
+            splats: false,
+            ..self.bidirectional(Eye::Camera(*basis), BDPT_RR_THRESHOLD)
+        };
+        let mut none = Vec::new();
+        let sample = self.bidirectional_sample(&camera, ray, rng, &mut none);
+        debug_assert!(none.is_empty(), "a preview splatted");
+        sample
+    }
+
+    /// One camera sample of `camera` (bidirectional or light tracing), with the first
+    /// surface's illuminance when asked for.
+    fn bidirectional_sample(
+        &self,
+        camera: &Bidirectional<'_, 'a>,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        splats: &mut Vec<Splat>,
+    ) -> Sample {
+        let mut rays = 0;
         let (estimate, first, illuminance_lx) = bdpt::with_subpaths(|paths| {
             camera.light_subpath(&mut bdpt::light_stream(rng), &mut rays, paths);
             let (estimate, first) = camera.camera_sample(ray, rng, paths, splats);
@@ -189,7 +224,6 @@ impl<'a> Integrator<'a> {
             }
             (estimate, first, illuminance_lx)
         });
-        combine_splats(splats, first_splat);
         rays += estimate.rays;
         Sample {
             rgb: estimate.value,
@@ -208,11 +242,11 @@ impl<'a> Integrator<'a> {
     }
 
     /// Camera sample number `sample_index` along `ray` (sample 0 takes the cheaper roulette
-    /// in path mode).
+    /// in path mode). Direct and path mode; the splatting modes path-trace here (their own
+    /// transport needs the camera: [`Integrator::sample_camera`], [`Integrator::preview_camera`]).
     pub fn sample(&self, ray: &Ray, rng: &mut SampleRng, sample_index: u32) -> Sample {
         match self.kind {
             IntegratorKind::Direct => direct::trace(&self.prep, ray, rng),
-            // Without a film to splat to (previews) the bidirectional mode path-traces.
             IntegratorKind::Path | IntegratorKind::Bidirectional | IntegratorKind::Light => {
                 let rr = if sample_index == 0 { 1.0 } else { RR_THRESHOLD };
                 self.path(rr).trace(ray, rng)

@@ -197,8 +197,15 @@ impl<'a> FrameSampler<'a> {
 
     /// A preview sample at film position (`fx`, `fy`) (a block centre), from its own stream.
     pub fn preview(&self, fx: f32, fy: f32) -> Sample {
+        self.preview_sample(fx, fy, 0)
+    }
+
+    /// Preview sample number `index` at film position (`fx`, `fy`): the mode's own transport
+    /// without splats ([`Integrator::preview_camera`]), from a stream apart from every pixel's.
+    pub fn preview_sample(&self, fx: f32, fy: f32, index: u32) -> Sample {
         let key = PREVIEW_STREAM ^ (u64::from(fy.to_bits()) << 32 | u64::from(fx.to_bits()));
-        let mut rng = SampleRng::new(key, 0);
-        self.integrator.sample(&self.basis.ray(fx, fy), &mut rng, 0)
+        let mut rng = SampleRng::new(key, index);
+        self.integrator
+            .preview_camera(&self.basis, &self.basis.ray(fx, fy), &mut rng)
     }
 }

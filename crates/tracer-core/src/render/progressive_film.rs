@@ -43,10 +43,11 @@ impl ProgressiveFilm {
         }
     }
 
-    /// Keeps (or drops) the denoiser's guides beside the samples; emptied either way.
+    /// Keeps (or drops) the denoiser's guides beside the samples. Guides kept stay as they are
+    /// (empty after [`ProgressiveFilm::reset`]); new ones start empty.
     pub fn set_guides(&mut self, on: bool) {
-        match (&mut self.accum.guides, on) {
-            (Some(g), true) => g.pixels.fill(GuideSum::default()),
+        match (&self.accum.guides, on) {
+            (Some(_), true) => {}
             (None, true) => self.accum.guides = Some(GuideFilm::new(self.width(), self.height())),
             (_, false) => self.accum.guides = None,
         }
@@ -62,12 +63,21 @@ impl ProgressiveFilm {
         }
     }
 
-    /// Empties the film for reuse by `generation` (no allocation).
+    /// Empties the film for reuse by `generation` (no allocation), on the current rayon pool:
+    /// at 1280x720 the sums are 147 MB, and clearing them is most of a restart's first preview
+    /// (25-35 ms on one thread of the 2-core test machine, 12-17 ms on two).
     pub fn reset(&mut self, generation: u64) {
+        use rayon::prelude::*;
+        const CHUNK: usize = 16 * 1024;
         self.generation = generation;
-        self.accum.pixels.fill(PixelSum::default());
+        self.accum
+            .pixels
+            .par_chunks_mut(CHUNK)
+            .for_each(|c| c.fill(PixelSum::default()));
         if let Some(g) = self.accum.guides.as_mut() {
-            g.pixels.fill(GuideSum::default());
+            g.pixels
+                .par_chunks_mut(CHUNK)
+                .for_each(|c| c.fill(GuideSum::default()));
         }
         self.preview_rgb.fill(Vec3::ZERO);
         self.preview_lx.fill(0.0);

@@ -13,7 +13,7 @@ use glam::DVec3;
 use std::f64::consts::PI;
 use tracer_core::integrator::IntegratorKind;
 use tracer_core::measure::{MeasureSettings, measure_grids};
-use tracer_core::render::{Film, RenderSettings, render, render_samples};
+use tracer_core::render::{Film, FrameSampler, RenderSettings, render, render_samples};
 use tracer_core::scene::{Light, Material, Scene, Setup, builtin_cornell_box};
 
 fn bdpt_settings(w: u32, h: u32, spp: u32) -> RenderSettings {
@@ -330,6 +330,64 @@ fn cornell_box_regions_match_mitsubas_light_tracer() {
                 (mean - reference).abs() < 4.0 * se + 0.002 * reference,
                 "{kind} {name}"
             );
+        }
+    }
+}
+
+/// Previews have no film to splat to: in both splatting modes they take bidirectional transport
+/// without t = 1, renormalised (light tracing's previews are the bidirectional ones). Their mean must still be Mitsuba's, region by region (path
+/// tracing, the previews' old transport, leaves the ceiling and the walls 20-60 % dark here).
+#[test]
+fn previews_without_splats_match_mitsubas_light_tracer() {
+    let loaded = builtin_cornell_box(None).unwrap();
+    let (w, h) = (80u32, 60u32);
+    let (batches, per) = (6u32, 24u32);
+    let light = RenderSettings {
+        pixel_illuminance: false,
+        ..settings_for(IntegratorKind::Light, w, h, 1)
+    };
+    let light = FrameSampler::new(&loaded.scene, &loaded.setup, &light);
+    {
+        let kind = IntegratorKind::Bidirectional;
+        let settings = RenderSettings {
+            pixel_illuminance: false,
+            ..settings_for(kind, w, h, 1)
+        };
+        let frame = FrameSampler::new(&loaded.scene, &loaded.setup, &settings);
+        let values: Vec<[f64; 6]> = (0..batches)
+            .map(|b| {
+                let mut film = Film::new(w, h);
+                for y in 0..h {
+                    for x in 0..w {
+                        let i = film.index(x, y);
+                        for k in b * per..(b + 1) * per {
+                            let (fx, fy) = (x as f32 + 0.5, y as f32 + 0.5);
+                            let s = frame.preview_sample(fx, fy, k);
+                            if k == 0 && x % 8 == 0 {
+                                // Light tracing previews the same way.
+                                assert_eq!(s, light.preview_sample(fx, fy, k));
+                            }
+                            assert!(film.pixels[i].add(&s));
+                        }
+                    }
+                }
+                regions(&film)
+            })
+            .collect();
+        let n = f64::from(batches);
+        for (r, (name, .., reference)) in MITSUBA_PTRACER_REGIONS.iter().enumerate() {
+            let mean = values.iter().map(|v| v[r]).sum::<f64>() / n;
+            let var = values.iter().map(|v| (v[r] - mean).powi(2)).sum::<f64>() / (n - 1.0);
+            let se = (var / n).sqrt();
+            println!(
+                "{kind} preview {name}: {mean:.3} ± {se:.3} cd/m² vs Mitsuba {reference} ({:+.2} %)",
+                (mean / reference - 1.0) * 100.0
+            );
+            assert!(
+                (mean - reference).abs() < 4.0 * se + 0.01 * reference,
+                "{kind} preview {name}: {mean} ± {se} vs {reference}"
+            );
+            assert!(se < 0.03 * reference, "{kind} preview {name}: se {se}");
         }
     }
 }

@@ -13,6 +13,13 @@ fn remap0(x: f32) -> f32 {
 }
 
 impl Bidirectional<'_, '_> {
+    /// Whether strategy (s, t) takes part: the chosen set, without the camera's t = 1 when
+    /// there is no film to splat to (the remaining weights then add up to 1 over the rest).
+    fn allowed(&self, s: usize, t: usize) -> bool {
+        let splat = t == 1 && matches!(self.eye, Eye::Camera(_));
+        self.strategies.allowed(s, t) && (self.splats || !splat)
+    }
+
     /// Sum over every allowed strategy of the weighted contribution to this eye sample; splats
     /// for the camera's t = 1 strategies.
     pub(super) fn connect_all(
@@ -38,7 +45,7 @@ impl Bidirectional<'_, '_> {
                 continue;
             }
             for s in 0..=light.len() {
-                if s + t < 2 || !self.strategies.allowed(s, t) {
+                if s + t < 2 || !self.allowed(s, t) {
                     continue;
                 }
                 if self.max_bounces != u32::MAX && self.bounces(eye, light, s, t) > self.max_bounces
@@ -284,7 +291,7 @@ impl Bidirectional<'_, '_> {
         let mut ri = 1.0f32;
         for i in (1..t).rev() {
             ri *= remap0(eye_rev(i)) / remap0(eye[i].pdf_fwd);
-            if !eye_delta(i) && !eye_delta(i - 1) && self.strategies.allowed(s + t - i, i) {
+            if !eye_delta(i) && !eye_delta(i - 1) && self.allowed(s + t - i, i) {
                 sum += ri * ri;
             }
         }
@@ -296,7 +303,7 @@ impl Bidirectional<'_, '_> {
             } else {
                 light_at(0).is_delta_light()
             };
-            if !light_delta(i) && !before_delta && self.strategies.allowed(i, s + t - i) {
+            if !light_delta(i) && !before_delta && self.allowed(i, s + t - i) {
                 sum += ri * ri;
             }
         }

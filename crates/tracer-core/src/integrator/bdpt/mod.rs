@@ -120,6 +120,12 @@ pub struct Bidirectional<'p, 'a> {
     /// scattered it there; such paths, which no light vertex can be joined to, take the
     /// bidirectional strategies with t ≥ 3 and their usual weights (see `connect_all`).
     pub light_tracing: bool,
+    /// Whether the camera's t = 1 strategies run (their contributions land in other pixels, as
+    /// splats). Without them (previews, which have no film to splat to) the power heuristic is
+    /// renormalised over the other strategies, so every path is still counted once. Only paths
+    /// that t = 1 alone can make go missing: a point light's caustic through glass or off a
+    /// mirror, seen directly (a glowing triangle's caustic is still found, by s = 0).
+    pub splats: bool,
 }
 
 /// What one camera sample of the bidirectional integrator gives.

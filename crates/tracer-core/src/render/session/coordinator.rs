@@ -76,7 +76,7 @@ fn run_generation(
             ..SessionStats::default()
         };
     }
-    if !prepare_film(shared, generation, s) {
+    if !prepare_film(shared, pool, generation, s) {
         return;
     }
     let frame = FrameSampler::new(&snap.scene, &snap.setup, s);

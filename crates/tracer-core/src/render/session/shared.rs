@@ -47,16 +47,21 @@ impl Shared {
 }
 
 /// Readies this generation's film as `pending`, reusing a spare film of the same size. The
-/// allocation or clearing happens outside the lock, so `start` and readers never wait for it.
-/// Returns false when the generation went stale meanwhile.
-pub(super) fn prepare_film(shared: &Shared, generation: u64, s: &RenderSettings) -> bool {
+/// allocation or clearing happens outside the lock (clearing on `pool`), so `start` and readers
+/// never wait for it. Returns false when the generation went stale meanwhile.
+pub(super) fn prepare_film(
+    shared: &Shared,
+    pool: &rayon::ThreadPool,
+    generation: u64,
+    s: &RenderSettings,
+) -> bool {
     let recycled = {
         let mut st = shared.lock();
         st.spare.take().or_else(|| st.pending.take())
     };
     let film = match recycled {
         Some(mut f) if f.width() == s.width && f.height() == s.height => {
-            f.reset(generation);
+            pool.install(|| f.reset(generation));
             f.set_guides(s.guides);
             f
         }
