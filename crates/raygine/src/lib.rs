@@ -59,6 +59,8 @@ pub mod render_worker;
 #[cfg(feature = "viewer")]
 pub mod report;
 #[cfg(feature = "viewer")]
+pub mod scene_exposure;
+#[cfg(feature = "viewer")]
 pub mod shortcuts;
 #[cfg(feature = "viewer")]
 pub mod unsaved;

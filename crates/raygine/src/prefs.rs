@@ -14,7 +14,10 @@ const MAX_RECENT: usize = 8;
 pub struct Prefs {
     pub recent: Vec<PathBuf>,
     pub last_scene: Option<PathBuf>,
+    /// No longer read: exposure is kept per scene (`exposures`); stays so older files load.
     pub exposure_stops: f32,
+    /// Each scene's exposure, by [`crate::scene_exposure::scene_key`].
+    pub exposures: std::collections::BTreeMap<String, crate::scene_exposure::SceneExposure>,
     pub auto_exposure: bool,
     pub tone_map: String,
     /// "path" (global illumination) or "direct".
@@ -30,6 +33,7 @@ impl Default for Prefs {
             recent: Vec::new(),
             last_scene: None,
             exposure_stops: 0.0,
+            exposures: std::collections::BTreeMap::new(),
             auto_exposure: false,
             tone_map: "filmic".to_owned(),
             integrator: default_integrator().name().to_owned(),

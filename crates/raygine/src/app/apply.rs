@@ -143,11 +143,36 @@ impl RaygineApp {
         }
         self.history = History::new(&doc.setup);
         self.saved_setup = doc.setup.clone();
+        let key = crate::scene_exposure::scene_key(doc.path.as_deref());
+        self.exposure = crate::scene_exposure::ExposureKeeper::for_scene(
+            key.clone(),
+            self.prefs.exposures.get(&key).copied(),
+            &mut self.display,
+            self.worker.generation(),
+        );
         self.doc = doc;
         self.selected_slot = None;
         self.meter = None;
         if self.paused {
             self.set_paused(false);
+        }
+    }
+
+    /// Sets the scene's exposure on its first view and keeps what the user set; remembers it
+    /// per scene. Called every frame.
+    pub(super) fn keep_exposure(&mut self) {
+        let stats = self.worker.stats();
+        let worker = &self.worker;
+        let remember = self.exposure.update(&mut self.display, &stats, || {
+            worker.with_film(|f| {
+                f.filter(|f| f.generation == stats.generation)
+                    .and_then(crate::scene_exposure::median_exposure_stops)
+            })
+        });
+        if let Some(e) = remember {
+            self.prefs
+                .exposures
+                .insert(self.exposure.key().to_owned(), e);
         }
     }
 

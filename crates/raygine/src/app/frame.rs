@@ -146,9 +146,15 @@ impl RaygineApp {
             ctx.request_repaint_after(wait);
         }
         self.sync_render();
+        self.keep_exposure();
         let busy = self.worker.busy();
         self.frame_stats
             .frame_done(busy, started.elapsed().as_secs_f32());
+        if busy {
+            // The status figures (time, samples, time left) move at least twice a second, also
+            // while a long tile keeps the picture itself unchanged.
+            ctx.request_repaint_after(Duration::from_millis(400));
+        }
         if self.loading.is_some()
             || self.dialog.is_some()
             || !self.writes.is_empty()

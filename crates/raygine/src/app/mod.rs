@@ -52,6 +52,8 @@ pub struct RaygineApp {
     pub history: History,
     pub render: RenderPrefs,
     pub display: DisplaySettings,
+    /// The scene's exposure: automatic on its first view, then held, or the user's.
+    pub exposure: crate::scene_exposure::ExposureKeeper,
     pub false_colour: FalseColourUi,
     pub worker: RenderWorker,
     /// The denoised display (Open Image Denoise on a background thread).
@@ -125,6 +127,21 @@ impl RaygineApp {
         let threads = options.threads;
         let worker = RenderWorker::new(&cc.egui_ctx, threads)?;
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let mut display = DisplaySettings {
+            exposure_stops: 0.0,
+            auto_exposure: prefs.auto_exposure,
+            tone_map: ToneMap::from_name(&prefs.tone_map).unwrap_or_default(),
+            false_colour: None,
+        };
+        let exposure = crate::scene_exposure::ExposureKeeper::for_scene(
+            crate::scene_exposure::scene_key(None),
+            prefs
+                .exposures
+                .get(&crate::scene_exposure::scene_key(None))
+                .copied(),
+            &mut display,
+            worker.generation(),
+        );
         let mut app = Self {
             ctx: cc.egui_ctx.clone(),
             history: History::new(&doc.setup),
@@ -137,16 +154,8 @@ impl RaygineApp {
                 resolution_scale: prefs.resolution_scale.clamp(0.25, 1.0),
                 threads: if threads == 0 { cores } else { threads },
             },
-            display: DisplaySettings {
-                exposure_stops: if prefs.exposure_stops.is_finite() {
-                    prefs.exposure_stops
-                } else {
-                    0.0
-                },
-                auto_exposure: prefs.auto_exposure,
-                tone_map: ToneMap::from_name(&prefs.tone_map).unwrap_or_default(),
-                false_colour: None,
-            },
+            display,
+            exposure,
             false_colour: FalseColourUi::default(),
             worker,
             denoise: crate::denoise_view::DenoiseView::new(
@@ -254,7 +263,6 @@ impl eframe::App for RaygineApp {
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
-        self.prefs.exposure_stops = self.display.exposure_stops;
         self.prefs.auto_exposure = self.display.auto_exposure;
         self.prefs.tone_map = self.display.tone_map.name().to_owned();
         self.prefs.max_depth = self.render.max_depth;

@@ -38,14 +38,23 @@ pub fn status_bar(ui: &mut egui::Ui, s: StatusBar<'_>, out: &mut Commands) {
                 "rendering"
             };
             ui.label(format!(
-                "{state} · {} · {}/{} spp · {} · {:.1} Mrays/s · {:.1} s",
+                "{state} · {} · {:.1}/{} spp · {} · {:.1} Mrays/s · {}{}",
                 s.integrator.label(),
-                s.stats.samples_per_pixel,
+                s.stats.samples_done(),
                 s.stats.target_spp,
                 s.stats.pass,
                 s.stats.mrays_per_sec(),
-                s.stats.elapsed_secs
-            ));
+                duration(s.stats.elapsed_secs),
+                match s.stats.eta_secs().filter(|_| !s.paused) {
+                    Some(eta) => format!(" · {} left", duration(eta)),
+                    None => String::new(),
+                }
+            ))
+            .on_hover_text(
+                "Full samples per pixel done (with the running pass's share) of the target, the \
+                 pass running, the rays traced per second, the time since the render started and \
+                 the time left to the target at the rate so far",
+            );
             if let Some(noise) = s.stats.relative_noise {
                 ui.label(format!("noise ±{:.1} %", noise * 100.0))
                     .on_hover_text(
@@ -97,4 +106,33 @@ pub fn status_bar(ui: &mut egui::Ui, s: StatusBar<'_>, out: &mut Commands) {
             }
         });
     });
+}
+
+/// A duration for the status bar: "4.2 s", "3 min 05 s", "1 h 02 min".
+pub fn duration(secs: f64) -> String {
+    if !secs.is_finite() || secs < 0.0 {
+        return "—".to_owned();
+    }
+    if secs < 60.0 {
+        return format!("{secs:.1} s");
+    }
+    let whole = secs.round() as u64;
+    if whole < 3600 {
+        format!("{} min {:02} s", whole / 60, whole % 60)
+    } else {
+        format!("{} h {:02} min", whole / 3600, (whole % 3600) / 60)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::duration;
+
+    #[test]
+    fn durations_read_in_the_largest_sensible_unit() {
+        assert_eq!(duration(4.24), "4.2 s");
+        assert_eq!(duration(185.0), "3 min 05 s");
+        assert_eq!(duration(3720.0), "1 h 02 min");
+        assert_eq!(duration(f64::NAN), "—");
+    }
 }

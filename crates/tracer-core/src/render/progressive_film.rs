@@ -120,9 +120,23 @@ impl ProgressiveFilm {
         }
     }
 
+    /// The pixel whose full samples pixel `i` shows: itself once it has one, else, during the
+    /// first full pass, the top-left pixel of its 2x2 block (the pass's first quarter), else
+    /// none (the preview shows).
+    fn shown_source(&self, i: usize) -> Option<usize> {
+        if self.accum.pixels[i].count > 0 {
+            return Some(i);
+        }
+        let w = self.width() as usize;
+        let (x, y) = (i % w, i / w);
+        let anchor = (y & !1) * w + (x & !1);
+        (self.accum.pixels[anchor].count > 0).then_some(anchor)
+    }
+
     /// The share (0..=1) of pixel `i` where the camera sees nothing: of its full samples, else
     /// its preview's. The background of the viewer's display, never of a render.
     pub fn background_fraction(&self, i: usize) -> f32 {
+        let i = self.shown_source(i).unwrap_or(i);
         let count = self.accum.pixels[i].count;
         if count > 0 {
             (self.misses[i] as f32 / count as f32).min(1.0)
@@ -136,22 +150,24 @@ impl ProgressiveFilm {
         self.accum.add_splats(splats);
     }
 
-    /// What pixel `i` shows: the mean of its full samples, else the preview.
+    /// What pixel `i` shows: the mean of its full samples; before it has one, those of its
+    /// 2x2 block's first pixel (the first full pass goes in quarters, see the session), else
+    /// the preview.
     pub fn shown_rgb(&self, i: usize) -> Vec3 {
-        if self.accum.pixels[i].count > 0 {
-            let per_pixel = self.samples_added as f64 / self.accum.pixels.len().max(1) as f64;
-            self.accum.pixels[i].mean_rgb_splats_over(per_pixel)
-        } else {
-            self.preview_rgb[i]
+        match self.shown_source(i) {
+            Some(j) => {
+                let per_pixel = self.samples_added as f64 / self.accum.pixels.len().max(1) as f64;
+                self.accum.pixels[j].mean_rgb_splats_over(per_pixel)
+            }
+            None => self.preview_rgb[i],
         }
     }
 
     /// Illuminance (lx) shown for pixel `i`, like [`ProgressiveFilm::shown_rgb`].
     pub fn shown_illuminance(&self, i: usize) -> f32 {
-        if self.accum.pixels[i].count > 0 {
-            self.accum.mean_illuminance(i)
-        } else {
-            self.preview_lx[i]
+        match self.shown_source(i) {
+            Some(j) => self.accum.mean_illuminance(j),
+            None => self.preview_lx[i],
         }
     }
 
@@ -211,6 +227,41 @@ mod tests {
         assert_eq!(film.background_fraction(1), 0.0);
         film.reset(2);
         assert_eq!(film.background_fraction(0), 0.0);
+    }
+
+    /// During the first full pass a pixel without a sample shows its 2x2 block's first pixel
+    /// (the pass's first quarter) once that has one, else the preview.
+    #[test]
+    fn first_pass_shows_the_blocks_first_pixel_upscaled() {
+        let mut film = ProgressiveFilm::new(1, 4, 2);
+        let all = Tile {
+            x0: 0,
+            y0: 0,
+            x1: 4,
+            y1: 2,
+        };
+        let preview = Sample {
+            rgb: Vec3::splat(1.0),
+            illuminance_lx: 10.0,
+            ..Sample::default()
+        };
+        film.fill_preview(&all, &preview);
+        let mut sums = vec![PixelSum::default(); 8];
+        let full = Sample {
+            rgb: Vec3::splat(4.0),
+            illuminance_lx: 40.0,
+            ..Sample::default()
+        };
+        assert!(sums[0].add(&full));
+        film.add_tile(&all, &sums);
+        // Pixels 0, 1 (x = 1, y = 0), 4 (0, 1) and 5 (1, 1) form block (0, 0).
+        for i in [0, 1, 4, 5] {
+            assert_eq!(film.shown_rgb(i), Vec3::splat(4.0), "pixel {i}");
+            assert_eq!(film.shown_illuminance(i), 40.0, "pixel {i}");
+        }
+        for i in [2, 3, 6, 7] {
+            assert_eq!(film.shown_rgb(i), Vec3::splat(1.0), "pixel {i}");
+        }
     }
 
     /// Mid-pass, splats are divided by the light subpaths traced so far, not by a pixel's own

@@ -258,3 +258,49 @@ fn the_film_knows_where_the_camera_saw_nothing() {
         });
     }
 }
+
+/// The status figures move within a pass (after every tile), not only between passes: a long
+/// first full pass shows its share done, the time and the rays growing, and an estimate of the
+/// time to the target. The pass fills the frame in quarters: midway, the pixels done are the
+/// first quarter's (every 2x2 block's first pixel), not some tiles complete and others empty.
+#[test]
+fn status_moves_within_a_pass_and_the_first_pass_fills_evenly() {
+    let loaded = cornell();
+    let scene = Arc::new(builtin_cornell_box(None).unwrap().scene);
+    let mut snap = snapshot(&loaded, &scene, 8);
+    snap.settings.width = 480;
+    snap.settings.height = 360;
+    snap.settings.integrator = tracer_core::integrator::IntegratorKind::Bidirectional;
+    let s = session(1);
+    let g = s.start(snap);
+    let in_first_pass =
+        |st: &tracer_core::render::SessionStats| st.generation == g && st.pass == "sample 1";
+    assert!(s.wait_for(WAIT, |st| in_first_pass(st) && st.pass_fraction > 0.02));
+    let a = s.stats();
+    let mid = s.with_film(|f| {
+        let f = f.unwrap();
+        let counted = |px: u32, py: u32| {
+            let mut n = 0;
+            for y in (py..f.height()).step_by(2) {
+                for x in (px..f.width()).step_by(2) {
+                    n += f.accum.pixels[f.accum.index(x, y)].count;
+                }
+            }
+            n
+        };
+        [counted(0, 0), counted(1, 1), counted(1, 0), counted(0, 1)]
+    });
+    assert!(s.wait_for(WAIT, |st| in_first_pass(st)
+        && st.pass_fraction > a.pass_fraction + 0.02));
+    let b = s.stats();
+    assert_eq!(b.samples_per_pixel, 0, "{b:?}");
+    assert!(b.elapsed_secs > a.elapsed_secs, "{a:?} {b:?}");
+    assert!(b.rays > a.rays, "{a:?} {b:?}");
+    assert!(b.samples_done() > a.samples_done(), "{a:?} {b:?}");
+    let eta = b.eta_secs().expect("an estimate of the time left");
+    assert!(eta > 0.0 && eta.is_finite(), "{b:?}");
+    // Midway through the first quarter only the first quarter has samples.
+    if a.pass_fraction < 0.25 {
+        assert!(mid[0] > 0 && mid[1..] == [0, 0, 0], "{mid:?} at {a:?}");
+    }
+}

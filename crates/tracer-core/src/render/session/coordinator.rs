@@ -7,7 +7,7 @@ use super::super::pixel::FrameSampler;
 use super::super::tiles::tiles_centre_out;
 use super::priority::lower_thread_priority;
 use super::shared::{Shared, full_frame, prepare_film};
-use super::tile_work::PassContext;
+use super::tile_work::{FIRST_PASS_PHASES, PassContext, Phase, Progress};
 use super::{SessionStats, Snapshot};
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -81,6 +81,8 @@ fn run_generation(
     }
     let frame = FrameSampler::new(&snap.scene, &snap.setup, s);
     let rays = AtomicU64::new(0);
+    let pixels_done = AtomicU64::new(0);
+    let mut full_started = None;
     let mut pass = Some(Pass::first());
     while let Some(current) = pass {
         if !shared.is_current(generation) {
@@ -91,24 +93,49 @@ fn run_generation(
         }) {
             break;
         }
-        shared.lock().stats.pass = current.label();
+        {
+            let mut st = shared.lock();
+            st.stats.pass = current.label();
+            st.stats.pass_fraction = 0.0;
+        }
+        if matches!(current, Pass::Full { index: 0 }) {
+            full_started = Some(Instant::now());
+        }
+        pixels_done.store(0, Ordering::Relaxed);
         let tiles = tiles_centre_out(s.width, s.height, current.tile_size());
-        let ctx = PassContext {
-            shared,
-            generation,
-            frame: &frame,
-            pass: current,
-            rays: &rays,
+        // The first full pass goes over the frame in four interleaved quarters, so it fills the
+        // frame evenly (no tiles of finished samples beside tiles of preview), shown upscaled
+        // from the first quarter until the rest arrives.
+        let phases: &[Option<Phase>] = match current {
+            Pass::Full { index: 0 } => &FIRST_PASS_PHASES,
+            _ => &[None],
         };
-        pool.install(|| tiles.par_iter().for_each(|tile| ctx.run_tile(tile)));
-        if !shared.is_current(generation) {
-            return;
+        for &phase in phases {
+            let ctx = PassContext {
+                shared,
+                generation,
+                frame: &frame,
+                pass: current,
+                phase,
+                rays: &rays,
+                progress: Progress {
+                    started,
+                    full_started,
+                    pixels_done: &pixels_done,
+                    pass_pixels: u64::from(s.width) * u64::from(s.height),
+                },
+            };
+            pool.install(|| tiles.par_iter().for_each(|tile| ctx.run_tile(tile)));
+            if !shared.is_current(generation) {
+                return;
+            }
         }
         let mut st = shared.lock();
         let elapsed = started.elapsed().as_secs_f64();
         st.stats.passes_done += 1;
         st.stats.rays = rays.load(Ordering::Relaxed);
         st.stats.elapsed_secs = elapsed;
+        st.stats.pass_fraction = 1.0;
         match current {
             Pass::Preview { .. } if st.stats.first_preview_secs.is_none() => {
                 st.stats.first_preview_secs = Some(elapsed);
@@ -120,6 +147,9 @@ fn run_generation(
             }
             Pass::Full { index } => {
                 st.stats.samples_per_pixel = index + 1;
+                st.stats.pass_fraction = 0.0;
+                st.stats.secs_per_sample =
+                    full_started.map(|t| t.elapsed().as_secs_f64() / f64::from(index + 1));
                 if s.integrator.splats() {
                     // The pass's last splats landed all over the picture.
                     st.dirty.push(full_frame(s));

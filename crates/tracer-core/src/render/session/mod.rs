@@ -54,6 +54,10 @@ pub struct SessionStats {
     pub first_preview_secs: Option<f64>,
     /// Time from the start of the generation until every pixel had one full sample.
     pub first_full_secs: Option<f64>,
+    /// Share (0..=1) of the running pass's pixels done, refreshed after every tile.
+    pub pass_fraction: f64,
+    /// Time per full sample per pixel so far (seconds), once a full pass has made progress.
+    pub secs_per_sample: Option<f64>,
     pub finished: bool,
     pub paused: bool,
     pub threads: usize,
@@ -63,6 +67,23 @@ pub struct SessionStats {
 }
 
 impl SessionStats {
+    /// Full samples per pixel done, with the running full pass's share: 2.4 is two samples
+    /// everywhere and the third in 40 % of the pixels.
+    pub fn samples_done(&self) -> f64 {
+        let running = self.pass.starts_with("sample") && !self.finished;
+        f64::from(self.samples_per_pixel) + if running { self.pass_fraction } else { 0.0 }
+    }
+
+    /// Estimated seconds until the target: the samples left at the rate so far (None before a
+    /// full pass has made progress, and once finished).
+    pub fn eta_secs(&self) -> Option<f64> {
+        if self.finished {
+            return None;
+        }
+        let left = (f64::from(self.target_spp) - self.samples_done()).max(0.0);
+        self.secs_per_sample.map(|s| s * left)
+    }
+
     pub fn mrays_per_sec(&self) -> f64 {
         if self.elapsed_secs > 0.0 {
             self.rays as f64 / self.elapsed_secs / 1e6

@@ -9,16 +9,38 @@ use super::super::progressive_film::ProgressiveFilm;
 use super::super::tiles::Tile;
 use super::shared::Shared;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
 
 /// Least time between whole-frame refreshes for splats (bidirectional mode), seconds.
 const SPLAT_REFRESH_SECS: f64 = 0.5;
+
+/// Pixels (x, y) with (x mod 2, y mod 2) equal to this: a quarter of the frame.
+pub(super) type Phase = (u32, u32);
+
+/// The first full pass's quarters in order: after the first, every 2x2 block has a sample
+/// (see [`ProgressiveFilm::shown_rgb`]); the second completes the diagonal.
+pub(super) const FIRST_PASS_PHASES: [Option<Phase>; 4] =
+    [Some((0, 0)), Some((1, 1)), Some((1, 0)), Some((0, 1))];
+
+/// What the status figures are refreshed from after every tile.
+pub(super) struct Progress<'a> {
+    pub started: Instant,
+    /// When the first full pass started.
+    pub full_started: Option<Instant>,
+    /// Pixels of the running pass done so far.
+    pub pixels_done: &'a AtomicU64,
+    pub pass_pixels: u64,
+}
 
 pub(super) struct PassContext<'a> {
     pub shared: &'a Shared,
     pub generation: u64,
     pub frame: &'a FrameSampler<'a>,
     pub pass: Pass,
+    /// Only this quarter of the tile's pixels (the first full pass), else all.
+    pub phase: Option<Phase>,
     pub rays: &'a AtomicU64,
+    pub progress: Progress<'a>,
 }
 
 impl PassContext<'_> {
@@ -68,6 +90,9 @@ impl PassContext<'_> {
             }
         }
         self.rays.fetch_add(rays, Ordering::Relaxed);
+        self.progress
+            .pixels_done
+            .fetch_add(tile.pixel_count() as u64, Ordering::Relaxed);
         self.commit(tile, |film| {
             for (rect, s) in &blocks {
                 film.fill_preview(rect, s);
@@ -76,14 +101,23 @@ impl PassContext<'_> {
     }
 
     fn full_tile(&self, tile: &Tile, index: u32) {
-        let mut sums = Vec::with_capacity(tile.pixel_count());
-        let mut missed = Vec::with_capacity(tile.pixel_count());
-        let mut guides = Vec::new();
+        let n = tile.pixel_count();
+        // Row-major over the tile; pixels outside this pass's quarter keep empty sums.
+        let mut sums = vec![PixelSum::default(); n];
+        let mut missed = vec![false; n];
+        let mut guides = if self.frame.guides {
+            vec![GuideSum::default(); n]
+        } else {
+            Vec::new()
+        };
         let mut splats = Vec::new();
         let mut rays = 0u64;
+        let mut done = 0u64;
         let mut scratch = BatchScratch::default();
         let (mut jobs, mut samples) = (Vec::new(), Vec::new());
         let width = (tile.x1 - tile.x0).max(1);
+        let in_phase =
+            |x: u32, y: u32| self.phase.is_none_or(|(px, py)| x % 2 == px && y % 2 == py);
         // Whole rows per batch, so staleness is still checked every few rows.
         let rows_per_batch = (BATCH_SAMPLES as u32 / width).max(1);
         for y0 in (tile.y0..tile.y1).step_by(rows_per_batch as usize) {
@@ -92,26 +126,27 @@ impl PassContext<'_> {
             }
             jobs.clear();
             for y in y0..(y0 + rows_per_batch).min(tile.y1) {
-                jobs.extend((tile.x0..tile.x1).map(|x| SampleJob { x, y, s: index }));
+                jobs.extend(
+                    (tile.x0..tile.x1)
+                        .filter(|&x| in_phase(x, y))
+                        .map(|x| SampleJob { x, y, s: index }),
+                );
             }
             self.frame
                 .sample_batch(&jobs, &mut scratch, &mut splats, &mut samples);
-            for sample in &samples {
+            for (job, sample) in jobs.iter().zip(&samples) {
+                let i = ((job.y - tile.y0) * width + (job.x - tile.x0)) as usize;
                 rays += u64::from(sample.rays);
-                let mut sum = PixelSum::default();
-                sum.add(sample);
-                sums.push(sum);
-                missed.push(sample.missed);
+                sums[i].add(sample);
+                missed[i] = sample.missed;
+                if self.frame.guides {
+                    guides[i].add(&self.frame.guide(job.x, job.y, job.s));
+                }
             }
-            if self.frame.guides {
-                guides.extend(jobs.iter().map(|j| {
-                    let mut sum = GuideSum::default();
-                    sum.add(&self.frame.guide(j.x, j.y, j.s));
-                    sum
-                }));
-            }
+            done += jobs.len() as u64;
         }
         self.rays.fetch_add(rays, Ordering::Relaxed);
+        self.progress.pixels_done.fetch_add(done, Ordering::Relaxed);
         self.commit(tile, |film| {
             film.add_tile(tile, &sums);
             film.add_misses(tile, &missed);
@@ -120,6 +155,22 @@ impl PassContext<'_> {
         });
         if !splats.is_empty() {
             self.refresh_everywhere_now_and_then();
+        }
+    }
+
+    /// The status figures after a tile (under the lock): elapsed time, rays, the pass's share
+    /// done and the time per full sample, so the status bar moves within long passes.
+    fn refresh_stats(&self, stats: &mut super::SessionStats) {
+        let p = &self.progress;
+        stats.elapsed_secs = p.started.elapsed().as_secs_f64();
+        stats.rays = self.rays.load(Ordering::Relaxed);
+        let done = p.pixels_done.load(Ordering::Relaxed) as f64;
+        stats.pass_fraction = (done / p.pass_pixels.max(1) as f64).min(1.0);
+        if let (Pass::Full { .. }, Some(t)) = (self.pass, p.full_started) {
+            let samples = f64::from(stats.samples_per_pixel) + stats.pass_fraction;
+            if samples > 0.0 {
+                stats.secs_per_sample = Some(t.elapsed().as_secs_f64() / samples);
+            }
         }
     }
 
@@ -159,6 +210,9 @@ impl PassContext<'_> {
         if !self.shared.is_current(self.generation) {
             return;
         }
+        self.refresh_stats(&mut st.stats);
+        // Whoever waits on the figures (`RenderSession::wait_for`) sees them move.
+        self.shared.wake.notify_all();
         let shown = st
             .film
             .as_ref()
