@@ -54,14 +54,15 @@ fn step_until(h: &mut Viewer, what: &str, done: impl Fn(&RaygineApp) -> bool) {
 }
 
 /// Mean luminance of the top sixth of the picture shown (the box's ceiling and the walls' tops),
-/// once the 2x2 preview is complete, before any pixel has a second sample.
+/// once the previews are complete and a third of the first full pass is in, before any pixel
+/// has a second sample.
 fn ceiling_band_of_the_preview(integrator: IntegratorKind) -> f64 {
     let mut h = viewer(integrator, 64, 0.5);
     let g = h.state().worker.generation();
     assert!(g >= 1, "no render started");
     step_until(&mut h, "the previews", |a| {
         let s = a.worker.stats();
-        s.generation >= g && s.passes_done >= 3
+        s.generation >= g && s.passes_done >= 2 && s.pass_fraction > 0.3
     });
     let (band, spp) = h.state().worker.with_film(|f| {
         let f = f.expect("a film");

@@ -10,8 +10,10 @@ pub enum Pass {
     Full { index: u32 },
 }
 
-/// Block sizes of the coarse previews, coarsest first.
-pub const PREVIEW_BLOCKS: [u32; 3] = [8, 4, 2];
+/// Block sizes of the coarse previews, coarsest first. There is no 2x2 preview: the first full
+/// pass's first quarter (one sample in every 2x2 block, see the session) shows the same
+/// resolution from samples that are kept, at the same cost.
+pub const PREVIEW_BLOCKS: [u32; 2] = [8, 4];
 
 impl Pass {
     /// The pass after this one, or None when `target_spp` full samples are done.
@@ -70,7 +72,6 @@ mod tests {
             vec![
                 Pass::Preview { block: 8 },
                 Pass::Preview { block: 4 },
-                Pass::Preview { block: 2 },
                 Pass::Full { index: 0 },
                 Pass::Full { index: 1 },
                 Pass::Full { index: 2 },

@@ -106,6 +106,27 @@ impl ProgressiveFilm {
         self.has_preview = true;
     }
 
+    /// Adds one run of full samples: for pixel `pixels[k]`, its sums `sums[k]`, whether its
+    /// camera ray missed `missed[k]` and its guide sums `guides[k]` (when the film keeps
+    /// guides). The pixels of a tile, or of a quarter of it (the first full pass).
+    pub fn add_pixels(
+        &mut self,
+        pixels: &[(u32, u32)],
+        sums: &[PixelSum],
+        missed: &[bool],
+        guides: &[GuideSum],
+    ) {
+        for (k, &(x, y)) in pixels.iter().enumerate() {
+            let i = self.accum.index(x, y);
+            self.accum.pixels[i].merge(&sums[k]);
+            self.samples_added += u64::from(sums[k].count);
+            self.misses[i] += u32::from(missed[k]);
+            if let Some(g) = self.accum.guides.as_mut().zip(guides.get(k)) {
+                g.0.pixels[i].merge(g.1);
+            }
+        }
+    }
+
     pub fn add_tile(&mut self, tile: &Tile, sums: &[PixelSum]) {
         self.accum.add_tile(tile, sums);
         self.samples_added += sums.iter().map(|s| u64::from(s.count)).sum::<u64>();

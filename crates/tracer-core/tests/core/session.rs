@@ -119,7 +119,7 @@ fn previews_come_first_and_do_not_bias_the_image() {
     let generation = s.start(snap.clone());
     let film = finished_accum(&s, generation);
     let stats = s.stats();
-    assert_eq!(stats.passes_done, 3 + 2, "three previews then two samples");
+    assert_eq!(stats.passes_done, 2 + 2, "two previews then two samples");
     assert_eq!(stats.samples_per_pixel, 2);
     let (p, f) = (
         stats.first_preview_secs.unwrap(),

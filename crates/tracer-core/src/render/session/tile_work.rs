@@ -102,17 +102,13 @@ impl PassContext<'_> {
 
     fn full_tile(&self, tile: &Tile, index: u32) {
         let n = tile.pixel_count();
-        // Row-major over the tile; pixels outside this pass's quarter keep empty sums.
-        let mut sums = vec![PixelSum::default(); n];
-        let mut missed = vec![false; n];
-        let mut guides = if self.frame.guides {
-            vec![GuideSum::default(); n]
-        } else {
-            Vec::new()
-        };
+        // The pixels of this pass's quarter (all, after the first pass), in row-major order.
+        let mut pixels = Vec::with_capacity(n);
+        let mut sums = Vec::with_capacity(n);
+        let mut missed = Vec::with_capacity(n);
+        let mut guides = Vec::new();
         let mut splats = Vec::new();
         let mut rays = 0u64;
-        let mut done = 0u64;
         let mut scratch = BatchScratch::default();
         let (mut jobs, mut samples) = (Vec::new(), Vec::new());
         let width = (tile.x1 - tile.x0).max(1);
@@ -135,22 +131,27 @@ impl PassContext<'_> {
             self.frame
                 .sample_batch(&jobs, &mut scratch, &mut splats, &mut samples);
             for (job, sample) in jobs.iter().zip(&samples) {
-                let i = ((job.y - tile.y0) * width + (job.x - tile.x0)) as usize;
                 rays += u64::from(sample.rays);
-                sums[i].add(sample);
-                missed[i] = sample.missed;
-                if self.frame.guides {
-                    guides[i].add(&self.frame.guide(job.x, job.y, job.s));
-                }
+                let mut sum = PixelSum::default();
+                sum.add(sample);
+                pixels.push((job.x, job.y));
+                sums.push(sum);
+                missed.push(sample.missed);
             }
-            done += jobs.len() as u64;
+            if self.frame.guides {
+                guides.extend(jobs.iter().map(|j| {
+                    let mut sum = GuideSum::default();
+                    sum.add(&self.frame.guide(j.x, j.y, j.s));
+                    sum
+                }));
+            }
         }
         self.rays.fetch_add(rays, Ordering::Relaxed);
-        self.progress.pixels_done.fetch_add(done, Ordering::Relaxed);
+        self.progress
+            .pixels_done
+            .fetch_add(pixels.len() as u64, Ordering::Relaxed);
         self.commit(tile, |film| {
-            film.add_tile(tile, &sums);
-            film.add_misses(tile, &missed);
-            film.add_guide_tile(tile, &guides);
+            film.add_pixels(&pixels, &sums, &missed, &guides);
             film.add_splats(&splats);
         });
         if !splats.is_empty() {
