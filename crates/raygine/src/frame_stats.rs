@@ -17,6 +17,7 @@ pub struct FrameStats {
     last_frame: Option<Instant>,
     /// When the log line was last printed (None: no log).
     log: Option<Instant>,
+    started: Instant,
 }
 
 impl FrameStats {
@@ -27,7 +28,18 @@ impl FrameStats {
             work: VecDeque::new(),
             last_frame: None,
             log: log.then(Instant::now),
+            started: Instant::now(),
         }
+    }
+
+    /// Whether the log is on.
+    pub fn logging(&self) -> bool {
+        self.log.is_some()
+    }
+
+    /// Time since these statistics were made (with the app).
+    pub fn since_start(&self) -> Duration {
+        self.started.elapsed()
     }
 
     /// At the start of a frame: the interval since the last one counts while `rendering`.

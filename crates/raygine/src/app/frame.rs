@@ -13,6 +13,19 @@ pub const MIN_VIEWPORT_WIDTH: f32 = 320.0;
 impl RaygineApp {
     fn record_frame_time(&mut self) {
         let log_due = self.frame_stats.frame_started(self.worker.busy());
+        if self.frame_stats.logging() && !self.first_full_logged {
+            let s = self.worker.stats();
+            if s.samples_per_pixel >= 1 {
+                self.first_full_logged = true;
+                eprintln!(
+                    "frame-stats first_full_image_s={:.2} (since the app started) generation={} first_preview_s={:.3} first_full_s={:.2} (since the generation started)",
+                    self.frame_stats.since_start().as_secs_f64(),
+                    s.generation,
+                    s.first_preview_secs.unwrap_or(f64::NAN),
+                    s.first_full_secs.unwrap_or(f64::NAN),
+                );
+            }
+        }
         if log_due && let Some(p95) = self.p95_frame_ms() {
             let s = self.worker.stats();
             eprintln!(

@@ -46,6 +46,8 @@ pub struct AppOptions {
 /// situations; in the app itself only [`RaygineApp::apply`] and the background polls change
 /// them, apart from the values panels edit in place (see [`crate::command`]).
 pub struct RaygineApp {
+    /// The frame-statistics log has reported the first full-resolution image.
+    pub first_full_logged: bool,
     /// The egui context, for waking the UI from background threads.
     pub ctx: egui::Context,
     pub doc: Document,
@@ -192,6 +194,7 @@ impl RaygineApp {
             film_levels: None,
             picture_hint: None,
             frame_stats: FrameStats::new(std::env::var_os("RAYGINE_FRAME_STATS").is_some()),
+            first_full_logged: false,
         };
         let start_scene = options.scene.or_else(|| {
             if options.ignore_last_scene {

@@ -96,10 +96,15 @@ pub fn render_ui(
             !d.auto_exposure,
             egui::Slider::new(&mut d.exposure_stops, -12.0..=12.0).text("exposure (stops)"),
         )
-        .on_hover_text("0 stops: 100 cd/m² is display white; +1 doubles");
+        .on_hover_text(
+            "0 stops: 100 cd/m² is display white; +1 doubles. Kept per scene: set on a scene's \
+             first view (its median surface to middle grey), yours once you move it",
+        );
     });
     ui.checkbox(&mut d.auto_exposure, "auto exposure")
-        .on_hover_text("Log-average luminance of the image maps to middle grey");
+        .on_hover_text(
+            "Follows the picture pass by pass: its log-average luminance maps to middle grey",
+        );
     egui::ComboBox::from_label("tone mapping")
         .selected_text(d.tone_map.name())
         .show_ui(ui, |ui| {
