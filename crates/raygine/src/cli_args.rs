@@ -42,8 +42,8 @@ pub struct SceneArgs {
     /// count). Default: no limit.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100000))]
     pub max_bounces: Option<u32>,
-    /// Samples per pixel or per sensor point (default: 1, 16 with -A; 64 in path mode). A cap
-    /// when --time-limit is given.
+    /// Samples per pixel or per sensor point (default: 1, 16 with -A; 64 in the
+    /// global-illumination modes: path, bdpt, light). A cap when --time-limit is given.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1048576))]
     pub samples: Option<u32>,
     /// Stop after this many seconds (between passes), with --samples as a cap.
@@ -83,7 +83,8 @@ fn parse_seconds(s: &str) -> Result<f64, String> {
 }
 
 impl SceneArgs {
-    /// Samples per pixel or point: --samples, else `fallback` in direct mode, 64 in path mode.
+    /// Samples per pixel or point: --samples, else `fallback` in direct mode, 64 in the
+    /// global-illumination modes.
     pub fn samples_or(&self, fallback: u32) -> u32 {
         self.samples.unwrap_or(match self.integrator {
             IntegratorKind::Direct => fallback,

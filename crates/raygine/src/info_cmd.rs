@@ -12,7 +12,8 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
-    let info = describe(&loaded);
+    let mut info = describe(&loaded);
+    tidy_numbers(&mut info);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&info)?);
     } else {
@@ -106,6 +107,24 @@ pub fn describe(loaded: &LoadedScene) -> Value {
     })
 }
 
+/// Every fractional number as the shortest decimal that gives back its f32 (the scene's
+/// precision): 0.725, not 0.7250000238418579. Whole numbers stay as they are.
+pub fn tidy_numbers(v: &mut Value) {
+    match v {
+        Value::Number(n) if n.is_f64() => {
+            if let Some(x) = n.as_f64().filter(|x| x.is_finite() && x.fract() != 0.0) {
+                let short: f64 = (x as f32).to_string().parse().unwrap_or(x);
+                if let Some(m) = serde_json::Number::from_f64(short) {
+                    *n = m;
+                }
+            }
+        }
+        Value::Array(a) => a.iter_mut().for_each(tidy_numbers),
+        Value::Object(o) => o.values_mut().for_each(tidy_numbers),
+        _ => {}
+    }
+}
+
 fn print_text(v: &Value) {
     let unit = v["unit"].as_str().unwrap_or("mm");
     println!("scene {}", v["name"]);
@@ -167,5 +186,20 @@ fn print_text(v: &Value) {
     }
     for g in v["grids"].as_array().into_iter().flatten() {
         println!("grid {}: {} points", g["name"], g["points"]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_read_as_the_scene_wrote_them() {
+        let mut v = json!({"kd": [0.725f32, 0.71f32], "fov": 39.3f32, "n": 30, "z": -559.2f32});
+        tidy_numbers(&mut v);
+        assert_eq!(
+            v.to_string(),
+            r#"{"fov":39.3,"kd":[0.725,0.71],"n":30,"z":-559.2}"#
+        );
     }
 }

@@ -18,9 +18,6 @@ pub const TARGET_ERROR_CAP: u32 = 65_536;
 
 pub fn run(args: &MeasureArgs) -> Result<()> {
     let started = Instant::now();
-    if args.shard.partial.is_none() && args.csv.is_none() && args.json.is_none() {
-        bail!("say where the readings go: --csv PATH and/or --json PATH");
-    }
     let loaded = load_scene(&args.scene)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");

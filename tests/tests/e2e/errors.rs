@@ -122,3 +122,31 @@ fn bad_command_line_values() {
     assert!(!run.success());
     assert!(files_containing(dir.path(), ".png").is_empty());
 }
+
+/// The help says what the binary does: every scene format the viewer opens, and the sample
+/// default of every global-illumination mode (it read "Lumicept .shp" and "64 in path mode").
+#[test]
+fn help_names_the_formats_and_the_gi_sample_default() {
+    let dir = temp_dir();
+    let top = raygine_e2e::raygine_in(dir.path(), ["--help"]);
+    assert!(top.success(), "{}", top.stderr);
+    for format in ["OBJ", "glTF", "Integra"] {
+        assert!(
+            top.stdout.contains(format),
+            "--help lacks {format}: {}",
+            top.stdout
+        );
+    }
+    let render = render_in(dir.path(), ["--help"]);
+    assert!(render.success(), "{}", render.stderr);
+    assert!(
+        render.stdout.contains("64 in the") && render.stdout.contains("global-illumination modes"),
+        "{}",
+        render.stdout
+    );
+    assert!(
+        !render.stdout.contains("64 in path mode"),
+        "{}",
+        render.stdout
+    );
+}

@@ -313,3 +313,25 @@ fn measure_writes_json_with_statistics() {
         assert!(p.get(key).is_some(), "{key}");
     }
 }
+
+/// Without --csv or --json, `measure` prints its summary to stdout and writes no file (it used
+/// to refuse to run).
+#[test]
+fn measure_without_files_prints_the_summary_only() {
+    let dir = temp_dir();
+    let shp = floor_scene(dir.path(), GRID);
+    let before: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    let run = raygine_in(
+        dir.path(),
+        ["measure".as_ref(), "-S".as_ref(), shp.as_os_str()],
+    );
+    run.assert_ok();
+    assert!(
+        run.stdout.contains("grid floor: 8 points"),
+        "{}",
+        run.stdout
+    );
+    assert!(!run.stdout.contains("wrote"), "{}", run.stdout);
+    let after: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert_eq!(before.len(), after.len(), "a file was written");
+}
