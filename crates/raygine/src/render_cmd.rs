@@ -10,7 +10,10 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tracer_core::denoise::{Denoiser, Images, Quality};
 use tracer_core::integrator::IntegratorKind;
-use tracer_core::render::{RenderSettings, render_for};
+use tracer_core::render::{RenderSettings, render_with_progress};
+
+/// Seconds between `raygine render`'s progress lines.
+const PROGRESS_LINE_SECS: f64 = 5.0;
 use tracer_core::scene::{LightKind, LoadedScene};
 
 /// Samples per pixel of `-A/--antialiased`.
@@ -140,8 +143,34 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
         *limit = limit.saturating_sub(std::time::Duration::from_secs_f64(cost * 1.1));
     }
-    let (film, stats) =
-        pool.install(|| render_for(&loaded.scene, &loaded.setup, &settings, time_limit));
+    let target = settings.samples_per_pixel.max(1);
+    let mut last_line = Instant::now();
+    let mut report = |s: &tracer_core::render::RenderStats| {
+        // A line every few seconds on stderr (stdout keeps the figures), so long renders say
+        // where they are, on a terminal and in a log alike.
+        if last_line.elapsed().as_secs_f64() >= PROGRESS_LINE_SECS && s.samples_per_pixel < target {
+            last_line = Instant::now();
+            let per = s.elapsed_secs / f64::from(s.samples_per_pixel.max(1));
+            let left = per * f64::from(target - s.samples_per_pixel);
+            let left = match time_limit {
+                Some(limit) => left.min((limit.as_secs_f64() - s.elapsed_secs).max(0.0)),
+                None => left,
+            };
+            eprintln!(
+                "rendering: {}/{target} spp, {:.1} s, about {left:.0} s left",
+                s.samples_per_pixel, s.elapsed_secs
+            );
+        }
+    };
+    let (film, stats) = pool.install(|| {
+        render_with_progress(
+            &loaded.scene,
+            &loaded.setup,
+            &settings,
+            time_limit,
+            &mut report,
+        )
+    });
     if film.rejected_samples() > 0 {
         bail!(
             "{} samples were not finite or beyond the film's range (2^62 cd/m² a sample); \

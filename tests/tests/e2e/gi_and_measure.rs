@@ -335,3 +335,44 @@ fn measure_without_files_prints_the_summary_only() {
     let after: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
     assert_eq!(before.len(), after.len(), "a file was written");
 }
+
+/// A long render says where it is every few seconds, also when its output is not a terminal
+/// (a log, a batch job): samples done, elapsed time and time left, on stderr; stdout keeps the
+/// figures.
+#[test]
+fn a_long_render_prints_progress_lines() {
+    let dir = temp_dir();
+    let png = dir.path().join("long.png");
+    let run = render_in(
+        dir.path(),
+        [
+            "--gi".as_ref(),
+            "bdpt".as_ref(),
+            "-W".as_ref(),
+            "48".as_ref(),
+            "-H".as_ref(),
+            "36".as_ref(),
+            "--samples".as_ref(),
+            "1000000".as_ref(),
+            "--time-limit".as_ref(),
+            "6.5".as_ref(),
+            "-R".as_ref(),
+            png.as_os_str(),
+        ],
+    );
+    run.assert_ok();
+    let lines: Vec<&str> = run
+        .stderr_lines()
+        .into_iter()
+        .filter(|l| l.starts_with("rendering: "))
+        .collect();
+    assert!(!lines.is_empty(), "no progress line: {}", run.stderr);
+    for l in &lines {
+        assert!(
+            l.contains("/1000000 spp, ") && l.ends_with(" s left"),
+            "{l}"
+        );
+    }
+    assert!(!run.stdout.contains("rendering: "), "{}", run.stdout);
+    assert!(png.is_file());
+}

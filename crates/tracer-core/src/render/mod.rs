@@ -116,24 +116,50 @@ pub fn render_for(
     settings: &RenderSettings,
     time_limit: Option<std::time::Duration>,
 ) -> (Film, RenderStats) {
-    let Some(limit) = time_limit else {
+    if time_limit.is_none() {
         return render(scene, setup, settings);
-    };
+    }
+    render_with_progress(scene, setup, settings, time_limit, &mut |_| {})
+}
+
+/// Longest a chunk of passes of [`render_with_progress`] is planned to take, seconds: progress
+/// is reported at least this often.
+pub const PROGRESS_CHUNK_SECS: f64 = 2.0;
+
+/// [`render_for`], in chunks of passes of at most about [`PROGRESS_CHUNK_SECS`] (with or
+/// without a time limit), calling `progress` after each with the figures so far. The film is
+/// the same as [`render`]'s with the number of samples reached.
+pub fn render_with_progress(
+    scene: &Scene,
+    setup: &Setup,
+    settings: &RenderSettings,
+    time_limit: Option<std::time::Duration>,
+    progress: &mut dyn FnMut(&RenderStats),
+) -> (Film, RenderStats) {
     let started = std::time::Instant::now();
     let frame = FrameSampler::new(scene, setup, settings);
     let target = settings.samples_per_pixel.max(1);
     let mut film = new_film(settings);
     let mut rays = 0;
     let mut done = 0;
-    let limit_secs = limit.as_secs_f64();
+    let stats = |rays, done| RenderStats {
+        rays,
+        elapsed_secs: started.elapsed().as_secs_f64(),
+        samples_per_pixel: done,
+    };
     while done < target {
         let elapsed = started.elapsed().as_secs_f64();
         let chunk = if done == 0 {
             1
         } else {
-            let per_pass = elapsed / f64::from(done);
-            let fit = ((limit_secs - elapsed) / per_pass.max(1e-9)).floor();
-            (fit.min(f64::from(done) * 2.0) as u32).clamp(1, target - done)
+            let per_pass = (elapsed / f64::from(done)).max(1e-9);
+            let mut fit = f64::from(target - done);
+            if let Some(limit) = time_limit {
+                fit = fit.min(((limit.as_secs_f64() - elapsed) / per_pass).floor());
+                fit = fit.min(f64::from(done) * 2.0);
+            }
+            fit = fit.min((PROGRESS_CHUNK_SECS / per_pass).floor());
+            (fit.max(1.0) as u32).clamp(1, target - done)
         };
         let (part, part_rays) = render_range(&frame, settings, done..done + chunk);
         // Same size: only an overflow can fail, and it is counted as rejected samples in the
@@ -141,16 +167,12 @@ pub fn render_for(
         let _ = film.merge(&part);
         rays += part_rays;
         done += chunk;
-        if started.elapsed() >= limit {
+        progress(&stats(rays, done));
+        if time_limit.is_some_and(|limit| started.elapsed() >= limit) {
             break;
         }
     }
-    let stats = RenderStats {
-        rays,
-        elapsed_secs: started.elapsed().as_secs_f64(),
-        samples_per_pixel: done,
-    };
-    (film, stats)
+    (film, stats(rays, done))
 }
 
 /// Renders sample indices `samples` of every pixel. Films of disjoint ranges added with
