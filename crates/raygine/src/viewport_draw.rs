@@ -51,10 +51,12 @@ pub fn draw_light_markers(ui: &egui::Ui, doc: &Document, basis: &CameraBasis, re
                 Color32::from_rgb(c[0], c[1], c[2]),
                 Stroke::new(2.0, Color32::BLACK),
             );
-            let label = match light.kind {
-                LightKind::Luminaire => format!("L{} {:.0} lm", i + 1, light.flux_lm()),
-                _ => format!("L{} {:.0} cd", i + 1, light.intensity_cd),
+            // One quantity for every kind: the (peak) intensity in cd; flux is in the panel.
+            let cd = match (&light.kind, &light.luminaire) {
+                (LightKind::Luminaire, Some(l)) => l.photometry.max_cd() * light.multiplier,
+                _ => light.intensity_cd,
             };
+            let label = format!("L{} {}", i + 1, crate::format::format_quantity(cd, "cd"));
             // On a dark plate, so the label reads over bright pixels.
             let galley = painter.layout_no_wrap(label, FontId::proportional(12.0), Color32::YELLOW);
             let at = pos + Vec2::new(9.0, -9.0 - galley.size().y);

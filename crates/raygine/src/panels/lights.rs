@@ -85,7 +85,10 @@ pub fn lights_ui(
             if light.kind == LightKind::Spot {
                 spot_ui(ui, light);
             }
-            ui.label(format!("flux {:.0} lm", light.flux_lm()));
+            ui.label(format!(
+                "flux {}",
+                crate::format::format_quantity(light.flux_lm(), "lm")
+            ));
             ui.horizontal(|ui| {
                 ui.color_edit_button_rgb(&mut light.color);
                 ui.label("colour (tint, normalised to luminance 1)");
