@@ -8,7 +8,7 @@
 use egui::Vec2;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use raygine::app::{AppOptions, RaygineApp};
+use raygine::app::RaygineApp;
 use raygine::denoise_view::Availability;
 use std::time::{Duration, Instant};
 use tracer_core::integrator::IntegratorKind;
@@ -16,23 +16,12 @@ use tracer_core::integrator::IntegratorKind;
 type Viewer = Harness<'static, RaygineApp>;
 
 fn viewer() -> Viewer {
-    let mut h = Harness::builder()
-        .with_size(Vec2::new(720.0, 480.0))
-        .with_accessibility_check(false)
-        .build_eframe(|cc| {
-            RaygineApp::new(
-                cc,
-                AppOptions {
-                    threads: 2,
-                    ignore_last_scene: true,
-                    ..AppOptions::default()
-                },
-            )
-            .unwrap()
-        });
-    h.state_mut().render.integrator = IntegratorKind::Bidirectional;
-    h.state_mut().render.target_spp = 2;
-    h.state_mut().render.resolution_scale = 0.5;
+    let mut h = crate::box_viewer(
+        Vec2::new(720.0, 480.0),
+        IntegratorKind::Bidirectional,
+        2,
+        0.5,
+    );
     h.run_steps(3);
     h
 }

@@ -8,7 +8,7 @@
 use egui::Vec2;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
-use raygine::app::{AppOptions, RaygineApp};
+use raygine::app::RaygineApp;
 use raygine::scene_exposure::{SceneExposure, median_exposure_stops, scene_key};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -19,23 +19,7 @@ type Viewer = Harness<'static, RaygineApp>;
 const TIMEOUT: Duration = Duration::from_secs(120);
 
 fn viewer(integrator: IntegratorKind, target_spp: u32, scale: f32) -> Viewer {
-    let mut h = Harness::builder()
-        .with_size(Vec2::new(800.0, 560.0))
-        .with_accessibility_check(false)
-        .build_eframe(|cc| {
-            RaygineApp::new(
-                cc,
-                AppOptions {
-                    threads: 2,
-                    ignore_last_scene: true,
-                    ..AppOptions::default()
-                },
-            )
-            .unwrap()
-        });
-    h.state_mut().render.integrator = integrator;
-    h.state_mut().render.target_spp = target_spp;
-    h.state_mut().render.resolution_scale = scale;
+    let mut h = crate::box_viewer(Vec2::new(800.0, 560.0), integrator, target_spp, scale);
     h.run_steps(2);
     h
 }
