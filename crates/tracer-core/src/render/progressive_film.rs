@@ -53,16 +53,6 @@ impl ProgressiveFilm {
         }
     }
 
-    /// Adds a tile's guide sums (the tile's row-major order), when the film keeps guides.
-    pub fn add_guide_tile(&mut self, tile: &Tile, sums: &[GuideSum]) {
-        let width = self.width() as usize;
-        if let Some(g) = self.accum.guides.as_mut() {
-            for ((x, y), s) in tile.pixels().zip(sums) {
-                g.pixels[y as usize * width + x as usize].merge(s);
-            }
-        }
-    }
-
     /// Empties the film for reuse by `generation` (no allocation), on the current rayon pool:
     /// at 1280x720 the sums are 147 MB, and clearing them is most of a restart's first preview
     /// (25-35 ms on one thread of the 2-core test machine, 12-17 ms on two).
@@ -124,20 +114,6 @@ impl ProgressiveFilm {
             if let Some(g) = self.accum.guides.as_mut().zip(guides.get(k)) {
                 g.0.pixels[i].merge(g.1);
             }
-        }
-    }
-
-    pub fn add_tile(&mut self, tile: &Tile, sums: &[PixelSum]) {
-        self.accum.add_tile(tile, sums);
-        self.samples_added += sums.iter().map(|s| u64::from(s.count)).sum::<u64>();
-    }
-
-    /// Counts the full samples of a tile (one per pixel, the tile's row-major order) whose
-    /// camera ray hit nothing.
-    pub fn add_misses(&mut self, tile: &Tile, missed: &[bool]) {
-        for ((x, y), &m) in tile.pixels().zip(missed) {
-            let i = self.accum.index(x, y);
-            self.misses[i] += u32::from(m);
         }
     }
 
@@ -241,8 +217,7 @@ mod tests {
                 assert!(sum.add(s));
                 sum
             });
-            film.add_tile(&both, &sums);
-            film.add_misses(&both, &[a.missed, b.missed]);
+            film.add_pixels(&[(0, 0), (1, 0)], &sums, &[a.missed, b.missed], &[]);
         }
         assert_eq!(film.background_fraction(0), 0.5);
         assert_eq!(film.background_fraction(1), 0.0);
@@ -274,7 +249,8 @@ mod tests {
             ..Sample::default()
         };
         assert!(sums[0].add(&full));
-        film.add_tile(&all, &sums);
+        let pixels: Vec<(u32, u32)> = all.pixels().collect();
+        film.add_pixels(&pixels, &sums, &[false; 8], &[]);
         // Pixels 0, 1 (x = 1, y = 0), 4 (0, 1) and 5 (1, 1) form block (0, 0).
         for i in [0, 1, 4, 5] {
             assert_eq!(film.shown_rgb(i), Vec3::splat(4.0), "pixel {i}");
@@ -293,13 +269,7 @@ mod tests {
         let own = |film: &mut ProgressiveFilm, x: u32| {
             let mut sum = PixelSum::default();
             assert!(sum.add(&Sample::default()));
-            let tile = Tile {
-                x0: x,
-                y0: 0,
-                x1: x + 1,
-                y1: 1,
-            };
-            film.add_tile(&tile, &[sum]);
+            film.add_pixels(&[(x, 0)], &[sum], &[false], &[]);
         };
         let splat = Splat {
             x: 0,
