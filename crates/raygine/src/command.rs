@@ -30,6 +30,9 @@ pub enum Command {
     Redo,
     /// Reset the camera to frame the scene (keeps the field of view).
     FrameScene,
+    /// Return to the scene's own camera: as the scene (or its sidecar) gave it when opened, or
+    /// as last saved.
+    ResetCamera,
     /// Pause or resume rendering.
     TogglePause,
     /// Flip between the denoised and the raw picture (D).

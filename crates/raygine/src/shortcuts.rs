@@ -1,7 +1,7 @@
 //! Keyboard shortcuts: what the user pressed this frame, read once before the panels draw.
 //!
 //! Typing never triggers a shortcut: while a text field (a path, a typed slider value) has
-//! keyboard focus, plain keys (F, P, D) and undo / redo belong to the field. Commands with Ctrl
+//! keyboard focus, plain keys (F, Home, P, D) and undo / redo belong to the field. Commands with Ctrl
 //! (open, save, export, quit) still work, as they type nothing.
 
 use crate::command::{Command, Commands};
@@ -28,6 +28,7 @@ pub struct Pressed {
     pub undo: bool,
     pub redo: bool,
     pub frame_scene: bool,
+    pub reset_camera: bool,
     pub toggle_pause: bool,
     pub toggle_denoise: bool,
 }
@@ -49,6 +50,7 @@ impl Pressed {
                 undo: !typing && i.consume_shortcut(&SHORTCUT_UNDO),
                 redo,
                 frame_scene: !typing && i.consume_key(Modifiers::NONE, Key::F),
+                reset_camera: !typing && i.consume_key(Modifiers::NONE, Key::Home),
                 toggle_pause: !typing && i.consume_key(Modifiers::NONE, Key::P),
                 toggle_denoise: !typing && i.consume_key(Modifiers::NONE, Key::D),
             }
@@ -77,6 +79,9 @@ impl Pressed {
         }
         if self.frame_scene {
             out.push(Command::FrameScene);
+        }
+        if self.reset_camera {
+            out.push(Command::ResetCamera);
         }
         if self.toggle_pause {
             out.push(Command::TogglePause);

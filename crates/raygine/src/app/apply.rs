@@ -30,6 +30,7 @@ impl RaygineApp {
             Command::Undo => self.undo(),
             Command::Redo => self.redo(),
             Command::FrameScene => self.frame_scene(),
+            Command::ResetCamera => self.doc.setup.camera = self.saved_setup.camera,
             Command::TogglePause => self.set_paused(!self.paused),
             Command::ToggleDenoise => {
                 if self.denoise.available() {

@@ -10,6 +10,9 @@ use std::time::{Duration, Instant};
 /// The narrowest the viewport gets while the side panel is shown, points.
 pub const MIN_VIEWPORT_WIDTH: f32 = 320.0;
 
+/// How long the wheel rests before a dolly by wheel is one undo step.
+const WHEEL_REST: Duration = Duration::from_millis(400);
+
 impl RaygineApp {
     fn record_frame_time(&mut self) {
         let log_due = self.frame_stats.frame_started(self.worker.busy());
@@ -147,9 +150,20 @@ impl RaygineApp {
             self.pending_switch = Some(crate::unsaved::Switch::Quit);
         }
         self.answer_unsaved(&ctx);
-        // Commit a finished interaction as one undo step: not while a button is held (a drag)
-        // nor while a value is being typed (it applies, and commits, when the field lets go).
-        if !ctx.input(|i| i.pointer.any_down()) && !ctx.text_edit_focused() {
+        // Commit a finished interaction as one undo step: not while a button is held (a drag),
+        // nor while a value is being typed (it applies, and commits, when the field lets go),
+        // nor until the wheel has rested for WHEEL_REST (a dolly of many wheel steps).
+        if ctx.input(|i| i.smooth_scroll_delta != egui::Vec2::ZERO) {
+            self.last_scroll = Some(Instant::now());
+        }
+        let wheel_resting = match self.last_scroll {
+            Some(t) if t.elapsed() < WHEEL_REST => {
+                ctx.request_repaint_after(WHEEL_REST);
+                false
+            }
+            _ => true,
+        };
+        if !ctx.input(|i| i.pointer.any_down()) && !ctx.text_edit_focused() && wheel_resting {
             self.history.commit(&self.doc.setup);
         }
         if let Some(wait) = self

@@ -85,6 +85,8 @@ pub struct RaygineApp {
     pub pending_switch: Option<crate::unsaved::Switch>,
     /// The user agreed to close: the window's close request goes through.
     allow_close: bool,
+    /// When the wheel last turned: a dolly by wheel becomes one undo step once it rests.
+    last_scroll: Option<std::time::Instant>,
     /// The grids' background measurement (Measure panel, grid overlay).
     pub measure: crate::measure_worker::MeasureWorker,
     /// Whether grid readings are drawn over the picture.
@@ -183,6 +185,7 @@ impl RaygineApp {
             saved_setup,
             pending_switch: None,
             allow_close: false,
+            last_scroll: None,
             measure: crate::measure_worker::MeasureWorker::default(),
             show_grids: true,
             meter: None,

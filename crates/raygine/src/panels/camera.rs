@@ -2,20 +2,35 @@
 
 use crate::command::{Command, Commands};
 use crate::document::Document;
+use super::widgets::{drag_hint, fine_drag, length_speed};
+
+/// Degrees of field of view a point of drag (Shift: a tenth).
+const FOV_SPEED: f64 = 0.2;
 
 /// The camera's numbers, edited in place; Frame scene is asked for.
 pub fn camera_ui(ui: &mut egui::Ui, doc: &mut Document, out: &mut Commands) {
     let unit = doc.setup.unit.symbol();
-    let speed = (doc.scene.bounds.radius() * 0.005).max(1e-4);
+    let speed = length_speed(&doc.scene.bounds);
     let cam = &mut doc.setup.camera;
     vec3_row(ui, "position", &mut cam.position, speed, unit);
     vec3_row(ui, "look at", &mut cam.look_at, speed, unit);
-    ui.add(
-        egui::Slider::new(&mut cam.fov_deg, 5.0..=150.0)
-            .text("field of view (°)")
-            .update_while_editing(false),
-    )
-    .on_hover_text("Vertical field of view, degrees, from the top edge to the bottom edge");
+    ui.horizontal(|ui| {
+        ui.label("field of view");
+        let r = fine_drag(
+            ui,
+            &mut cam.fov_deg,
+            FOV_SPEED,
+            Some(5.0..=150.0),
+            "",
+            "field of view (°)",
+        );
+        cam.fov_deg = cam.fov_deg.clamp(1.0, 179.0);
+        r.on_hover_text(format!(
+            "Vertical field of view, degrees, from the top edge to the bottom edge. {}",
+            drag_hint(FOV_SPEED, "°")
+        ));
+        ui.label("°");
+    });
     ui.horizontal(|ui| {
         if ui
             .button("Frame scene")
@@ -24,21 +39,24 @@ pub fn camera_ui(ui: &mut egui::Ui, doc: &mut Document, out: &mut Commands) {
         {
             out.push(Command::FrameScene);
         }
-        ui.label("drag: orbit · shift/middle: pan · wheel: dolly");
+        if ui
+            .button("Reset camera")
+            .on_hover_text("Back to the scene's own camera, as opened or last saved (Home)")
+            .clicked()
+        {
+            out.push(Command::ResetCamera);
+        }
     });
+    ui.label("drag: orbit · shift/middle: pan · wheel: dolly");
 }
 
-fn vec3_row(ui: &mut egui::Ui, label: &str, v: &mut [f32; 3], speed: f32, unit: &str) {
+fn vec3_row(ui: &mut egui::Ui, label: &str, v: &mut [f32; 3], speed: f64, unit: &str) {
     ui.horizontal(|ui| {
         ui.label(format!("{label} ({unit})"));
         for (c, axis) in v.iter_mut().zip(["x", "y", "z"]) {
-            ui.add(
-                egui::DragValue::new(c)
-                    .speed(speed)
-                    .max_decimals(3)
-                    .update_while_editing(false),
-            )
-            .on_hover_text(format!("camera {label} {axis} ({unit})"));
+            let name = format!("camera {label} {axis} ({unit})");
+            fine_drag(ui, c, speed, None, &format!("{axis} "), &name)
+                .on_hover_text(format!("{name}. {}", drag_hint(speed, unit)));
         }
     });
 }

@@ -1,10 +1,12 @@
-//! Point and spot lights: kind, position (sliders over the scene's bounds; typed values may go
-//! anywhere, and a light outside the bounds is pointed out), intensity (cd, a drag changes it by
+//! Point and spot lights: kind, position (dragged at a speed scaled to the scene, finer with
+//! Shift, inside the scene's bounds; typed values may go anywhere, and a light outside the
+//! bounds is pointed out), intensity (cd, a drag changes it by
 //! a fraction of itself), spot axis and angles, colour; add (beside the lights already there)
 //! and remove. Emissive surfaces are edited with their material.
 
 use crate::command::{Command, Commands};
 use crate::document::Document;
+use super::widgets::{drag_hint, fine_drag, length_speed};
 use tracer_core::scene::{Light, LightKind, default_light};
 
 /// The lights, edited in place. `luminaire_path` is the panel's own text field for "Add
@@ -23,6 +25,7 @@ pub fn lights_ui(
     let lo = glam::Vec3::select(flat, b.min - pad, b.min);
     let hi = glam::Vec3::select(flat, b.max + pad, b.max);
     let unit = doc.setup.unit.symbol();
+    let speed = length_speed(&b);
     let mut remove = None;
     let count = doc.setup.lights.len();
     for (i, light) in doc.setup.lights.iter_mut().enumerate() {
@@ -54,18 +57,25 @@ pub fn lights_ui(
                     remove = Some(i);
                 }
             });
-            for (axis, name) in ["x", "y", "z"].iter().enumerate() {
-                ui.add(
-                    egui::Slider::new(&mut light.position[axis], lo[axis]..=hi[axis])
-                        .text(format!("light {name} ({unit})"))
-                        .clamping(egui::SliderClamping::Never)
-                        .update_while_editing(false),
-                )
-                .on_hover_text(format!(
-                    "Light {} position along {name}, scene units ({unit}); type any value",
-                    i + 1
-                ));
-            }
+            ui.horizontal(|ui| {
+                ui.label(format!("position ({unit})"));
+                for (axis, name) in ["x", "y", "z"].iter().enumerate() {
+                    fine_drag(
+                        ui,
+                        &mut light.position[axis],
+                        speed,
+                        Some(lo[axis]..=hi[axis]),
+                        &format!("{name} "),
+                        &format!("light {name} ({unit})"),
+                    )
+                    .on_hover_text(format!(
+                        "Light {} position along {name} ({unit}). A drag stays inside the \
+                         scene's bounds; a typed value may go anywhere. {}",
+                        i + 1,
+                        drag_hint(speed, unit)
+                    ));
+                }
+            });
             let p = light.position();
             if !b.contains(&tracer_core::geometry::Aabb { min: p, max: p }) {
                 ui.colored_label(

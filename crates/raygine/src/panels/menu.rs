@@ -60,6 +60,14 @@ pub fn menu_bar(ui: &mut egui::Ui, m: MenuBar<'_>, out: &mut Commands) {
                     out.push(Command::FrameScene);
                     ui.close();
                 }
+                if ui
+                    .add(egui::Button::new("Reset camera").shortcut_text("Home"))
+                    .on_hover_text("Back to the scene's own camera, as opened or last saved")
+                    .clicked()
+                {
+                    out.push(Command::ResetCamera);
+                    ui.close();
+                }
                 let label = if m.paused {
                     "Resume rendering"
                 } else {

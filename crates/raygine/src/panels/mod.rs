@@ -11,6 +11,7 @@ mod menu;
 mod reflectance;
 mod render;
 mod status;
+mod widgets;
 mod windows;
 
 pub use measure::MeasureView;

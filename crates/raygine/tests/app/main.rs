@@ -7,6 +7,7 @@
 mod commands;
 mod denoise;
 mod first_view;
+mod rough_edges;
 mod viewer;
 
 /// The app on the built-in box in a `width` x `height` window, 2 render threads, the last

@@ -341,7 +341,7 @@ fn dragging_the_light_slider_restarts_the_render_and_changes_the_film() {
     let (size, before) = film_rgb(h.state());
     assert_eq!(mirror.film(size).pixels, expected_texture(h.state()).pixels);
 
-    let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
+    let slider = h.get_by_role_and_label(Role::SpinButton, LIGHT_X).rect();
     // Left: the light moves towards the green wall and stays inside the box.
     drag(
         &mut h,
@@ -571,7 +571,7 @@ fn undo_and_redo_restore_the_light_position() {
     let x0 = light_x(h.state());
 
     // A typed or assistive-technology value: committed on the next frame (no pointer held).
-    h.get_by_role_and_label(Role::Slider, LIGHT_X)
+    h.get_by_role_and_label(Role::SpinButton, LIGHT_X)
         .set_value_accesskit(f64::from(x0) + 120.0);
     h.run_steps(2);
     let x1 = light_x(h.state());
@@ -592,7 +592,7 @@ fn undo_and_redo_restore_the_light_position() {
     assert_eq!(light_x(h.state()), x1, "Ctrl+Shift+Z did not redo");
 
     // A whole pointer drag is one step: one undo returns to where the drag started.
-    let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
+    let slider = h.get_by_role_and_label(Role::SpinButton, LIGHT_X).rect();
     drag(
         &mut h,
         slider.center(),
@@ -685,7 +685,7 @@ fn smoke_script_layout_holds() {
             .unwrap()
         });
     h.step();
-    let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
+    let slider = h.get_by_role_and_label(Role::SpinButton, LIGHT_X).rect();
     let view = h.get_by_label("viewport").rect();
     eprintln!("light x slider {slider:?}, viewport {view:?}");
     // scripts/smoke_viewer.sh: SLIDER_X/SLIDER_Y, PANEL_W and BAR_H.
@@ -1002,7 +1002,7 @@ fn ctrl_o_focuses_the_path_field_and_enter_opens() {
     let path = scratch_dir("ctrl-o-pf").join("pf_scene.shp");
     std::fs::write(&path, two_brep_scene("0 2 3")).unwrap();
     let x0 = light_x(h.state());
-    h.get_by_role_and_label(Role::Slider, LIGHT_X)
+    h.get_by_role_and_label(Role::SpinButton, LIGHT_X)
         .set_value_accesskit(f64::from(x0) + 50.0);
     h.run_steps(2);
     // Orbit, so F would visibly change the camera.
@@ -1107,18 +1107,15 @@ fn banners_can_be_dismissed_and_expire() {
     assert_eq!(h.state().notice, None, "the notice did not expire");
 }
 
-/// The light sliders stay within the scene's bounds; a typed value may go outside, and then the
+/// A drag of a light's position stays within the scene's bounds; a typed value may go outside, and then the
 /// panel says so and the picture's hint tells "every pixel is 0 cd/m²".
 #[test]
 fn light_sliders_keep_to_the_bounds_and_a_light_outside_is_pointed_out() {
     let (mut h, _mirror) = viewer();
     let bounds = h.state().doc.scene.bounds;
-    let slider = h.get_by_role_and_label(Role::Slider, LIGHT_X).rect();
-    drag(
-        &mut h,
-        slider.center(),
-        Vec2::new(-slider.width() * 3.0, 0.0),
-    );
+    let slider = h.get_by_role_and_label(Role::SpinButton, LIGHT_X).rect();
+    // Left and down: 500 points of drag, 700 mm at the box's speed, more than the box is wide.
+    drag(&mut h, slider.center(), Vec2::new(-250.0, 250.0));
     let x = light_x(h.state());
     assert!(
         (x - bounds.min.x).abs() < 1.0,
@@ -1127,7 +1124,7 @@ fn light_sliders_keep_to_the_bounds_and_a_light_outside_is_pointed_out() {
     assert!(h.query_by_label("outside the scene's bounds").is_none());
     assert_eq!(h.state().picture_hint, None);
 
-    h.get_by_role_and_label(Role::Slider, LIGHT_X)
+    h.get_by_role_and_label(Role::SpinButton, LIGHT_X)
         .set_value_accesskit(-5000.0);
     h.run_steps(2);
     assert_eq!(light_x(h.state()), -5000.0, "a typed value may go anywhere");
@@ -1242,7 +1239,7 @@ fn unit_and_handedness_controls() {
     let app = h.state();
     assert_eq!(app.doc.setup.unit, tracer_core::scene::LengthUnit::M);
     assert!(
-        h.query_by_role_and_label(Role::Slider, "light x (m)")
+        h.query_by_role_and_label(Role::SpinButton, "light x (m)")
             .is_some(),
         "sliders still in mm"
     );
@@ -1484,7 +1481,7 @@ fn unsaved_edits_are_not_thrown_away_without_asking() {
     open(&mut h, &path);
     assert!(!h.state().has_unsaved_edits());
     let x0 = light_x(h.state());
-    h.get_by_role_and_label(Role::Slider, "light x (mm)")
+    h.get_by_role_and_label(Role::SpinButton, "light x (mm)")
         .set_value_accesskit(f64::from(x0) + 40.0);
     h.run_steps(2);
     assert!(h.state().has_unsaved_edits());
@@ -1544,7 +1541,7 @@ fn the_colour_picker_and_labels_have_their_glyphs() {
 fn the_background_is_told_apart_from_unlit_surfaces() {
     let (mut h, mirror) = viewer();
     // The light behind the green wall: every surface the camera sees is unlit.
-    h.get_by_role_and_label(Role::Slider, LIGHT_X)
+    h.get_by_role_and_label(Role::SpinButton, LIGHT_X)
         .set_value_accesskit(-5000.0);
     h.run_steps(2);
     settle(&mut h);
