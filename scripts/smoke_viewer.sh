@@ -108,13 +108,13 @@ if [[ "${1:-}" == "--inside-xvfb" ]]; then
     sleep 3
     shot 02-before-drag
 
-    # The first "light x" slider: its rail's centre, measured in the egui layout at this window
-    # size (the test `smoke_script_layout_holds` keeps it true). Drag it left by 15 px: the light
-    # moves about 190 mm towards the green wall and stays inside the box.
-    SLIDER_X=$((X + 76))
+    # The first light's "x" position field: its centre, measured in the egui layout at this
+    # window size (the test `smoke_script_layout_holds` keeps it true). Drag it left by 40 px:
+    # the light moves about 55 mm (1.4 mm a point in the box) and stays inside the box.
+    SLIDER_X=$((X + 138))
     SLIDER_Y=$((Y + 157))
     xdotool mousemove "$SLIDER_X" "$SLIDER_Y" mousedown 1
-    for dx in 5 10 15; do
+    for dx in 10 20 30 40; do
         sleep 0.1
         xdotool mousemove $((SLIDER_X - dx)) "$SLIDER_Y"
     done

@@ -1,5 +1,6 @@
-//! Mouse camera control: orbit about the look-at point, pan, dolly. Pure functions on
-//! `Camera`, so the viewport and tests share them.
+//! Mouse camera control: orbit (about the look-at point, or a pivot such as the surface point
+//! under the cursor), pan, dolly. Pure functions on `Camera`, so the viewport and tests share
+//! them.
 
 use glam::{Quat, Vec3};
 use tracer_core::scene::{Camera, Handedness};
@@ -10,27 +11,40 @@ const ORBIT_PER_PIXEL: f32 = 0.008;
 /// Orbits the eye about the look-at point: `dx` pixels to the right turns the view so the scene
 /// follows the mouse; `dy` tilts it. The elevation stays short of the poles.
 pub fn orbit(camera: &Camera, handedness: Handedness, dx: f32, dy: f32) -> Camera {
-    let target = Vec3::from(camera.look_at);
+    orbit_about(camera, handedness, Vec3::from(camera.look_at), dx, dy)
+}
+
+/// Orbits eye and look-at point together about `pivot` by the turn [`orbit`] makes: the scene
+/// turns about the point the user grabbed, which keeps its distance from the eye.
+pub fn orbit_about(
+    camera: &Camera,
+    handedness: Handedness,
+    pivot: Vec3,
+    dx: f32,
+    dy: f32,
+) -> Camera {
     let up = Vec3::from(camera.up).try_normalize().unwrap_or(Vec3::Y);
-    let offset = Vec3::from(camera.position) - target;
+    let back = Vec3::from(camera.position) - Vec3::from(camera.look_at);
     // In a left-handed picture the screen's x axis is mirrored, so the turn is too.
     let sign = match handedness {
         Handedness::Right => -1.0,
         Handedness::Left => 1.0,
     };
     let yaw = Quat::from_axis_angle(up, sign * dx * ORBIT_PER_PIXEL);
-    let mut offset = yaw * offset;
-    let right = offset.cross(up).try_normalize();
-    if let Some(right) = right {
-        let pitched = Quat::from_axis_angle(right, -dy * ORBIT_PER_PIXEL) * offset;
+    let mut turn = yaw;
+    let yawed = yaw * back;
+    if let Some(right) = yawed.cross(up).try_normalize() {
+        let pitch = Quat::from_axis_angle(right, -dy * ORBIT_PER_PIXEL);
         // Keep away from looking straight along the up axis.
-        let cos = pitched.normalize_or_zero().dot(up).abs();
+        let cos = (pitch * yawed).normalize_or_zero().dot(up).abs();
         if cos < 0.995 {
-            offset = pitched;
+            turn = pitch * yaw;
         }
     }
+    let about = |p: [f32; 3]| (pivot + turn * (Vec3::from(p) - pivot)).to_array();
     Camera {
-        position: (target + offset).to_array(),
+        position: about(camera.position),
+        look_at: about(camera.look_at),
         ..*camera
     }
 }
@@ -85,6 +99,20 @@ mod tests {
         assert_eq!(c.look_at, [0.0; 3]);
         assert!((Vec3::from(c.position).length() - 10.0).abs() < 1e-3);
         assert_ne!(c.position, cam().position);
+    }
+
+    /// About a pivot off the view axis both eye and look-at move, the eye keeps its distance
+    /// from the pivot, and the turn is the one `orbit` makes.
+    #[test]
+    fn orbit_about_a_pivot_keeps_the_pivots_distance() {
+        let pivot = Vec3::new(3.0, -1.0, 2.0);
+        let c = orbit_about(&cam(), Handedness::Right, pivot, 50.0, -20.0);
+        let before = Vec3::from(cam().position).distance(pivot);
+        assert!((Vec3::from(c.position).distance(pivot) - before).abs() < 1e-4);
+        assert_ne!(c.look_at, cam().look_at);
+        let plain = orbit(&cam(), Handedness::Right, 50.0, -20.0);
+        let dir = |c: &Camera| (Vec3::from(c.look_at) - Vec3::from(c.position)).normalize();
+        assert!(dir(&c).distance(dir(&plain)) < 1e-5, "the same turn");
     }
 
     #[test]

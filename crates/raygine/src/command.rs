@@ -1,10 +1,11 @@
 //! What the user asked the viewer for. Panels, windows, the viewport and the keyboard shortcuts
 //! return these values; the app's `apply` carries them out, in one place.
 //!
-//! Plain value edits (a light's position slider, a material's colour) go straight into the
-//! document's setup, as egui widgets edit the value they are given; the app turns each finished
-//! interaction into one undo step. Everything else — files, history, the render, messages, the
-//! selection — is a command.
+//! Plain value edits (a light's position, a material's colour) go straight into the document's
+//! setup, as egui widgets edit the value they are given; structural edits (lights, luminaires,
+//! visibility, grids) are [`Edit`] commands. The app turns each finished interaction into one
+//! undo step either way. Everything else — files, history, the render, messages, the
+//! selection — is a command too.
 
 use crate::file_ops::DialogPurpose;
 use crate::unsaved::Switch;
@@ -15,6 +16,8 @@ use std::path::PathBuf;
 pub enum Command {
     /// Open another scene or quit; asks first when that would drop unsaved edits.
     Switch(Switch),
+    /// A structural edit of the setup.
+    Edit(Edit),
     /// Open the path window for `purpose` (a typed path; Browse… runs the native dialog).
     PromptPath(DialogPurpose),
     /// Run the native file dialog for the path window, starting at `suggested`.
@@ -64,6 +67,29 @@ pub enum Command {
     Notice(String),
     DismissError,
     DismissNotice,
+}
+
+/// A structural edit of the setup (see `app/edits.rs`); each finished one is an undo step.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Edit {
+    /// A point light where a scene without a sidecar gets its light, beside those there.
+    AddLight,
+    RemoveLight(usize),
+    /// Read an IES or EULUMDAT file on a background job, then add it as a luminaire.
+    AddLuminaire(PathBuf),
+    /// Hide or show these material slots.
+    SetHidden {
+        slots: Vec<u32>,
+        hidden: bool,
+    },
+    ShowAll,
+    /// A work plane fitted to the scene.
+    AddWorkPlane,
+    /// A grid over the plane of this material slot.
+    AddGridOnSurface(u32),
+    /// Grid `0` becomes the given grid (its points or corners edited).
+    ReplaceGrid(usize, Box<tracer_core::measure::Grid>),
+    RemoveGrid(usize),
 }
 
 /// Commands collected during a frame, applied once the panels have drawn.

@@ -39,6 +39,24 @@ fn to_screen(rect: Rect, basis: &CameraBasis, p: Vec3) -> Option<Pos2> {
     ))
 }
 
+/// The point an orbit turns about: a small ring with a cross.
+pub fn draw_pivot(ui: &egui::Ui, basis: &CameraBasis, rect: Rect, pivot: Vec3) {
+    let Some(pos) = to_screen(rect, basis, pivot) else {
+        return;
+    };
+    let painter = ui.painter_at(rect);
+    let stroke = egui::Stroke::new(1.5, Color32::from_rgb(255, 230, 120));
+    painter.circle_stroke(pos, 7.0, stroke);
+    painter.line_segment(
+        [pos - egui::vec2(4.0, 0.0), pos + egui::vec2(4.0, 0.0)],
+        stroke,
+    );
+    painter.line_segment(
+        [pos - egui::vec2(0.0, 4.0), pos + egui::vec2(0.0, 4.0)],
+        stroke,
+    );
+}
+
 /// Each light as a dot in its colour with its label; spots and luminaires with their aim.
 pub fn draw_light_markers(ui: &egui::Ui, doc: &Document, basis: &CameraBasis, rect: Rect) {
     let painter = ui.painter_at(rect);

@@ -1,7 +1,7 @@
 //! The viewport: the live film, mouse camera control, hover read-outs, picking and the luminance
 //! meter. What is drawn over the picture is in [`crate::viewport_draw`].
 
-use crate::camera_control::{dolly, orbit, pan};
+use crate::camera_control::{dolly, orbit_about, pan};
 use crate::command::{Command, Commands};
 use crate::document::Document;
 use crate::file_ops::PendingLoad;
@@ -46,6 +46,9 @@ pub struct Viewport<'a> {
     pub meter: &'a mut Option<Meter>,
     /// Where the current Ctrl+drag started (film position).
     pub meter_anchor: &'a mut Option<(f32, f32)>,
+    /// What the current orbit turns about: the surface point under the cursor where the drag
+    /// started, else the look-at point.
+    pub orbit_pivot: &'a mut Option<glam::Vec3>,
 }
 
 /// The viewport; a click selects the surface under the pointer, a banner's ✖ dismisses it.
@@ -73,6 +76,9 @@ pub fn viewport_ui(ui: &mut egui::Ui, mut v: Viewport<'_>, out: &mut Commands) {
     let basis = v.worker.basis();
     if let Some(b) = &basis {
         draw_light_markers(ui, v.doc, b, rect);
+        if let Some(pivot) = *v.orbit_pivot {
+            crate::viewport_draw::draw_pivot(ui, b, rect, pivot);
+        }
         if v.show_grids
             && let Some(readings) = v.measure.readings()
         {
@@ -135,14 +141,26 @@ fn handle_mouse(
     } else {
         *v.meter_anchor = None;
     }
+    let panning = response.dragged_by(egui::PointerButton::Middle)
+        || (response.dragged_by(egui::PointerButton::Primary) && shift);
+    let orbiting = response.dragged_by(egui::PointerButton::Primary) && !shift && !metering;
+    if !orbiting {
+        *v.orbit_pivot = None;
+    } else if v.orbit_pivot.is_none() {
+        let origin = ui.input(|i| i.pointer.press_origin());
+        *v.orbit_pivot = Some(
+            origin
+                .and_then(|pos| film_pixel(v.worker, rect, pos))
+                .and_then(|(fx, fy)| surface_point(v.worker, fx, fy))
+                .unwrap_or(glam::Vec3::from(camera.look_at)),
+        );
+    }
     if delta != Vec2::ZERO && !metering {
-        let panning = response.dragged_by(egui::PointerButton::Middle)
-            || (response.dragged_by(egui::PointerButton::Primary) && shift);
         let height_px = rect.height();
         v.doc.setup.camera = if panning {
             pan(&camera, handedness, delta.x, delta.y, height_px)
-        } else if response.dragged_by(egui::PointerButton::Primary) {
-            orbit(&camera, handedness, delta.x, delta.y)
+        } else if let Some(pivot) = *v.orbit_pivot {
+            orbit_about(&camera, handedness, pivot, delta.x, delta.y)
         } else {
             camera
         };
@@ -208,6 +226,19 @@ fn draw_meter(ui: &egui::Ui, v: &Viewport<'_>, rect: Rect) {
     let screen = Rect::from_min_max(to_screen(m.x0, m.y0), to_screen(m.x1, m.y1));
     let reading = v.worker.with_film(|f| f.and_then(|f| m.read(f)));
     crate::luminance_meter::draw(&ui.painter_at(rect), screen, reading);
+}
+
+/// The point of the closest drawn surface seen at film position (`fx`, `fy`).
+fn surface_point(worker: &RenderWorker, fx: f32, fy: f32) -> Option<glam::Vec3> {
+    let key = worker.current()?;
+    let basis = key.setup.camera.basis(
+        key.setup.handedness,
+        key.settings.width,
+        key.settings.height,
+    );
+    let ray = basis.ray(fx, fy);
+    let hit = key.scene.closest_drawn(&ray, &key.setup.hidden)?;
+    Some(ray.origin + ray.dir * hit.t)
 }
 
 /// The material slot of the surface seen at film position (`fx`, `fy`).

@@ -15,6 +15,7 @@ impl RaygineApp {
     pub fn apply(&mut self, command: Command) {
         match command {
             Command::Switch(switch) => self.request(switch),
+            Command::Edit(edit) => self.edit(edit),
             Command::PromptPath(purpose) => self.prompt_path(purpose),
             Command::Browse { purpose, suggested } => {
                 self.dialog = Some(PendingDialog::start(purpose, Some(&suggested), &self.ctx));
@@ -152,6 +153,7 @@ impl RaygineApp {
             self.worker.generation(),
         );
         self.doc = doc;
+        self.panels.scroll_to_top = true;
         self.selected_slot = None;
         self.meter = None;
         if self.paused {
@@ -202,7 +204,7 @@ impl RaygineApp {
 }
 
 /// The viewport's one-line notice after a load: the warnings themselves when they are few and
-/// short; else the first and a count (every warning goes to stderr, where the full list is read).
+/// short; else the first and a count, with where to read them all (View > Notes; stderr too).
 fn load_notice(warnings: &[String]) -> Option<String> {
     for w in warnings {
         eprintln!("warning: {w}");
@@ -212,7 +214,7 @@ fn load_notice(warnings: &[String]) -> Option<String> {
         [] => None,
         _ if joined.chars().count() <= 200 => Some(joined),
         [first, rest @ ..] => Some(format!(
-            "{} … and {} more notes on this scene (printed on the terminal)",
+            "{} … and {} more notes on this scene (View > Notes lists them all)",
             first.chars().take(160).collect::<String>(),
             rest.len()
         )),

@@ -46,6 +46,7 @@ impl RaygineApp {
             }
         }
         self.poll_dialog();
+        self.poll_luminaire();
         let mut still = Vec::new();
         for w in self.writes.drain(..) {
             match w.poll() {
@@ -225,7 +226,17 @@ impl RaygineApp {
 
     /// Saves materials, lights and camera as the scene's sidecar.
     pub fn save_sidecar(&mut self, ctx: &egui::Context, path: PathBuf) {
-        let text = Sidecar::from_setup(&self.doc.scene, &self.doc.setup).to_toml();
+        let mut sidecar = Sidecar::from_setup(&self.doc.scene, &self.doc.setup);
+        if let Some(dir) = path.parent() {
+            // An empty parent is the current folder.
+            let dir = if dir.as_os_str().is_empty() {
+                Path::new(".")
+            } else {
+                dir
+            };
+            sidecar = sidecar.relative_to(dir);
+        }
+        let text = sidecar.to_toml();
         // A failed write shows its error; the edits then count as saved all the same.
         self.saved_setup = self.doc.setup.clone();
         self.writes.push(start_write(ctx, move || {

@@ -123,7 +123,15 @@ impl RaygineApp {
                 .default_size(378.0_f32.min(max_panel))
                 .size_range(120.0..=max_panel)
                 .show(ui, |ui| {
-                    egui::ScrollArea::both().show(ui, |ui| self.controls_ui(ui, &mut commands));
+                    // A scene opens with its panel at the top (the Lights first), not where the
+                    // last scene, or the last session, left it.
+                    let mut area = egui::ScrollArea::both().id_salt("controls-scroll");
+                    if std::mem::take(&mut self.panels.scroll_to_top) {
+                        area = area
+                            .vertical_scroll_offset(0.0)
+                            .horizontal_scroll_offset(0.0);
+                    }
+                    area.show(ui, |ui| self.controls_ui(ui, &mut commands));
                 });
         }
         self.apply_all(std::mem::take(&mut commands));
@@ -139,6 +147,12 @@ impl RaygineApp {
                 show_help: &mut self.show_help,
             },
             &mut commands,
+        );
+        crate::panels::notes_ui(
+            &ctx,
+            &mut self.panels.show_notes,
+            &self.doc.title(),
+            &self.doc.warnings,
         );
         self.apply_all(commands);
         // The window's close button: ask first when edits would be lost.
@@ -200,6 +214,8 @@ impl RaygineApp {
             recent: &self.prefs.recent,
             show_controls: &mut self.show_controls,
             show_help: &mut self.show_help,
+            show_notes: &mut self.panels.show_notes,
+            notes: self.doc.warnings.len(),
         };
         crate::panels::menu_bar(ui, menu, out);
         let status = StatusBar {
@@ -232,6 +248,7 @@ impl RaygineApp {
             show_grids: &mut self.show_grids,
             measure,
             state: &mut self.panels,
+            adding_luminaire: self.adding_luminaire.is_some(),
         };
         crate::panels::controls_ui(ui, panel, out);
     }
@@ -255,6 +272,7 @@ impl RaygineApp {
             hover: &mut self.hover,
             meter: &mut self.meter,
             meter_anchor: &mut self.meter_anchor,
+            orbit_pivot: &mut self.orbit_pivot,
         };
         crate::viewport_ui::viewport_ui(ui, viewport, out);
     }

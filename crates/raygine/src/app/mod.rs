@@ -4,6 +4,7 @@
 //! [`RaygineApp::apply`] carries out (`apply.rs`); file work is in `files.rs`.
 
 mod apply;
+mod edits;
 mod files;
 mod frame;
 
@@ -85,6 +86,8 @@ pub struct RaygineApp {
     pub pending_switch: Option<crate::unsaved::Switch>,
     /// The user agreed to close: the window's close request goes through.
     allow_close: bool,
+    /// The luminaire file being read for "Add luminaire".
+    adding_luminaire: Option<edits::PendingLuminaire>,
     /// When the wheel last turned: a dolly by wheel becomes one undo step once it rests.
     last_scroll: Option<std::time::Instant>,
     /// The grids' background measurement (Measure panel, grid overlay).
@@ -95,6 +98,8 @@ pub struct RaygineApp {
     pub meter: Option<crate::luminance_meter::Meter>,
     /// Where the current Ctrl+drag started (film position).
     pub meter_anchor: Option<(f32, f32)>,
+    /// What the current orbit turns about (shown while dragging).
+    pub orbit_pivot: Option<glam::Vec3>,
     /// The viewport's screen rectangle in the last frame (points), for reports.
     pub viewport_rect: Option<egui::Rect>,
     /// A measurement report waiting for its screenshot.
@@ -181,15 +186,20 @@ impl RaygineApp {
             paused: false,
             show_help: false,
             show_controls: true,
-            panels: PanelState::default(),
+            panels: PanelState {
+                scroll_to_top: true,
+                ..PanelState::default()
+            },
             saved_setup,
             pending_switch: None,
             allow_close: false,
             last_scroll: None,
+            adding_luminaire: None,
             measure: crate::measure_worker::MeasureWorker::default(),
             show_grids: true,
             meter: None,
             meter_anchor: None,
+            orbit_pivot: None,
             viewport_rect: None,
             report: None,
             viewport_px: [0, 0],

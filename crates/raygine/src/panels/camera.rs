@@ -1,8 +1,8 @@
 //! Camera: position, look-at, vertical field of view; reset to framing.
 
+use super::widgets::{drag_hint, fine_drag, length_speed};
 use crate::command::{Command, Commands};
 use crate::document::Document;
-use super::widgets::{drag_hint, fine_drag, length_speed};
 
 /// Degrees of field of view a point of drag (Shift: a tenth).
 const FOV_SPEED: f64 = 0.2;

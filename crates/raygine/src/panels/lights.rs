@@ -4,10 +4,10 @@
 //! a fraction of itself), spot axis and angles, colour; add (beside the lights already there)
 //! and remove. Emissive surfaces are edited with their material.
 
-use crate::command::{Command, Commands};
-use crate::document::Document;
 use super::widgets::{drag_hint, fine_drag, length_speed};
-use tracer_core::scene::{Light, LightKind, default_light};
+use crate::command::{Command, Commands, Edit};
+use crate::document::Document;
+use tracer_core::scene::{Light, LightKind};
 
 /// The lights, edited in place. `luminaire_path` is the panel's own text field for "Add
 /// luminaire"; a luminaire file that cannot be read is reported as an error.
@@ -15,6 +15,7 @@ pub fn lights_ui(
     ui: &mut egui::Ui,
     doc: &mut Document,
     luminaire_path: &mut String,
+    adding: bool,
     out: &mut Commands,
 ) {
     let b = doc.scene.bounds;
@@ -109,18 +110,16 @@ pub fn lights_ui(
         });
     }
     if let Some(i) = remove {
-        doc.setup.lights.remove(i);
+        out.push(Command::Edit(Edit::RemoveLight(i)));
     }
     if ui
         .button("Add light")
         .on_hover_text("A new point light where a scene without a sidecar gets its light")
         .clicked()
     {
-        let mut light: Light = default_light(&doc.scene, doc.setup.unit, doc.setup.camera.position);
-        light.position = beside_lights(light.position, &doc.setup.lights, &b);
-        doc.setup.lights.push(light);
+        out.push(Command::Edit(Edit::AddLight));
     }
-    add_luminaire_ui(ui, doc, luminaire_path, out);
+    add_luminaire_ui(ui, luminaire_path, adding, out);
 }
 
 /// Intensity in candela: a drag changes it by about 0.5 % a point (a 20-point drag about 10 %),
@@ -160,44 +159,9 @@ fn intensity_ui(ui: &mut egui::Ui, light: &mut Light) {
     });
 }
 
-/// `position` moved aside (along x, then z, inside `bounds` when it was inside) until no light
-/// sits within a tenth of the scene's size of it.
-pub fn beside_lights(
-    position: [f32; 3],
-    lights: &[Light],
-    bounds: &tracer_core::geometry::Aabb,
-) -> [f32; 3] {
-    let step = (bounds.extent().max_element() * 0.15).max(1e-3);
-    let start = glam::Vec3::from(position);
-    let inside = |p: glam::Vec3| bounds.contains(&tracer_core::geometry::Aabb { min: p, max: p });
-    let keep_inside = inside(start);
-    let free = |p: glam::Vec3| {
-        lights
-            .iter()
-            .all(|l| l.position().distance(p) >= step * (2.0 / 3.0))
-    };
-    if free(start) {
-        return position;
-    }
-    for k in 1..=8 {
-        let d = step * k as f32;
-        for offset in [
-            glam::Vec3::X * d,
-            -glam::Vec3::X * d,
-            glam::Vec3::Z * d,
-            -glam::Vec3::Z * d,
-        ] {
-            let p = start + offset;
-            if free(p) && (!keep_inside || inside(p)) {
-                return p.to_array();
-            }
-        }
-    }
-    (start + glam::Vec3::X * step).to_array()
-}
-
-/// A typed path and a button that add a luminaire from an IES or EULUMDAT file.
-fn add_luminaire_ui(ui: &mut egui::Ui, doc: &mut Document, text: &mut String, out: &mut Commands) {
+/// A typed path and a button that add a luminaire from an IES or EULUMDAT file (read on a
+/// background job; a spinner shows while `adding`).
+fn add_luminaire_ui(ui: &mut egui::Ui, text: &mut String, adding: bool, out: &mut Commands) {
     ui.horizontal(|ui| {
         let label = ui.label("luminaire file");
         ui.add(
@@ -219,23 +183,10 @@ fn add_luminaire_ui(ui: &mut egui::Ui, doc: &mut Document, text: &mut String, ou
                 ));
                 return;
             }
-            match tracer_core::formats::read_photometry(&path) {
-                Ok(photometry) => {
-                    let base = default_light(&doc.scene, doc.setup.unit, doc.setup.camera.position);
-                    let position =
-                        beside_lights(base.position, &doc.setup.lights, &doc.scene.bounds);
-                    doc.setup.lights.push(Light {
-                        kind: LightKind::Luminaire,
-                        position,
-                        luminaire: Some(std::sync::Arc::new(tracer_core::light::Luminaire::new(
-                            photometry, path,
-                        ))),
-                        ..base
-                    });
-                    out.push(Command::DismissError);
-                }
-                Err(e) => out.push(Command::Error(e.to_string())),
-            }
+            out.push(Command::Edit(Edit::AddLuminaire(path)));
+        }
+        if adding {
+            ui.spinner();
         }
     });
 }
@@ -266,40 +217,8 @@ fn luminaire_ui(ui: &mut egui::Ui, light: &mut Light) {
     )
     .on_hover_text("Turn of the C planes about the aim");
     if let Some(l) = &light.luminaire {
-        polar_ui(ui, &l.photometry, light.multiplier);
+        super::polar::polar_diagram(ui, &l.photometry, light.multiplier, 240.0);
     }
-}
-
-/// The C0–C180 and C90–C270 planes of a distribution in cd, nadir down.
-fn polar_ui(ui: &mut egui::Ui, p: &tracer_core::light::Photometry, multiplier: f32) {
-    use egui_plot::{Legend, Line, Plot, PlotPoints};
-    let curve = |c_a: f32, c_b: f32| -> PlotPoints<'static> {
-        let mut pts = Vec::with_capacity(362);
-        for i in 0..=180 {
-            let g = i as f32;
-            let v = f64::from(p.intensity(c_a, g) * multiplier);
-            let r = f64::from(g).to_radians();
-            pts.push([v * r.sin(), -v * r.cos()]);
-        }
-        for i in (0..=180).rev() {
-            let g = i as f32;
-            let v = f64::from(p.intensity(c_b, g) * multiplier);
-            let r = f64::from(g).to_radians();
-            pts.push([-v * r.sin(), -v * r.cos()]);
-        }
-        PlotPoints::from(pts)
-    };
-    Plot::new(ui.scope_id().with("polar"))
-        .height(180.0)
-        .data_aspect(1.0)
-        .allow_drag(false)
-        .allow_zoom(false)
-        .allow_scroll(false)
-        .legend(Legend::default())
-        .show(ui, |plot| {
-            plot.line(Line::new("C0-C180 (cd)", curve(0.0, 180.0)));
-            plot.line(Line::new("C90-C270 (cd)", curve(90.0, 270.0)));
-        });
 }
 
 /// The spot's axis and angles (degrees at this edge).

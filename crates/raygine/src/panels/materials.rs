@@ -1,17 +1,27 @@
 //! Materials per brep and part: Kd colour, Ks colour, glossiness; hide or isolate breps; the
 //! surface clicked in the viewport is selected here.
 
-use crate::command::{Command, Commands};
+use crate::command::{Command, Commands, Edit};
 use crate::document::Document;
 use tracer_core::light::EmissionSides;
 
-/// A part's name in the list: its own name when the format gives one, else its number.
+/// A part's name in the list: its own name when the format gives one, else its number, and
+/// beside it its material's name in the file ("proom2_0003 · wood").
 fn part_label(brep: &tracer_core::scene::Brep, part: u32) -> String {
-    if brep.part_names.is_empty() {
+    let name = if brep.part_names.is_empty() {
         format!("part {part}")
     } else {
         brep.part_label(part)
+    };
+    match brep.part_material(part) {
+        Some(m) => format!("{name} · {m}"),
+        None => name,
     }
+}
+
+/// Whether `text` holds `filter` (ignoring case; an empty filter matches everything).
+fn matches(text: &str, filter: &str) -> bool {
+    filter.is_empty() || text.to_lowercase().contains(&filter.to_lowercase())
 }
 
 /// The breps' visibility and the selected slot's material, edited in place; a selection is asked
@@ -20,15 +30,44 @@ pub fn materials_ui(
     ui: &mut egui::Ui,
     doc: &mut Document,
     selected_slot: Option<u32>,
+    filter: &mut String,
     out: &mut Commands,
 ) {
     let scene = std::sync::Arc::clone(&doc.scene);
+    let many = scene.breps.len() > 6 || scene.slots.len() > 6;
+    if many || !filter.is_empty() {
+        ui.horizontal(|ui| {
+            let label = ui.label("filter");
+            ui.add(
+                egui::TextEdit::singleline(filter)
+                    .hint_text("brep, part or material name")
+                    .desired_width(160.0),
+            )
+            .labelled_by(label.id)
+            .on_hover_text("List only the breps and parts whose name or material holds this");
+            if !filter.is_empty()
+                && ui
+                    .small_button("✖")
+                    .on_hover_text("Clear the filter")
+                    .clicked()
+            {
+                filter.clear();
+            }
+        });
+    }
+    let filter = filter.trim().to_owned();
     egui::ScrollArea::vertical()
         .id_salt("breps")
         .max_height(220.0)
         .show(ui, |ui| {
             for (bi, brep) in scene.breps.iter().enumerate() {
                 let slots = brep.first_slot..brep.first_slot + brep.part_count;
+                let brep_matches = matches(&brep.name, &filter);
+                let part_matches =
+                    |s: u32| matches(&part_label(brep, s - brep.first_slot), &filter);
+                if !brep_matches && !slots.clone().any(part_matches) {
+                    continue;
+                }
                 ui.horizontal(|ui| {
                     let mut visible = slots.clone().any(|s| !doc.setup.is_hidden(s));
                     if ui
@@ -36,9 +75,10 @@ pub fn materials_ui(
                         .on_hover_text("Show or hide this brep")
                         .changed()
                     {
-                        for s in slots.clone() {
-                            doc.setup.hidden[s as usize] = !visible;
-                        }
+                        out.push(Command::Edit(Edit::SetHidden {
+                            slots: slots.clone().collect(),
+                            hidden: !visible,
+                        }));
                     }
                     let selected = selected_slot.is_some_and(|s| slots.contains(&s));
                     if ui.selectable_label(selected, brep.name.as_str()).clicked() {
@@ -49,20 +89,31 @@ pub fn materials_ui(
                         .on_hover_text("Show only this brep")
                         .clicked()
                     {
-                        for (s, owner) in scene.slots.iter().enumerate() {
-                            doc.setup.hidden[s] = owner.brep as usize != bi;
-                        }
+                        let (own, others): (Vec<u32>, Vec<u32>) = (0..scene.slots.len() as u32)
+                            .partition(|&s| scene.slots[s as usize].brep as usize == bi);
+                        out.push(Command::Edit(Edit::SetHidden {
+                            slots: others,
+                            hidden: true,
+                        }));
+                        out.push(Command::Edit(Edit::SetHidden {
+                            slots: own,
+                            hidden: false,
+                        }));
                     }
                 });
                 // Parts the format names (an Integra room's 20 materials) are always listed;
                 // numbered parts when their brep is selected.
                 let named = !brep.part_names.is_empty();
                 let selected = selected_slot.is_some_and(|s| slots.contains(&s));
-                if brep.part_count > 1 && (named || selected) {
+                let filtering = !filter.is_empty() && !brep_matches;
+                if brep.part_count > 1 && (named || selected || filtering) {
                     ui.indent(bi, |ui| {
                         ui.horizontal_wrapped(|ui| {
                             for s in slots.clone() {
                                 let part = s - brep.first_slot;
+                                if filtering && !part_matches(s) {
+                                    continue;
+                                }
                                 if ui
                                     .selectable_label(
                                         selected_slot == Some(s),
@@ -79,7 +130,7 @@ pub fn materials_ui(
             }
         });
     if doc.setup.hidden.iter().any(|&h| h) && ui.button("Show all").clicked() {
-        doc.setup.hidden.iter_mut().for_each(|h| *h = false);
+        out.push(Command::Edit(Edit::ShowAll));
     }
     ui.separator();
     let Some(slot) = selected_slot else {

@@ -1,12 +1,11 @@
 //! The Measure panel: the scene's calculation grids, a work plane to add, their statistics as
 //! they refine, and export of the readings to CSV and JSON beside the scene.
 
-use crate::command::{Command, Commands};
+use crate::command::{Command, Commands, Edit};
 use crate::document::Document;
 use crate::measure_cmd::{csv, json_report};
 use crate::measure_worker::Readings;
 use tracer_core::integrator::IntegratorKind;
-use tracer_core::scene::{GridContext, GridSpec};
 
 /// What the Measure panel shows besides the document.
 #[derive(Debug)]
@@ -74,10 +73,10 @@ pub fn measure_ui(
         });
     }
     if let Some((i, g)) = edited {
-        doc.setup.grids[i] = g;
+        out.push(Command::Edit(Edit::ReplaceGrid(i, Box::new(g))));
     }
     if let Some(i) = remove {
-        doc.setup.grids.remove(i);
+        out.push(Command::Edit(Edit::RemoveGrid(i)));
     }
     if let Some(r) = &readings
         && !doc.setup.grids.is_empty()
@@ -99,7 +98,7 @@ pub fn measure_ui(
             .on_hover_text("0.75 m over the floor, 0.5 m from the walls, EN 12464-1 spacing")
             .clicked()
         {
-            add_work_plane(doc, out);
+            out.push(Command::Edit(Edit::AddWorkPlane));
         }
         ui.checkbox(show_grids, "show on picture");
     });
@@ -113,7 +112,7 @@ pub fn measure_ui(
         .clicked()
         && let Some(slot) = selected
     {
-        add_surface_grid(doc, slot, out);
+        out.push(Command::Edit(Edit::AddGridOnSurface(slot)));
     }
     ui.add_enabled_ui(
         readings.as_ref().is_some_and(|r| !r.results.is_empty()),
@@ -235,8 +234,13 @@ fn profile_ui(
             [along, p.illuminance_lx]
         })
         .collect();
+    // Room for the widest tick label ("1200", "0.05") beside the axis title, so none is cut.
+    let top = pts.iter().map(|p| p[1]).fold(0.0_f64, f64::max);
+    let digits = top.abs().max(1.0).log10().floor() as usize + 1;
+    let char_w = ui.fonts_mut(|f| f.glyph_width(&egui::TextStyle::Body.resolve(ui.style()), '0'));
     Plot::new(ui.make_persistent_id("profile-plot"))
-        .height(120.0)
+        .height(140.0)
+        .y_axis_min_width(char_w * (digits as f32 + 2.0))
         .allow_drag(false)
         .allow_zoom(false)
         .allow_scroll(false)
@@ -246,126 +250,6 @@ fn profile_ui(
         .show(ui, |plot| {
             plot.line(Line::new(format!("row {row} (lx)"), PlotPoints::from(pts)));
         });
-}
-
-/// A grid over the plane of material slot `slot`'s largest triangle, covering the slot's
-/// triangles in that plane, 0.1 % of the scene's size in front of it (towards the camera).
-fn add_surface_grid(doc: &mut Document, slot: u32, out: &mut Commands) {
-    use glam::Vec3;
-    let scene = &doc.scene;
-    let tris: Vec<usize> = (0..scene.triangles.len())
-        .filter(|&t| scene.triangle_slots[t] == slot)
-        .collect();
-    let area = |t: usize| {
-        let [a, b, c] = scene.triangles[t];
-        (b - a).cross(c - a).length()
-    };
-    let Some(&largest) = tris.iter().max_by(|&&a, &&b| area(a).total_cmp(&area(b))) else {
-        return;
-    };
-    let [a, b, c] = scene.triangles[largest];
-    let Some(mut n) = (b - a).cross(c - a).try_normalize() else {
-        out.push(Command::Error("the selected surface has no area".into()));
-        return;
-    };
-    let eye = Vec3::from(doc.setup.camera.position);
-    if n.dot(eye - a) < 0.0 {
-        n = -n;
-    }
-    // The slot's triangles in this plane (parallel, and on it within 0.1 % of the scene).
-    let tol = 1e-3 * scene.bounds.radius().max(1e-6);
-    let mut points = Vec::new();
-    for &t in &tris {
-        let [p, q, r] = scene.triangles[t];
-        let m = (q - p).cross(r - p).normalize_or_zero();
-        if m.cross(n).length() < 0.02 && [p, q, r].iter().all(|v| (v - a).dot(n).abs() < tol) {
-            points.extend([p, q, r]);
-        }
-    }
-    let reference = if n.cross(Vec3::X).length() > 0.5 {
-        Vec3::X
-    } else {
-        Vec3::Z
-    };
-    let e1 = (reference - n * n.dot(reference)).normalize();
-    let e2 = n.cross(e1);
-    let (mut lo, mut hi) = (
-        glam::Vec2::splat(f32::INFINITY),
-        glam::Vec2::splat(f32::NEG_INFINITY),
-    );
-    for p in &points {
-        let q = glam::Vec2::new((p - a).dot(e1), (p - a).dot(e2));
-        lo = lo.min(q);
-        hi = hi.max(q);
-    }
-    let size = hi - lo;
-    let origin = a + e1 * lo.x + e2 * lo.y + n * tol;
-    // Grid names are A-Z, a-z, 0-9, _ and -: anything else in a brep's name becomes _.
-    let label: String = scene
-        .slot_label(slot)
-        .chars()
-        .map(|c| match c {
-            '/' => '-',
-            c if c.is_ascii_alphanumeric() || c == '_' || c == '-' => c,
-            _ => '_',
-        })
-        .collect();
-    let name = (1..)
-        .map(|k| format!("{label}{k}"))
-        .find(|name| doc.setup.grids.iter().all(|g| &g.name != name))
-        .unwrap_or(label);
-    let mpu = doc.setup.unit.metres_per_unit();
-    let p = tracer_core::scene::en12464_spacing_m(size.max_element() * mpu) / mpu;
-    let count = |l: f32| ((l / p).ceil() as u32).clamp(1, 1000);
-    match tracer_core::measure::Grid::new(
-        &name,
-        origin.to_array(),
-        (e1 * size.x).to_array(),
-        (e2 * size.y).to_array(),
-        count(size.x),
-        count(size.y),
-        Some(n.to_array()),
-    ) {
-        Ok(g) => doc.setup.grids.push(g),
-        Err(e) => out.push(Command::Error(e.to_string())),
-    }
-}
-
-fn add_work_plane(doc: &mut Document, out: &mut Commands) {
-    let n = (1..)
-        .map(|k| format!("workplane{k}"))
-        .find(|name| doc.setup.grids.iter().all(|g| &g.name != name))
-        .unwrap_or_else(|| "workplane".into());
-    // 0.75 m up and 0.5 m in, unless the scene is smaller than that (a model box): then half
-    // its height and a tenth of its shorter side, and say so.
-    let b = doc.scene.bounds;
-    let per_m = 1.0 / doc.setup.unit.metres_per_unit();
-    let (height, margin) = (0.75 * per_m, 0.5 * per_m);
-    let fit_height = height.min(0.5 * b.extent().y);
-    let fit_margin = margin.min(0.1 * b.extent().x.min(b.extent().z));
-    if fit_height < height || fit_margin < margin {
-        let unit = doc.setup.unit.symbol();
-        out.push(Command::Notice(format!(
-            "the scene is small for a 0.75 m work plane 0.5 m from the walls: placed at \
-             {fit_height:.0} {unit}, {fit_margin:.0} {unit} from the walls"
-        )));
-    }
-    let spec = GridSpec {
-        name: n,
-        work_plane: Some(true),
-        height: Some(fit_height),
-        margin: Some(fit_margin),
-        ..GridSpec::default()
-    };
-    let context = GridContext {
-        bounds: b,
-        metres_per_unit: doc.setup.unit.metres_per_unit(),
-    };
-    match spec.to_grid(Some(context)) {
-        Ok(Some(grid)) => doc.setup.grids.push(grid),
-        Ok(None) => {}
-        Err(e) => out.push(Command::Error(e)),
-    }
 }
 
 /// NAME.`suffix` beside the scene (the current folder for the built-in scene).

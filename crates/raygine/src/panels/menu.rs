@@ -18,6 +18,9 @@ pub struct MenuBar<'a> {
     pub recent: &'a [PathBuf],
     pub show_controls: &'a mut bool,
     pub show_help: &'a mut bool,
+    /// The Notes window's flag, and how many notes the scene has.
+    pub show_notes: &'a mut bool,
+    pub notes: usize,
 }
 
 /// The menu bar; what the user picks is a command, except the view toggles it is given.
@@ -53,6 +56,8 @@ pub fn menu_bar(ui: &mut egui::Ui, m: MenuBar<'_>, out: &mut Commands) {
             ui.menu_button("View", |ui| {
                 ui.checkbox(m.show_controls, "Side panel")
                     .on_hover_text("Hide the controls to give the picture the whole window");
+                ui.checkbox(m.show_notes, format!("Notes ({})", m.notes))
+                    .on_hover_text("Every warning the scene's files gave when read, in full");
                 if ui
                     .add(egui::Button::new("Frame scene").shortcut_text("F"))
                     .clicked()

@@ -8,6 +8,8 @@ mod lights;
 mod materials;
 mod measure;
 mod menu;
+mod notes;
+mod polar;
 mod reflectance;
 mod render;
 mod status;
@@ -16,6 +18,7 @@ mod windows;
 
 pub use measure::MeasureView;
 pub use menu::{MenuBar, menu_bar};
+pub use notes::notes_ui;
 pub use render::{FalseColourUi, RenderPrefs};
 pub use status::{StatusBar, status_bar};
 pub use windows::{PathPrompt, RenderImageForm, Windows, windows_ui};
@@ -31,6 +34,12 @@ use tracer_core::display::DisplaySettings;
 pub struct PanelState {
     /// The Lights panel's luminaire file field.
     pub luminaire_path: String,
+    /// The side panel scrolls back to its top on the next frame (a scene was opened).
+    pub scroll_to_top: bool,
+    /// Whether the Notes window (the scene's load warnings) is open.
+    pub show_notes: bool,
+    /// The Materials panel's filter of breps and parts.
+    pub part_filter: String,
 }
 
 /// What the side panel shows and edits: the document (its setup edited in place; the app makes
@@ -47,6 +56,8 @@ pub struct SidePanel<'a> {
     pub show_grids: &'a mut bool,
     pub measure: MeasureView,
     pub state: &'a mut PanelState,
+    /// A luminaire file is being read ("Add luminaire").
+    pub adding_luminaire: bool,
 }
 
 /// All control groups of the side panel.
@@ -61,6 +72,7 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         show_grids,
         measure,
         state,
+        adding_luminaire,
     } = p;
     ui.heading(doc.scene.name.clone());
     ui.label(format!(
@@ -76,7 +88,7 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
     egui::CollapsingHeader::new("Lights")
         .default_open(true)
         .show(ui, |ui| {
-            lights::lights_ui(ui, doc, &mut state.luminaire_path, out);
+            lights::lights_ui(ui, doc, &mut state.luminaire_path, adding_luminaire, out);
         });
     egui::CollapsingHeader::new("Camera")
         .default_open(true)
@@ -84,7 +96,7 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
     egui::CollapsingHeader::new("Materials")
         .default_open(true)
         .show(ui, |ui| {
-            materials::materials_ui(ui, doc, selected_slot, out)
+            materials::materials_ui(ui, doc, selected_slot, &mut state.part_filter, out)
         });
     egui::CollapsingHeader::new("Measure")
         .default_open(false)

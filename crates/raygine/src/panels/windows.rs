@@ -234,7 +234,11 @@ fn help_ui(ctx: &egui::Context, show_help: &mut bool) {
                     ("P", "pause / resume rendering"),
                     ("D", "denoised / raw picture (readouts always raw)"),
                     ("Ctrl+Q", "quit (settings and recent files are kept)"),
-                    ("drag", "orbit (each finished drag or wheel turn is one undo step)"),
+                    (
+                        "drag",
+                        "orbit about the surface point under the cursor (each finished drag \
+                         or wheel turn is one undo step)",
+                    ),
                     ("shift-drag, middle-drag", "pan"),
                     ("wheel", "dolly"),
                     ("click", "select the surface's material"),

@@ -50,15 +50,27 @@ fn drag_with(h: &mut Viewer, from: Pos2, by: Vec2, modifiers: Modifiers) {
 fn drags_move_lengths_by_the_scenes_size_and_shift_is_fine() {
     let mut h = viewer();
     let x0 = h.state().doc.setup.lights[0].position[0];
-    let field = h.get_by_role_and_label(Role::SpinButton, "light x (mm)").rect();
-    drag_with(&mut h, field.center(), Vec2::new(30.0, 0.0), Modifiers::NONE);
+    let field = h
+        .get_by_role_and_label(Role::SpinButton, "light x (mm)")
+        .rect();
+    drag_with(
+        &mut h,
+        field.center(),
+        Vec2::new(30.0, 0.0),
+        Modifiers::NONE,
+    );
     let x1 = h.state().doc.setup.lights[0].position[0];
     assert!(
         (25.0..=60.0).contains(&(x1 - x0)),
         "30 points moved the light {} mm",
         x1 - x0
     );
-    drag_with(&mut h, field.center(), Vec2::new(30.0, 0.0), Modifiers::SHIFT);
+    drag_with(
+        &mut h,
+        field.center(),
+        Vec2::new(30.0, 0.0),
+        Modifiers::SHIFT,
+    );
     let x2 = h.state().doc.setup.lights[0].position[0];
     assert!(
         (2.5..=6.0).contains(&(x2 - x1)),
@@ -67,7 +79,9 @@ fn drags_move_lengths_by_the_scenes_size_and_shift_is_fine() {
     );
 
     let fov0 = h.state().doc.setup.camera.fov_deg;
-    let fov = h.get_by_role_and_label(Role::SpinButton, "field of view (°)").rect();
+    let fov = h
+        .get_by_role_and_label(Role::SpinButton, "field of view (°)")
+        .rect();
     drag_with(&mut h, fov.center(), Vec2::new(28.0, 0.0), Modifiers::NONE);
     let fov1 = h.state().doc.setup.camera.fov_deg;
     assert!(
@@ -92,12 +106,21 @@ fn camera_moves_undo_one_gesture_at_a_time_and_reset_camera_returns_home() {
     let home = h.state().doc.setup.camera;
     let view = h.get_by_label("viewport").rect();
 
-    drag_with(&mut h, view.center(), Vec2::new(60.0, 20.0), Modifiers::NONE);
+    drag_with(
+        &mut h,
+        view.center(),
+        Vec2::new(60.0, 20.0),
+        Modifiers::NONE,
+    );
     let orbited = h.state().doc.setup.camera;
     assert_ne!(orbited.position, home.position, "the drag did not orbit");
-    assert_eq!(orbited.look_at, home.look_at, "an orbit keeps the look-at point");
 
-    drag_with(&mut h, view.center(), Vec2::new(30.0, 0.0), Modifiers::SHIFT);
+    drag_with(
+        &mut h,
+        view.center(),
+        Vec2::new(30.0, 0.0),
+        Modifiers::SHIFT,
+    );
     let panned = h.state().doc.setup.camera;
     assert_ne!(panned.look_at, orbited.look_at, "Shift+drag did not pan");
 
@@ -121,21 +144,269 @@ fn camera_moves_undo_one_gesture_at_a_time_and_reset_camera_returns_home() {
         h.step();
         h.state().doc.setup.camera
     };
-    assert_eq!(undo(&mut h), panned, "one undo takes back the whole wheel turn");
+    assert_eq!(
+        undo(&mut h),
+        panned,
+        "one undo takes back the whole wheel turn"
+    );
     assert_eq!(undo(&mut h), orbited, "the next takes back the pan");
     assert_eq!(undo(&mut h), home, "and the next the orbit");
 
     // Away again, then Reset camera in the View menu (Home does the same).
-    drag_with(&mut h, view.center(), Vec2::new(-80.0, 0.0), Modifiers::NONE);
+    drag_with(
+        &mut h,
+        view.center(),
+        Vec2::new(-80.0, 0.0),
+        Modifiers::NONE,
+    );
     assert_ne!(h.state().doc.setup.camera, home);
     h.get_by_label("View").click();
-    h.step();
-    h.get_by_label("Reset camera").click();
     h.run_steps(2);
-    assert_eq!(h.state().doc.setup.camera, home, "Reset camera did not return home");
+    h.get_by_role_and_label(Role::Button, "Reset camera Home")
+        .click();
+    h.run_steps(2);
+    assert_eq!(
+        h.state().doc.setup.camera,
+        home,
+        "Reset camera did not return home"
+    );
     let moved = undo(&mut h);
     assert_ne!(moved, home, "Ctrl+Z did not undo Reset camera");
     h.key_press(egui::Key::Home);
     h.run_steps(2);
-    assert_eq!(h.state().doc.setup.camera, home, "Home did not reset the camera");
+    assert_eq!(
+        h.state().doc.setup.camera,
+        home,
+        "Home did not reset the camera"
+    );
+}
+
+/// An orbit turns about the surface point where the drag started (shown while dragging), not
+/// about the look-at point: the eye keeps its distance from that point.
+#[test]
+fn orbit_turns_about_the_surface_point_under_the_cursor() {
+    let mut h = viewer();
+    let before = h.state().doc.setup.camera;
+    let view = h.get_by_label("viewport").rect();
+    // The left (red) wall, well off the view's axis.
+    let from = view.lerp_inside(Vec2::new(0.1, 0.5));
+    h.hover_at(from);
+    h.drag_at(from);
+    h.step();
+    h.hover_at(from + Vec2::new(20.0, 0.0));
+    h.step();
+    let pivot = h.state().orbit_pivot.expect("no pivot while orbiting");
+    let look_at = glam::Vec3::from(before.look_at);
+    assert!(
+        pivot.distance(look_at) > 50.0,
+        "the pivot {pivot} is the look-at point {look_at}"
+    );
+    // The box is drawn left-handed: its red wall, on the left of the picture, is at x = 556.
+    let b = h.state().doc.scene.bounds;
+    assert!(
+        (pivot.x - b.min.x).abs().min((pivot.x - b.max.x).abs()) < 30.0,
+        "the pivot {pivot} is not on the left wall"
+    );
+    for k in 2..=4 {
+        h.hover_at(from + Vec2::new(20.0 * k as f32, 0.0));
+        h.step();
+    }
+    h.drop_at(from + Vec2::new(80.0, 0.0));
+    h.step();
+    assert!(
+        h.state().orbit_pivot.is_none(),
+        "the pivot outlives the drag"
+    );
+    let after = h.state().doc.setup.camera;
+    let eye = |c: &tracer_core::scene::Camera| glam::Vec3::from(c.position);
+    assert!(
+        (eye(&after).distance(pivot) - eye(&before).distance(pivot)).abs()
+            < 0.01 * eye(&before).distance(pivot),
+        "the eye did not keep its distance from the pivot"
+    );
+    assert_ne!(
+        after.look_at, before.look_at,
+        "the look-at point turned with the view"
+    );
+}
+
+const TIMEOUT: std::time::Duration = std::time::Duration::from_secs(15);
+
+fn scratch_dir(test: &str) -> std::path::PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("rough-{test}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Steps until `done` holds (or fails after TIMEOUT).
+fn step_until(h: &mut Viewer, what: &str, done: impl Fn(&RaygineApp) -> bool) {
+    let deadline = std::time::Instant::now() + TIMEOUT;
+    while !done(h.state()) {
+        assert!(std::time::Instant::now() < deadline, "timed out: {what}");
+        h.step();
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+}
+
+/// A 1 m x 1 m floor (two triangles) with an OBJ group name.
+const FLOOR_OBJ: &str = "g floor\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3\nf 1 3 4\n";
+
+/// 100 cd over the lower hemisphere from a 0.1 m luminous opening (units: metres).
+const DOWN_IES: &str =
+    "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0.1 0.1 0\n1 1 10\n0 45 90\n0\n100 100 100\n";
+
+/// Every load note is in View > Notes, in full, with the sidecar's file and line; the banner
+/// points there instead of at a terminal.
+#[test]
+fn the_notes_window_lists_every_warning_with_file_and_line() {
+    let mut h = viewer();
+    let dir = scratch_dir("notes");
+    let scene = dir.join("floor.obj");
+    std::fs::write(&scene, FLOOR_OBJ).unwrap();
+    let hidden: Vec<String> = (1..=6).map(|k| format!("\"missing_part_{k}\"")).collect();
+    // Six unknown hidden keys and an unknown material: more than the banner can hold.
+    std::fs::write(
+        dir.join("floor.raygine.toml"),
+        format!(
+            "unit = \"m\"\nhidden = [{}]\n\n[materials.nothing_here]\nkd = [0.5, 0.5, 0.5]\n",
+            hidden.join(", ")
+        ),
+    )
+    .unwrap();
+    h.state_mut().open_path(&scene);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.run_steps(2);
+    let notes = h.state().doc.warnings.clone();
+    assert!(notes.len() >= 7, "{notes:?}");
+    let notice = h.state().notice.clone().unwrap_or_default();
+    assert!(notice.contains("View > Notes"), "{notice}");
+    assert!(!notice.contains("terminal"), "{notice}");
+    assert!(
+        notes.iter().any(|n| n.ends_with(
+            "floor.raygine.toml:4: material nothing_here: the scene has no such brep or part"
+        )),
+        "{notes:?}"
+    );
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("floor.raygine.toml:2: hidden missing_part_6")),
+        "{notes:?}"
+    );
+
+    h.get_by_label("View").click();
+    h.run_steps(2);
+    h.get_by_label_contains("Notes (").click();
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("Notes on this scene").is_some());
+    for note in &notes {
+        assert!(
+            h.query_by_label(note).is_some(),
+            "the Notes window does not show {note}"
+        );
+    }
+}
+
+/// The side panel opens at its top when a scene opens, wherever it was scrolled to.
+#[test]
+fn the_side_panel_opens_at_the_top() {
+    let mut h = viewer();
+    let top = h.get_by_label("Lights").rect().top();
+    let panel_point = Pos2::new(150.0, 300.0);
+    h.hover_at(panel_point);
+    for _ in 0..10 {
+        h.event(egui::Event::MouseWheel {
+            unit: egui::MouseWheelUnit::Point,
+            delta: Vec2::new(0.0, -200.0),
+            phase: egui::TouchPhase::Move,
+            source: egui::MouseWheelSource::Unknown,
+            modifiers: Modifiers::NONE,
+        });
+        h.step();
+    }
+    h.run_steps(10);
+    let scrolled = h.get_by_label("Lights").rect().top();
+    assert!(
+        scrolled < top - 100.0,
+        "the panel did not scroll: {top} -> {scrolled}"
+    );
+    h.get_by_label("File").click();
+    h.run_steps(2);
+    h.get_by_label("Open built-in Cornell box").click();
+    h.run_steps(3);
+    let reopened = h.get_by_label("Lights").rect().top();
+    assert!(
+        (reopened - top).abs() < 1.0,
+        "the panel opened at {reopened}, not at its top {top}"
+    );
+}
+
+/// A luminaire added in the viewer, hung closer to the ceiling than five times its opening,
+/// is warned about at once, named as the panel names it (Light 2), also in the Notes.
+#[test]
+fn adding_a_luminaire_near_a_surface_warns_at_once_naming_the_light() {
+    let mut h = viewer();
+    let ies = scratch_dir("near").join("down.ies");
+    std::fs::write(&ies, DOWN_IES).unwrap();
+    h.state_mut().panels.luminaire_path = ies.display().to_string();
+    h.step();
+    h.get_by_role_and_label(Role::Button, "Add luminaire")
+        .click();
+    step_until(&mut h, "the luminaire", |app| {
+        app.doc.setup.lights.len() == 2
+    });
+    let notice = h.state().notice.clone().unwrap_or_default();
+    assert!(
+        notice.starts_with("Light 2: a surface is") && notice.contains("point source"),
+        "{notice}"
+    );
+    assert!(h.state().doc.warnings.contains(&notice));
+    // Its polar diagram names both planes and the peak, in cd.
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("C0-C180").is_some());
+    assert!(h.query_by_label_contains("C90-C270").is_some());
+    assert!(h.query_by_label_contains("peak 100 cd").is_some());
+    // One undo takes the luminaire away again.
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.step();
+    assert_eq!(h.state().doc.setup.lights.len(), 1);
+}
+
+/// A saved sidecar has no float noise and names a luminaire beside it by a relative path, so
+/// the folder can move; it reads back to the same luminaire.
+#[test]
+fn the_saved_sidecar_is_tidy_and_its_luminaire_path_relative() {
+    let mut h = viewer();
+    let dir = scratch_dir("tidy");
+    let scene = dir.join("floor.obj");
+    std::fs::write(&scene, FLOOR_OBJ).unwrap();
+    std::fs::create_dir_all(dir.join("lamps")).unwrap();
+    let ies = dir.join("lamps").join("down.ies");
+    std::fs::write(&ies, DOWN_IES).unwrap();
+    h.state_mut().open_path(&scene);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.step();
+    h.state_mut().panels.luminaire_path = ies.display().to_string();
+    h.step();
+    h.get_by_role_and_label(Role::Button, "Add luminaire")
+        .click();
+    step_until(&mut h, "the luminaire", |app| {
+        app.doc.setup.lights.len() == 2
+    });
+    // A value with f32 noise, and a negative zero, as edits leave them.
+    h.state_mut().doc.setup.materials[0].kd = [0.630_000_3, 0.065_000_004, 0.049_999_982];
+    h.state_mut().doc.setup.lights[1].position[0] = -0.0;
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::S);
+    h.step();
+    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
+    let text = std::fs::read_to_string(dir.join("floor.raygine.toml")).unwrap();
+    assert!(text.contains("file = \"lamps/down.ies\""), "{text}");
+    assert!(text.contains("kd = [0.63, 0.065, 0.05]"), "{text}");
+    assert!(!text.contains("-0.0"), "{text}");
+    assert!(!text.contains(&dir.display().to_string()), "{text}");
+    let loaded = tracer_core::scene::load(&scene, &tracer_core::scene::LoadOptions::default())
+        .expect("the saved sidecar reads back");
+    assert_eq!(loaded.setup.lights.len(), 2);
+    assert!(loaded.setup.lights[1].luminaire.is_some());
 }

@@ -343,11 +343,7 @@ fn dragging_the_light_slider_restarts_the_render_and_changes_the_film() {
 
     let slider = h.get_by_role_and_label(Role::SpinButton, LIGHT_X).rect();
     // Left: the light moves towards the green wall and stays inside the box.
-    drag(
-        &mut h,
-        slider.center(),
-        Vec2::new(-slider.width() * 0.15, 0.0),
-    );
+    drag(&mut h, slider.center(), Vec2::new(-30.0, 0.0));
     let x1 = light_x(h.state());
     assert!(
         (x1 - x0).abs() > 10.0,
@@ -501,9 +497,21 @@ fn opening_the_integra_room_lists_its_twenty_materials() {
     assert!(app.error.is_none(), "{:?}", app.error);
     assert_eq!(app.doc.scene.slots.len(), 20);
     assert_eq!(app.doc.setup.lights.len(), 9);
-    let parts: Vec<String> = (1..=20).map(|i| format!("proom2_{i:04}")).collect();
+    // Each part with its .atr attribute (the material's name in the bundle) beside it.
+    let parts: Vec<String> = (1..=20)
+        .map(|i| format!("proom2_{i:04} · a{i:06}"))
+        .collect();
     let parts: Vec<&str> = parts.iter().map(String::as_str).collect();
     assert_listed(&h, &parts);
+    // The filter narrows the list to what holds its text.
+    h.get_by_role_and_label(Role::TextInput, "filter").focus();
+    h.step();
+    h.get_by_role_and_label(Role::TextInput, "filter")
+        .type_text("a000003");
+    h.run_steps(2);
+    assert_eq!(h.state().panels.part_filter, "a000003");
+    assert!(h.query_by_label("proom2_0003 · a000003").is_some());
+    assert!(h.query_by_label("proom2_0004 · a000004").is_none());
 }
 
 #[test]
@@ -690,7 +698,7 @@ fn smoke_script_layout_holds() {
     eprintln!("light x slider {slider:?}, viewport {view:?}");
     // scripts/smoke_viewer.sh: SLIDER_X/SLIDER_Y, PANEL_W and BAR_H.
     assert!(
-        slider.contains(Pos2::new(76.0, 157.0)),
+        slider.contains(Pos2::new(138.0, 157.0)),
         "slider moved: {slider:?}"
     );
     assert!(
@@ -831,9 +839,10 @@ fn measure_panel_adds_a_work_plane_and_shows_its_statistics() {
     assert_eq!(h.state().doc.setup.grids.len(), 1);
     let grid = h.state().doc.setup.grids[0].clone();
     assert_eq!(grid.name, "workplane1");
-    // The box is 0.55 m tall: the work plane goes halfway up, and the user is told.
+    // The box is 0.55 m tall: the work plane goes a quarter of the way up, below the camera at
+    // mid-height, and the user is told.
     let b = h.state().doc.scene.bounds;
-    assert!((grid.origin[1] - (b.min.y + 0.5 * b.extent().y)).abs() < 1e-2);
+    assert!((grid.origin[1] - (b.min.y + 0.25 * b.extent().y)).abs() < 1e-2);
     assert!(
         h.state()
             .notice

@@ -4,6 +4,7 @@
 
 mod grid;
 pub mod partial;
+pub mod placement;
 mod sensors;
 
 pub use grid::{Grid, GridError, SensorPoint};

@@ -21,6 +21,9 @@ pub struct Brep {
     /// One name per part when the format names parts (Integra `.prb`), else empty (parts are
     /// numbered).
     pub part_names: Vec<String>,
+    /// The name of each part's material in the file (an Integra `.atr` attribute, an OBJ
+    /// `usemtl`, a glTF material) when the file names any, else empty; "" for a part without.
+    pub part_materials: Vec<String>,
 }
 
 /// Which brep and part a material slot belongs to.
@@ -169,12 +172,27 @@ impl Scene {
             } else {
                 Vec::new()
             };
+            let material_name = |i: usize| {
+                mesh.parts
+                    .get(i)
+                    .and_then(|p| p.material)
+                    .and_then(|m| desc.materials.get(m))
+                    .map(|m| m.name.clone())
+            };
+            let part_materials = if (0..part_count as usize).any(|i| material_name(i).is_some()) {
+                (0..part_count as usize)
+                    .map(|i| material_name(i).unwrap_or_default())
+                    .collect()
+            } else {
+                Vec::new()
+            };
             breps.push(Brep {
                 name: mesh.name.clone(),
                 part_count,
                 first_slot,
                 triangle_count: mesh.triangles.len(),
                 part_names,
+                part_materials,
             });
         }
         if triangles.is_empty() {
@@ -258,6 +276,14 @@ impl Scene {
 }
 
 impl Brep {
+    /// The name of the part's material in the file, when it names one.
+    pub fn part_material(&self, part: u32) -> Option<&str> {
+        self.part_materials
+            .get(part as usize)
+            .map(String::as_str)
+            .filter(|n| !n.is_empty())
+    }
+
     /// The part's name when the format names parts, else its number.
     pub fn part_label(&self, part: u32) -> String {
         self.part_names

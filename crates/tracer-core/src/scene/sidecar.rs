@@ -75,6 +75,9 @@ pub struct Sidecar {
     /// The sidecar's folder: luminaire files are relative to it (not part of the file).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
+    /// The file and text it was read from, so notes name their line (not part of the file).
+    #[serde(skip)]
+    pub source: Option<super::notes::SourceText>,
 }
 
 fn set_material(
@@ -105,26 +108,6 @@ fn camera_is_finite(c: &Camera) -> bool {
         && c.fov_deg.is_finite()
 }
 
-/// Distance from `p` to the nearest surface, looking along the 26 directions of a cube's faces,
-/// edges and corners.
-fn nearest_surface(scene: &Scene, p: glam::Vec3) -> Option<f32> {
-    let mut best: Option<f32> = None;
-    for x in -1..=1 {
-        for y in -1..=1 {
-            for z in -1..=1 {
-                let dir = glam::Vec3::new(x as f32, y as f32, z as f32);
-                let Some(dir) = dir.try_normalize() else {
-                    continue;
-                };
-                if let Some(hit) = scene.bvh.intersect(&crate::geometry::Ray::new(p, dir)) {
-                    best = Some(best.map_or(hit.t, |b: f32| b.min(hit.t)));
-                }
-            }
-        }
-    }
-    best
-}
-
 /// The sidecar path for a scene file: `room.shp` -> `room.raygine.toml`.
 pub fn sidecar_path(scene_path: &Path) -> PathBuf {
     scene_path.with_extension("raygine.toml")
@@ -138,6 +121,10 @@ impl Sidecar {
             message: e.to_string().trim_end().replace('\n', " "),
         })?;
         sidecar.base_dir = path.parent().map(Path::to_path_buf);
+        sidecar.source = Some(super::notes::SourceText {
+            path: path.to_owned(),
+            text: text.to_owned(),
+        });
         let invalid = |message: String| SceneError::Sidecar {
             path: path.to_owned(),
             message,
@@ -209,6 +196,7 @@ impl Sidecar {
             .or(self.unit)
             .or(scene.design.unit)
             .unwrap_or_default();
+        let first_note = warnings.len();
         let mut setup = Setup::defaults(scene, unit);
         if let Some(h) = self.handedness {
             setup.handedness = h;
@@ -261,26 +249,19 @@ impl Sidecar {
             }
         }
         for (i, light) in setup.lights.iter().enumerate() {
-            if let Some(lum) = &light.luminaire {
-                let opening = lum.photometry.opening_m / setup.unit.metres_per_unit();
-                if let Some(d) = nearest_surface(scene, light.position())
-                    && opening > 0.0
-                    && d < 5.0 * opening
-                {
-                    warnings.push(format!(
-                        "light {i}: a surface is {d:.3} {} away, closer than five times the \
-                         luminous opening ({:.3} {}): the far-field (point source) assumption \
-                         breaks there",
-                        setup.unit.symbol(),
-                        opening,
-                        setup.unit.symbol()
-                    ));
-                }
+            if let Some(note) = super::notes::luminaire_near_surface(scene, &setup, i) {
+                warnings.push(note);
             }
             if !light.is_valid() {
                 warnings.push(format!(
-                    "light {i}: position and intensity must be finite, intensity >= 0"
+                    "Light {}: position and intensity must be finite, intensity >= 0",
+                    i + 1
                 ));
+            }
+        }
+        if let Some(source) = &self.source {
+            for note in &mut warnings[first_note..] {
+                *note = source.place(note);
             }
         }
         setup
@@ -329,13 +310,56 @@ impl Sidecar {
                 .then_some(scene.smooth_angle_deg),
             emission_scale: None,
             base_dir: None,
+            source: None,
         }
     }
 
+    /// The sidecar as TOML. Every number is written to 6 significant digits (`0.63`, not the
+    /// f32's `0.6300003`), and `-0.0` as `0.0`.
     pub fn to_toml(&self) -> String {
-        // Not `to_string_pretty`: it writes every array one number a line.
-        toml::to_string(self).unwrap_or_else(|e| format!("# cannot write sidecar: {e}\n"))
+        let written = toml::Value::try_from(self).map(|mut v| {
+            tidy_floats(&mut v);
+            // Not `to_string_pretty`: it writes every array one number a line.
+            toml::to_string(&v)
+        });
+        match written {
+            Ok(Ok(text)) => text,
+            Ok(Err(e)) | Err(e) => format!("# cannot write sidecar: {e}\n"),
+        }
     }
+
+    /// Luminaire files in `dir` or below it written relative to it (the sidecar's folder), so a
+    /// folder of scene, sidecar and luminaires can move.
+    pub fn relative_to(mut self, dir: &Path) -> Sidecar {
+        for light in self.lights.iter_mut().flatten() {
+            if let Some(file) = &light.file
+                && let Some(rel) = super::notes::relative_below(file, dir)
+            {
+                light.file = Some(rel);
+            }
+        }
+        self
+    }
+}
+
+/// Rounds every float in `value` to 6 significant digits, and `-0.0` to `0.0`.
+fn tidy_floats(value: &mut toml::Value) {
+    match value {
+        toml::Value::Float(f) => *f = round_significant(*f, 6),
+        toml::Value::Array(items) => items.iter_mut().for_each(tidy_floats),
+        toml::Value::Table(table) => table.iter_mut().for_each(|(_, v)| tidy_floats(v)),
+        _ => {}
+    }
+}
+
+/// `v` to `digits` significant digits (as the shortest decimal that reads back to it); zero
+/// of either sign is `0.0`.
+pub fn round_significant(v: f64, digits: i32) -> f64 {
+    if v == 0.0 || !v.is_finite() {
+        return if v == 0.0 { 0.0 } else { v };
+    }
+    let text = format!("{:.*e}", (digits - 1).max(0) as usize, v);
+    text.parse().unwrap_or(v)
 }
 
 #[cfg(test)]
@@ -343,6 +367,41 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
     use super::*;
     use crate::shp::parse_shp;
+
+    #[test]
+    fn written_numbers_have_no_float_noise() {
+        assert_eq!(round_significant(f64::from(0.630_000_3_f32), 6), 0.63);
+        assert_eq!(round_significant(f64::from(0.065_000_004_f32), 6), 0.065);
+        assert_eq!(round_significant(-0.0, 6), 0.0);
+        assert!(round_significant(-0.0, 6).is_sign_positive());
+        assert_eq!(round_significant(-279.499_99, 6), -279.5);
+        let mut sidecar = Sidecar::default();
+        sidecar.materials.insert(
+            "red".into(),
+            Material {
+                kd: [0.630_000_3, 0.065_000_004, 0.049_999_982],
+                ..Material::default()
+            },
+        );
+        sidecar.camera = Some(Camera {
+            position: [-0.0, 273.0, -800.0],
+            look_at: [278.0, 273.0, 0.0],
+            up: [0.0, 1.0, 0.0],
+            fov_deg: 39.0,
+        });
+        let text = sidecar.to_toml();
+        assert!(text.contains("kd = [0.63, 0.065, 0.05]"), "{text}");
+        assert!(!text.contains("-0.0"), "{text}");
+        assert_eq!(
+            Sidecar::parse(&text, Path::new("x.raygine.toml"))
+                .unwrap()
+                .camera,
+            sidecar.camera.map(|c| Camera {
+                position: [0.0, 273.0, -800.0],
+                ..c
+            })
+        );
+    }
 
     fn scene() -> Scene {
         let text = "define breps a\nvertices 3\n0 0 0\n1 0 0\n0 1 0\ntriangles 1\n0 1 2\nenddef\n";
@@ -368,7 +427,10 @@ mod tests {
             let setup = sidecar.apply(&scene, None, &mut warnings);
             assert_eq!(setup.camera, defaults.camera, "{camera}");
             assert_eq!(warnings.len(), 1, "{camera}: {warnings:?}");
-            assert!(warnings[0].starts_with("camera: "), "{warnings:?}");
+            assert!(
+                warnings[0].starts_with("s.raygine.toml:1: camera: "),
+                "the note names the file and the line of [camera]: {warnings:?}"
+            );
         }
         let good =
             "[camera]\nposition = [0.0, 0.0, 9.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_deg = 30.0\n";
