@@ -19,16 +19,10 @@ pub fn load_scene(args: &SceneArgs) -> Result<LoadedScene> {
             };
             Ok(scene::load(path, &options)?)
         }
-        None => {
-            let mut loaded = scene::builtin_cornell_box(args.units)?;
-            if let Some(sidecar) = &args.sidecar {
-                let text = std::fs::read_to_string(sidecar)
-                    .with_context(|| format!("{}: cannot read the sidecar", sidecar.display()))?;
-                let parsed = scene::Sidecar::parse(&text, sidecar)?;
-                loaded.setup = parsed.apply(&loaded.scene, args.units, &mut loaded.warnings);
-            }
-            Ok(loaded)
-        }
+        None => match &args.sidecar {
+            Some(sidecar) => Ok(scene::builtin_with_sidecar(sidecar, args.units)?),
+            None => Ok(scene::builtin_cornell_box(args.units)?),
+        },
     }
 }
 

@@ -92,12 +92,14 @@ impl<T: Send + 'static> Job<T> {
 pub struct PendingLoad {
     pub path: PathBuf,
     pub started: Instant,
-    job: Job<LoadedScene>,
+    /// The scene loaded and the file it came from (None: the built-in box).
+    job: Job<(LoadedScene, Option<PathBuf>)>,
 }
 
 impl PendingLoad {
     /// Starts reading `path` (parse, BVH build, sidecar) with the scene's length unit given (it
-    /// wins over the sidecar's) or not.
+    /// wins over the sidecar's) or not. A sidecar opens the scene beside it with it, or the
+    /// built-in box with it.
     pub fn start(
         path: &Path,
         unit: Option<tracer_core::scene::LengthUnit>,
@@ -109,7 +111,12 @@ impl PendingLoad {
                 unit,
                 ..LoadOptions::default()
             };
-            tracer_core::scene::load(&p, &options).map_err(|e| e.to_string())
+            if tracer_core::scene::is_sidecar_file(&p) {
+                return tracer_core::scene::load_sidecar(&p, unit).map_err(|e| e.to_string());
+            }
+            tracer_core::scene::load(&p, &options)
+                .map(|loaded| (loaded, Some(p.clone())))
+                .map_err(|e| e.to_string())
         });
         Self {
             path: path.to_path_buf(),
@@ -119,7 +126,7 @@ impl PendingLoad {
     }
 
     /// The result once the load has finished.
-    pub fn poll(&self) -> Option<Result<LoadedScene, String>> {
+    pub fn poll(&self) -> Option<Result<(LoadedScene, Option<PathBuf>), String>> {
         self.job.poll()
     }
 }
@@ -200,6 +207,7 @@ fn run_dialog(purpose: DialogPurpose, suggested: Option<&Path>) -> Option<PathBu
     match purpose {
         DialogPurpose::Open => dialog
             .add_filter("Scenes", &tracer_core::formats::SCENE_EXTENSIONS)
+            .add_filter("Scene settings (NAME.raygine.toml)", &["toml"])
             .add_filter("Lumicept scene", &["shp", "brs"])
             .add_filter("Wavefront OBJ", &["obj"])
             .add_filter("glTF 2.0", &["gltf", "glb"])

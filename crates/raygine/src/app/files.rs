@@ -36,9 +36,9 @@ impl RaygineApp {
     /// Checks background work: loads, dialogs, writes, the render-image job.
     pub fn poll_background(&mut self) {
         if let Some(result) = self.loading.as_ref().and_then(PendingLoad::poll) {
-            let path = self.loading.take().map(|l| l.path);
+            self.loading = None;
             match result {
-                Ok(loaded) => {
+                Ok((loaded, path)) => {
                     let doc = crate::document::Document::from_loaded(loaded, path);
                     self.install_document(doc);
                 }

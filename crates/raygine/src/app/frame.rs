@@ -304,13 +304,16 @@ impl RaygineApp {
 /// (asking first about unsaved edits); anything else is an error.
 fn dropped_file(ctx: &egui::Context) -> Option<Command> {
     let path = ctx.input(|i| i.raw.dropped_files.first().map(|f| f.path().to_path_buf()))?;
-    Some(if tracer_core::formats::is_scene_file(&path) {
-        Command::Switch(crate::unsaved::Switch::Open(path))
-    } else {
-        Command::Error(format!(
-            "{}: not a scene (raygine opens .{})",
-            path.display(),
-            tracer_core::formats::SCENE_EXTENSIONS.join(", .")
-        ))
-    })
+    Some(
+        if tracer_core::formats::is_scene_file(&path) || tracer_core::scene::is_sidecar_file(&path)
+        {
+            Command::Switch(crate::unsaved::Switch::Open(path))
+        } else {
+            Command::Error(format!(
+                "{}: not a scene (raygine opens .{} and NAME.raygine.toml scene settings)",
+                path.display(),
+                tracer_core::formats::SCENE_EXTENSIONS.join(", .")
+            ))
+        },
+    )
 }

@@ -2,9 +2,15 @@
 
 use tracer_core::scene::{Handedness, LengthUnit, Setup};
 
-/// Draws the unit and handedness choices; returns the unit the user picked, if it changed (and
-/// no scene is being loaded).
-pub fn frame_ui(ui: &mut egui::Ui, setup: &mut Setup, loading: bool) -> Option<LengthUnit> {
+/// Draws the unit and handedness choices, and the scene's size with a one-click unit change when
+/// the size looks like another unit's (`diagonal`: the bounds' diagonal in file units); returns
+/// the unit the user picked, if it changed (and no scene is being loaded).
+pub fn frame_ui(
+    ui: &mut egui::Ui,
+    setup: &mut Setup,
+    diagonal: f32,
+    loading: bool,
+) -> Option<LengthUnit> {
     let mut unit = setup.unit;
     ui.horizontal(|ui| {
         egui::ComboBox::from_label("unit")
@@ -33,6 +39,36 @@ pub fn frame_ui(ui: &mut egui::Ui, setup: &mut Setup, loading: bool) -> Option<L
                  the left. Right-handed: +X on the right. Only the camera's picture changes",
             );
     });
+    let size = crate::format::format_quantity(diagonal * setup.unit.metres_per_unit(), "m");
+    match setup.unit.suggested_unit(diagonal) {
+        Some(better) => {
+            ui.horizontal_wrapped(|ui| {
+                ui.colored_label(
+                    egui::Color32::from_rgb(255, 210, 90),
+                    format!(
+                        "{size} across in {}: written in {}?",
+                        setup.unit.symbol(),
+                        better.symbol()
+                    ),
+                )
+                .on_hover_text(
+                    "Rooms and objects people light are 5 cm to 500 m across; this scene's size \
+                     in its unit is outside that",
+                );
+                if ui
+                    .button(format!("Use {}", better.symbol()))
+                    .on_hover_text("Read the scene again with this unit")
+                    .clicked()
+                {
+                    unit = better;
+                }
+            });
+        }
+        None => {
+            ui.label(format!("{size} across"))
+                .on_hover_text("The diagonal of the box around the scene's geometry");
+        }
+    }
     (unit != setup.unit && !loading).then_some(unit)
 }
 

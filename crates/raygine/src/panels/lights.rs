@@ -77,15 +77,22 @@ pub fn lights_ui(
                     ));
                 }
             });
+            // A key light beside an object (the default for a lone object) is fine; a light
+            // farther out than the scene's own size is probably a typing slip.
             let p = light.position();
-            if !b.contains(&tracer_core::geometry::Aabb { min: p, max: p }) {
+            let reach = glam::Vec3::splat(b.extent().max_element());
+            let near = tracer_core::geometry::Aabb {
+                min: b.min - reach,
+                max: b.max + reach,
+            };
+            if !near.contains(&tracer_core::geometry::Aabb { min: p, max: p }) {
                 ui.colored_label(
                     egui::Color32::from_rgb(255, 210, 90),
                     "outside the scene's bounds",
                 )
                 .on_hover_text(
-                    "This light is outside the box around the scene's geometry: it may light \
-                     nothing the camera sees",
+                    "This light is farther from the box around the scene's geometry than the \
+                     scene is large: it may light nothing the camera sees",
                 );
             }
             if light.kind == LightKind::Luminaire {

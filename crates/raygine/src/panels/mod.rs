@@ -80,7 +80,8 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         doc.scene.triangle_count(),
         doc.scene.breps.len(),
     ));
-    if let Some(unit) = frame_ui(ui, &mut doc.setup, loading) {
+    let diagonal = doc.scene.bounds.extent().length();
+    if let Some(unit) = frame_ui(ui, &mut doc.setup, diagonal, loading) {
         out.push(Command::Switch(Switch::Unit(unit)));
     }
     ui.separator();

@@ -410,3 +410,61 @@ fn the_saved_sidecar_is_tidy_and_its_luminaire_path_relative() {
     assert_eq!(loaded.setup.lights.len(), 2);
     assert!(loaded.setup.lights[1].luminaire.is_some());
 }
+
+/// The built-in box's saved settings open again from File > Open (or a drop): the box with its
+/// sidecar, the camera and lights as saved.
+#[test]
+fn a_saved_box_sidecar_opens_in_the_viewer() {
+    let mut h = viewer();
+    let dir = scratch_dir("box-sidecar");
+    let path = dir.join("my_box.raygine.toml");
+    h.state_mut().doc.setup.camera.fov_deg = 25.0;
+    h.state_mut().doc.setup.lights[0].intensity_cd = 321.0;
+    let ctx = h.state().ctx.clone();
+    h.state_mut().save_sidecar(&ctx, path.clone());
+    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
+    // Back to the plain box, then open the saved settings.
+    h.state_mut().request(raygine::unsaved::Switch::Builtin);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.setup.lights[0].intensity_cd, 100.0);
+    h.state_mut().open_path(&path);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.run_steps(2);
+    let app = h.state();
+    assert!(app.error.is_none(), "{:?}", app.error);
+    assert_eq!(app.doc.path, None, "the box has no scene file");
+    assert_eq!(app.doc.setup.camera.fov_deg, 25.0);
+    assert_eq!(app.doc.setup.lights[0].intensity_cd, 321.0);
+}
+
+/// A tent 6 units across in an OBJ (millimetres unless told): the panel says it is tiny in mm
+/// and offers metres in one click; its default key light shows digits, not "0 cd", and is not
+/// flagged as outside the scene.
+#[test]
+fn a_small_object_offers_another_unit_in_one_click() {
+    let mut h = viewer();
+    let dir = scratch_dir("tiny");
+    let scene = dir.join("tent.obj");
+    std::fs::write(
+        &scene,
+        "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\nv 0 2 0\nf 1 2 3\nf 1 3 4\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n",
+    )
+    .unwrap();
+    h.state_mut().open_path(&scene);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.setup.unit, tracer_core::scene::LengthUnit::Mm);
+    assert!(
+        h.query_by_label_contains("written in m?").is_some(),
+        "no unit hint in the panel"
+    );
+    assert!(h.query_by_label("outside the scene's bounds").is_none());
+    assert!(h.query_by_label_contains("L1 0 cd").is_none());
+    h.get_by_role_and_label(Role::Button, "Use m").click();
+    h.step();
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.setup.unit, tracer_core::scene::LengthUnit::M);
+    assert!(h.query_by_label_contains("written in").is_none());
+    assert!(h.query_by_label_contains("m across").is_some());
+}

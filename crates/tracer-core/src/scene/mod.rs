@@ -14,6 +14,7 @@ mod notes;
 mod pick;
 mod setup;
 mod sidecar;
+mod sidecar_open;
 mod smoothing;
 mod units;
 
@@ -29,6 +30,9 @@ pub use material::Material;
 pub use notes::{SourceText, luminaire_near_surface, relative_below};
 pub use setup::{DEFAULT_FOV_DEG, Setup, default_light};
 pub use sidecar::{Sidecar, sidecar_path};
+pub use sidecar_open::{
+    SIDECAR_SUFFIX, builtin_with_sidecar, is_sidecar_file, load_sidecar, scene_of_sidecar,
+};
 pub use smoothing::{DEFAULT_SMOOTH_ANGLE_DEG, corner_normals};
 pub use units::{Handedness, LengthUnit};
 

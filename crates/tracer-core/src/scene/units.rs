@@ -38,6 +38,22 @@ impl LengthUnit {
     /// written in another unit: rooms and objects people light are 5 cm to 500 m across.
     /// Returns `None` when the size is plausible. Never applied silently.
     pub fn size_hint(self, diagonal: f32) -> Option<String> {
+        let suggestion = self.suggested_unit(diagonal)?;
+        let metres = diagonal * self.metres_per_unit();
+        Some(format!(
+            "the scene is {diagonal:.4} {} across ({metres:.4} m) if its unit is {}; if it was \
+             written in {}, pass --units {}",
+            self.symbol(),
+            self.symbol(),
+            suggestion.symbol(),
+            suggestion.symbol()
+        ))
+    }
+
+    /// The unit a scene of this size (bounding-box diagonal in this unit) was more likely
+    /// written in, when this one makes it implausibly small or large (see
+    /// [`LengthUnit::size_hint`]).
+    pub fn suggested_unit(self, diagonal: f32) -> Option<LengthUnit> {
         let metres = diagonal * self.metres_per_unit();
         if !metres.is_finite() || metres <= 0.0 {
             return None;
@@ -54,16 +70,7 @@ impl LengthUnit {
         } else {
             None
         }?;
-        (suggestion != self).then(|| {
-            format!(
-                "the scene is {diagonal:.4} {} across ({metres:.4} m) if its unit is {}; \
-                 if it was written in {}, pass --units {}",
-                self.symbol(),
-                self.symbol(),
-                suggestion.symbol(),
-                suggestion.symbol()
-            )
-        })
+        (suggestion != self).then_some(suggestion)
     }
 }
 
