@@ -112,7 +112,7 @@ if [[ "${1:-}" == "--inside-xvfb" ]]; then
     # window size (the test `smoke_script_layout_holds` keeps it true). Drag it left by 40 px:
     # the light moves about 55 mm (1.4 mm a point in the box) and stays inside the box.
     SLIDER_X=$((X + 138))
-    SLIDER_Y=$((Y + 157))
+    SLIDER_Y=$((Y + 175))
     xdotool mousemove "$SLIDER_X" "$SLIDER_Y" mousedown 1
     for dx in 10 20 30 40; do
         sleep 0.1

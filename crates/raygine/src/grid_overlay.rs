@@ -63,12 +63,15 @@ pub fn isolux_segments(values: &[f64], nu: usize, nv: usize, level: f64) -> Vec<
     out
 }
 
-/// Draws one grid's readings; `to_screen` projects scene points (None behind the camera).
+/// Draws one grid's readings; `to_screen` projects scene points (None behind the camera) and
+/// `visible` says whether the camera sees a point (no surface in front of it): cells and
+/// isolux lines behind objects are not drawn. Points inside objects are hatched, unlabelled.
 pub fn draw(
     painter: &egui::Painter,
     grid: &Grid,
     r: &GridResult,
     to_screen: &dyn Fn(Vec3) -> Option<Pos2>,
+    visible: &dyn Fn(Vec3) -> bool,
 ) {
     let s = r.statistics();
     let max = s.e_max_lx.max(1e-6) as f32;
@@ -88,11 +91,18 @@ pub fn draw(
     let labels = r.points.len() <= 64;
     for p in &r.points {
         let (i, j) = (p.i as f32, p.j as f32);
+        if !visible(corner(i + 0.5, j + 0.5)) {
+            continue;
+        }
         let quad: Option<Vec<Pos2>> = [(i, j), (i + 1.0, j), (i + 1.0, j + 1.0), (i, j + 1.0)]
             .iter()
             .map(|&(a, b)| to_screen(corner(a, b)))
             .collect();
         let Some(quad) = quad else { continue };
+        if p.buried {
+            hatch(painter, &quad);
+            continue;
+        }
         let [cr, cg, cb, _] = fc.colour(p.illuminance_lx as f32);
         painter.add(Shape::convex_polygon(
             quad,
@@ -124,10 +134,31 @@ pub fn draw(
     let centre = |(ci, cj): (f64, f64)| corner(ci as f32 + 0.5, cj as f32 + 0.5);
     for level in isolux_levels(s.e_min_lx, s.e_max_lx) {
         for [a, b] in isolux_segments(&values, nu, nv, level) {
+            if !(visible(centre(a)) && visible(centre(b))) {
+                continue;
+            }
             if let (Some(pa), Some(pb)) = (to_screen(centre(a)), to_screen(centre(b))) {
                 painter.line_segment([pa, pb], Stroke::new(1.5, Color32::WHITE));
             }
         }
+    }
+}
+
+/// A cell of a point inside an object: grey, with diagonal hatching.
+fn hatch(painter: &egui::Painter, quad: &[Pos2]) {
+    painter.add(Shape::convex_polygon(
+        quad.to_vec(),
+        Color32::from_black_alpha(90),
+        Stroke::new(0.5, Color32::from_black_alpha(120)),
+    ));
+    let stroke = Stroke::new(1.0, Color32::from_gray(170));
+    if let [a, b, c, d] = quad {
+        for k in 1..4 {
+            let t = k as f32 / 4.0;
+            painter.line_segment([a.lerp(*b, t), a.lerp(*d, t)], stroke);
+            painter.line_segment([c.lerp(*b, t), c.lerp(*d, t)], stroke);
+        }
+        painter.line_segment([*b, *d], stroke);
     }
 }
 

@@ -125,13 +125,22 @@ fn progress_bar(cap: u32) -> indicatif::ProgressBar {
 }
 
 /// `grid floor: 256 points, Emin 61.2 lx, Eavg 104.5 lx, Emax 150.3 lx, U0 0.59, Emin/Emax 0.41,
-/// normal (0.000, 1.000, 0.000)`.
+/// normal (0.000, 1.000, 0.000)`; points inside objects are counted ("256 points (12 inside
+/// objects, left out)").
 pub fn summary_line(r: &GridResult) -> String {
     let s = r.statistics();
+    let buried = r.buried_count();
+    let points = if buried > 0 {
+        format!(
+            "{} points ({buried} inside objects, left out)",
+            r.points.len()
+        )
+    } else {
+        format!("{} points", r.points.len())
+    };
     format!(
-        "grid {}: {} points, Emin {:.1} lx, Eavg {:.1} lx, Emax {:.1} lx, U0 {:.2}, Emin/Emax {:.2}, normal ({:.3}, {:.3}, {:.3})",
+        "grid {}: {points}, Emin {:.1} lx, Eavg {:.1} lx, Emax {:.1} lx, U0 {:.2}, Emin/Emax {:.2}, normal ({:.3}, {:.3}, {:.3})",
         r.name,
-        r.points.len(),
         s.e_min_lx,
         s.e_avg_lx,
         s.e_max_lx,
@@ -181,6 +190,7 @@ pub fn json_report(results: &[GridResult], unit: &str, integrator: &str, samples
                 "e_max_lx": s.e_max_lx,
                 "u0": s.u0,
                 "emin_over_emax": s.emin_over_emax,
+                "points_inside_objects": r.buried_count(),
                 "points": r.points.iter().map(|p| json!({
                     "i": p.i,
                     "j": p.j,
@@ -189,6 +199,7 @@ pub fn json_report(results: &[GridResult], unit: &str, integrator: &str, samples
                     "z": p.position.z,
                     "illuminance_lx": p.illuminance_lx,
                     "std_error_lx": p.std_error_lx,
+                    "inside_object": p.buried,
                 })).collect::<Vec<_>>(),
             })
         })

@@ -9,7 +9,6 @@ use crate::format::format_value;
 use crate::measure_worker::Readings;
 use egui::{Align2, Color32, FontId, Pos2, Rect, Stroke, Vec2};
 use glam::Vec3;
-use tracer_core::measure::Grid;
 use tracer_core::scene::{CameraBasis, LightKind, Setup};
 
 /// What the mouse points at in the viewport.
@@ -94,19 +93,36 @@ pub fn draw_light_markers(ui: &egui::Ui, doc: &Document, basis: &CameraBasis, re
 /// The grids' readings over the picture: false-colour cells, values and isolux lines.
 pub fn draw_grid_readings(
     ui: &egui::Ui,
-    grids: &[Grid],
+    doc: &Document,
     readings: &Readings,
     basis: &CameraBasis,
     rect: Rect,
 ) {
     let painter = ui.painter_at(rect);
     let project = |p: Vec3| to_screen(rect, basis, p);
+    // Depth test against the scene: a point is seen when no drawn surface lies between it and
+    // the eye (the grid floats 0.1 % of the scene's size over its surface).
+    let visible = |p: Vec3| seen_from(&doc.scene, &doc.setup.hidden, basis.origin, p);
     for r in &readings.results {
-        if let Some(grid) = grids.iter().find(|g| g.name == r.name) {
-            crate::grid_overlay::draw(&painter, grid, r, &project);
+        if let Some(grid) = doc.setup.grids.iter().find(|g| g.name == r.name) {
+            crate::grid_overlay::draw(&painter, grid, r, &project, &visible);
         }
     }
     crate::grid_overlay::draw_statistics(&painter, rect, &readings.results, readings.samples);
+}
+
+/// Whether `p` is seen from `eye`: no drawn surface lies between them (within twice the ray
+/// epsilon of `p`, so a grid floating just over its surface is seen).
+pub fn seen_from(scene: &tracer_core::scene::Scene, hidden: &[bool], eye: Vec3, p: Vec3) -> bool {
+    let to = p - eye;
+    let distance = to.length();
+    let Some(dir) = to.try_normalize() else {
+        return true;
+    };
+    let ray = tracer_core::geometry::Ray::new(eye, dir);
+    scene
+        .closest_drawn(&ray, hidden)
+        .is_none_or(|hit| hit.t >= distance - 2.0 * scene.ray_epsilon())
 }
 
 /// X (red), Y (green), Z (blue) in the bottom-left corner, drawn with the camera's basis so the
@@ -278,4 +294,42 @@ fn text_on_plate(
         Color32::from_black_alpha(200),
     );
     painter.galley(at, galley, colour);
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    /// In the built-in box, a floor point behind the tall block (seen from the camera) is hidden
+    /// by it; the same point seen from straight above is not, nor is a point just over the open
+    /// floor.
+    #[test]
+    fn grid_points_behind_objects_are_not_seen() {
+        let loaded = tracer_core::scene::builtin_cornell_box(None).unwrap();
+        let scene = &loaded.scene;
+        let eye = Vec3::from(loaded.setup.camera.position);
+        let floor = |x: f32, z: f32| Vec3::new(x, scene.bounds.min.y + 0.5, z);
+        // The floor just behind the tall block (x 314..472, back face near z = -456), which
+        // stands 330 mm high, taller than the eye at 273 mm.
+        let behind: Vec<Vec3> = (0..10)
+            .map(|k| floor(400.0, -470.0 - 8.0 * k as f32))
+            .collect();
+        let hidden: Vec<&Vec3> = behind
+            .iter()
+            .filter(|&&p| !seen_from(scene, &[], eye, p))
+            .collect();
+        assert!(
+            hidden.len() >= 5,
+            "only {} of the points behind the block are hidden",
+            hidden.len()
+        );
+        for p in hidden {
+            assert!(
+                seen_from(scene, &[], *p + Vec3::Y * 540.0, *p),
+                "{p} from above"
+            );
+        }
+        assert!(seen_from(scene, &[], eye, floor(450.0, -100.0)));
+    }
 }

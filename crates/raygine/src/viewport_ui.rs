@@ -82,7 +82,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, mut v: Viewport<'_>, out: &mut Commands) {
         if v.show_grids
             && let Some(readings) = v.measure.readings()
         {
-            draw_grid_readings(ui, &v.doc.setup.grids, &readings, b, rect);
+            draw_grid_readings(ui, v.doc, &readings, b, rect);
         }
     }
     draw_meter(ui, &v, rect);

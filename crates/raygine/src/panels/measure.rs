@@ -57,6 +57,20 @@ pub fn measure_ui(
                         "Emin {:.1} lx · Eavg {:.1} lx · Emax {:.1} lx",
                         s.e_min_lx, s.e_avg_lx, s.e_max_lx
                     ));
+                    let buried = r.buried_count();
+                    if buried > 0 {
+                        ui.colored_label(
+                            egui::Color32::from_rgb(255, 210, 90),
+                            format!(
+                                "{buried} of {} points inside objects (hatched), left out",
+                                r.points.len()
+                            ),
+                        )
+                        .on_hover_text(
+                            "Points whose every view ends on the inside of a surface (in a \
+                             block, under a cabinet) read 0 lx; Emin, Eavg, U0 leave them out",
+                        );
+                    }
                     ui.label(format!(
                         "U0 {:.2} · Emin/Emax {:.2}",
                         s.u0, s.emin_over_emax

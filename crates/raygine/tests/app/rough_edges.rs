@@ -468,3 +468,65 @@ fn a_small_object_offers_another_unit_in_one_click() {
     assert!(h.query_by_label_contains("written in").is_none());
     assert!(h.query_by_label_contains("m across").is_some());
 }
+
+/// The box's work plane, a quarter up, passes through both blocks: the points inside them are
+/// found (each reads 0 lx), counted in the panel and left out of the statistics.
+#[test]
+fn grid_points_inside_objects_are_counted_and_left_out() {
+    let mut h = viewer();
+    for group in ["Lights", "Camera", "Materials"] {
+        h.get_by_label(group).click();
+        h.step();
+    }
+    h.get_by_label("Measure").click();
+    h.run_steps(2);
+    // A denser plane than the default's 4 x 4, so each block holds several points.
+    h.get_by_role_and_label(Role::Button, "Add work plane")
+        .click();
+    h.step();
+    let mut g = h.state().doc.setup.grids[0].clone();
+    (g.nu, g.nv) = (12, 12);
+    h.state_mut().doc.setup.grids[0] = g;
+    step_until(&mut h, "the readings", |app| {
+        app.measure
+            .readings()
+            .is_some_and(|r| r.results.first().is_some_and(|g| g.points.len() == 144))
+    });
+    let r = h.state().measure.readings().unwrap().results[0].clone();
+    let buried = r.buried_count();
+    assert!(
+        (10..=50).contains(&buried),
+        "{buried} of 144 points inside objects"
+    );
+    for p in r.points.iter().filter(|p| p.buried) {
+        assert!(
+            p.illuminance_lx < 1e-9,
+            "a point inside a block reads {} lx",
+            p.illuminance_lx
+        );
+    }
+    // Eavg is the mean of the measured points only (in direct light, points in the blocks'
+    // shadows read 0 lx and stay in: they are real readings).
+    let s = r.statistics();
+    let lit: Vec<f64> = r
+        .points
+        .iter()
+        .filter(|p| !p.buried)
+        .map(|p| p.illuminance_lx)
+        .collect();
+    let mean = lit.iter().sum::<f64>() / lit.len() as f64;
+    assert!(
+        (s.e_avg_lx - mean).abs() < 1e-9 * mean,
+        "{} vs {mean}",
+        s.e_avg_lx
+    );
+    assert!(
+        s.e_avg_lx > r.mean_lx(),
+        "the buried zeros are still in the mean"
+    );
+    h.run_steps(2);
+    assert!(
+        h.query_by_label_contains(&format!("{buried} of 144 points inside objects"))
+            .is_some()
+    );
+}

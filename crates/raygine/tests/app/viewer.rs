@@ -698,7 +698,7 @@ fn smoke_script_layout_holds() {
     eprintln!("light x slider {slider:?}, viewport {view:?}");
     // scripts/smoke_viewer.sh: SLIDER_X/SLIDER_Y, PANEL_W and BAR_H.
     assert!(
-        slider.contains(Pos2::new(138.0, 157.0)),
+        slider.contains(Pos2::new(138.0, 175.0)),
         "slider moved: {slider:?}"
     );
     assert!(

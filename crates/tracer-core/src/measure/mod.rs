@@ -2,11 +2,13 @@
 //! error. Sensors block no light; each point's estimate comes from the integrator's irradiance
 //! estimator, sampled with streams keyed by (grid, point, sample index).
 
+mod buried;
 mod grid;
 pub mod partial;
 pub mod placement;
 mod sensors;
 
+pub use buried::{buried_points, front_winding, is_buried, mark_buried};
 pub use grid::{Grid, GridError, SensorPoint};
 pub use sensors::{
     GridResult, GridStatistics, MeasureProgress, MeasureSettings, PointResult, TARGET_MIN_SAMPLES,

@@ -50,6 +50,8 @@ pub struct PointResult {
     pub illuminance_lx: f64,
     /// Standard error of `illuminance_lx` (lx).
     pub std_error_lx: f64,
+    /// Inside or under an object (see [`super::is_buried`]): left out of the statistics.
+    pub buried: bool,
 }
 
 /// One grid's readings.
@@ -182,7 +184,9 @@ pub fn measure_grids_with_progress(
             break;
         }
     }
-    grid_results(&setup.grids, &sums, done, rays_total)
+    let mut results = grid_results(&setup.grids, &sums, done, rays_total);
+    super::buried::mark_buried(&mut results, scene, setup);
+    results
 }
 
 /// The readings of `grids` from their points' exact sums (in the order [`measure_samples`]
@@ -206,6 +210,7 @@ pub fn grid_results(grids: &[Grid], sums: &[PixelSum], samples: u32, rays: u64) 
             position: p.position,
             illuminance_lx: sum.mean_luminance(),
             std_error_lx: sum.luminance_std_error().unwrap_or(f64::NAN),
+            buried: false,
         });
     }
     let total_points = points.len().max(1) as u64;
@@ -252,21 +257,28 @@ pub struct GridStatistics {
 }
 
 impl GridResult {
+    /// How many points sit inside or under objects (left out of the statistics).
+    pub fn buried_count(&self) -> usize {
+        self.points.iter().filter(|p| p.buried).count()
+    }
+
     /// Mean illuminance over the points (lx).
     pub fn mean_lx(&self) -> f64 {
         self.points.iter().map(|p| p.illuminance_lx).sum::<f64>() / self.points.len().max(1) as f64
     }
 
     /// Emin, Eavg, Emax, U0 and Emin/Emax of the points' illuminance.
+    /// Points inside or under objects are left out (see [`GridResult::buried_count`]).
     pub fn statistics(&self) -> GridStatistics {
-        let n = self.points.len().max(1) as f64;
+        let measured = || self.points.iter().filter(|p| !p.buried);
+        let n = measured().count().max(1) as f64;
         let (mut lo, mut hi, mut sum) = (f64::INFINITY, f64::NEG_INFINITY, 0.0);
-        for p in &self.points {
+        for p in measured() {
             lo = lo.min(p.illuminance_lx);
             hi = hi.max(p.illuminance_lx);
             sum += p.illuminance_lx;
         }
-        if self.points.is_empty() {
+        if measured().next().is_none() {
             (lo, hi) = (0.0, 0.0);
         }
         let avg = sum / n;
@@ -301,6 +313,7 @@ mod tests {
             position: Vec3::ZERO,
             illuminance_lx: e,
             std_error_lx: 0.0,
+            buried: false,
         };
         let r = GridResult {
             name: "g".into(),
