@@ -38,6 +38,8 @@ pub enum Command {
     ResetCamera,
     /// Pause or resume rendering.
     TogglePause,
+    /// Show or drop the ground plane under a lone object.
+    SetGround(bool),
     /// Flip between the denoised and the raw picture (D).
     ToggleDenoise,
     /// Open the "Render image…" form for the current view.

@@ -13,6 +13,8 @@ pub struct Document {
     pub parse_secs: f64,
     /// Non-fatal problems found while loading.
     pub warnings: Vec<String>,
+    /// The scene as read, while `scene` is it with a ground plane (View > Ground plane).
+    pub without_ground: Option<Arc<Scene>>,
 }
 
 impl Document {
@@ -23,6 +25,7 @@ impl Document {
             path,
             parse_secs: loaded.parse_secs,
             warnings: loaded.warnings,
+            without_ground: None,
         }
     }
 

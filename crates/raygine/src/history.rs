@@ -65,6 +65,16 @@ impl History {
     pub fn can_redo(&self) -> bool {
         !self.redo.is_empty()
     }
+
+    /// Applies `change` to every state kept (a slot added to or dropped from the scene: each
+    /// step's materials follow it).
+    pub fn map(&mut self, change: impl Fn(&mut Setup)) {
+        change(&mut self.committed);
+        self.undo
+            .iter_mut()
+            .chain(self.redo.iter_mut())
+            .for_each(change);
+    }
 }
 
 #[cfg(test)]

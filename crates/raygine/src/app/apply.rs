@@ -33,6 +33,7 @@ impl RaygineApp {
             Command::FrameScene => self.frame_scene(),
             Command::ResetCamera => self.doc.setup.camera = self.saved_setup.camera,
             Command::TogglePause => self.set_paused(!self.paused),
+            Command::SetGround(on) => self.set_ground(on),
             Command::ToggleDenoise => {
                 if self.denoise.available() {
                     self.denoise.toggle(self.render.integrator);
@@ -193,6 +194,42 @@ impl RaygineApp {
     pub fn redo(&mut self) {
         if let Some(s) = self.history.redo(&self.doc.setup) {
             self.doc.setup = s;
+        }
+    }
+
+    /// Adds the ground plane under the scene (its material the last slot, in every undo step
+    /// and in the saved state, so it is no unsaved edit), or takes it away again.
+    pub fn set_ground(&mut self, on: bool) {
+        use std::sync::Arc;
+        if on == self.doc.without_ground.is_some() {
+            return;
+        }
+        let change: fn(&mut tracer_core::scene::Setup) = if on {
+            |s| {
+                s.materials.push(tracer_core::scene::ground_material());
+                s.hidden.push(false);
+            }
+        } else {
+            |s| {
+                s.materials.pop();
+                s.hidden.pop();
+            }
+        };
+        if on {
+            let plain = Arc::clone(&self.doc.scene);
+            self.doc.scene = Arc::new(plain.with_ground());
+            self.doc.without_ground = Some(plain);
+        } else if let Some(plain) = self.doc.without_ground.take() {
+            self.doc.scene = plain;
+        }
+        change(&mut self.doc.setup);
+        change(&mut self.saved_setup);
+        self.history.map(change);
+        if self
+            .selected_slot
+            .is_some_and(|s| s as usize >= self.doc.setup.materials.len())
+        {
+            self.selected_slot = None;
         }
     }
 

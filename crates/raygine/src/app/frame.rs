@@ -216,6 +216,7 @@ impl RaygineApp {
             show_help: &mut self.show_help,
             show_notes: &mut self.panels.show_notes,
             notes: self.doc.warnings.len(),
+            ground: self.doc.without_ground.is_some(),
         };
         crate::panels::menu_bar(ui, menu, out);
         let status = StatusBar {

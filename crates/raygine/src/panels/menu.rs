@@ -21,6 +21,8 @@ pub struct MenuBar<'a> {
     /// The Notes window's flag, and how many notes the scene has.
     pub show_notes: &'a mut bool,
     pub notes: usize,
+    /// Whether the ground plane is shown.
+    pub ground: bool,
 }
 
 /// The menu bar; what the user picks is a command, except the view toggles it is given.
@@ -58,6 +60,21 @@ pub fn menu_bar(ui: &mut egui::Ui, m: MenuBar<'_>, out: &mut Commands) {
                     .on_hover_text("Hide the controls to give the picture the whole window");
                 ui.checkbox(m.show_notes, format!("Notes ({})", m.notes))
                     .on_hover_text("Every warning the scene's files gave when read, in full");
+                let mut ground = m.ground;
+                if ui
+                    .checkbox(&mut ground, "Ground plane")
+                    .on_hover_text(format!(
+                        "A grey diffuse floor (reflectance {}) under a lone object, listed as \
+                         the surface {}: it reflects light like any surface and is not saved \
+                         with the scene settings",
+                        tracer_core::scene::GROUND_REFLECTANCE,
+                        tracer_core::scene::GROUND_NAME
+                    ))
+                    .changed()
+                {
+                    out.push(Command::SetGround(ground));
+                    ui.close();
+                }
                 if ui
                     .add(egui::Button::new("Frame scene").shortcut_text("F"))
                     .clicked()

@@ -530,3 +530,70 @@ fn grid_points_inside_objects_are_counted_and_left_out() {
             .is_some()
     );
 }
+
+/// View > Ground plane puts a grey floor under a lone object: a surface listed like any other,
+/// rendered, no unsaved edit, not written to the sidecar; undo still works across it, and it
+/// comes off again.
+#[test]
+fn a_ground_plane_goes_under_a_lone_object() {
+    let mut h = viewer();
+    let dir = scratch_dir("ground");
+    let scene = dir.join("tent.obj");
+    std::fs::write(
+        &scene,
+        "v -3 1 -3\nv 3 1 -3\nv 3 1 3\nv -3 1 3\nv 0 3 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n",
+    )
+    .unwrap();
+    h.state_mut().open_path(&scene);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.run_steps(2);
+    let slots = h.state().doc.scene.slots.len();
+    // An edit before, to undo after.
+    h.state_mut().doc.setup.camera.fov_deg = 30.0;
+    h.run_steps(2);
+    h.get_by_label("View").click();
+    h.run_steps(2);
+    h.get_by_label("Ground plane").click();
+    h.run_steps(3);
+    let app = h.state();
+    assert!(app.doc.scene.has_ground());
+    assert_eq!(app.doc.scene.slots.len(), slots + 1);
+    assert_eq!(app.doc.setup.materials.len(), slots + 1);
+    assert_eq!(app.doc.setup.materials[slots].kd, [0.2; 3]);
+    assert!(
+        app.worker.current().unwrap().scene.has_ground(),
+        "not rendered"
+    );
+    assert!(h.query_by_label("ground_plane").is_some(), "not listed");
+    // The plane lies under the object: straight down from above its corner, outside it.
+    let b = app.doc.scene.bounds;
+    let down = tracer_core::geometry::Ray::new(
+        glam::Vec3::new(b.max.x + 1.0, b.max.y, b.max.z + 1.0),
+        glam::Vec3::NEG_Y,
+    );
+    let hit = app
+        .doc
+        .scene
+        .bvh
+        .intersect(&down)
+        .expect("no ground under the object");
+    assert!((b.max.y - hit.t - b.min.y).abs() < 1e-4);
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.setup.materials.len(), slots + 1);
+    let ctx = h.state().ctx.clone();
+    let side = dir.join("tent.raygine.toml");
+    h.state_mut().save_sidecar(&ctx, side.clone());
+    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
+    assert!(
+        !std::fs::read_to_string(&side)
+            .unwrap()
+            .contains("ground_plane")
+    );
+    h.get_by_label("View").click();
+    h.run_steps(2);
+    h.get_by_label("Ground plane").click();
+    h.run_steps(2);
+    assert!(!h.state().doc.scene.has_ground());
+    assert_eq!(h.state().doc.setup.materials.len(), slots);
+}

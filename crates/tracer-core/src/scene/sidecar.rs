@@ -271,7 +271,12 @@ impl Sidecar {
     pub fn from_setup(scene: &Scene, setup: &Setup) -> Sidecar {
         let mut materials = BTreeMap::new();
         let mut hidden = Vec::new();
-        for brep in &scene.breps {
+        // The viewer's ground plane is a view aid, not part of the scene's file.
+        let breps = match scene.has_ground() {
+            true => &scene.breps[..scene.breps.len() - 1],
+            false => &scene.breps[..],
+        };
+        for brep in breps {
             let range = brep.first_slot as usize..(brep.first_slot + brep.part_count) as usize;
             let Some(mats) = setup.materials.get(range.clone()) else {
                 continue;

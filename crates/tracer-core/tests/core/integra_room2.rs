@@ -193,20 +193,25 @@ fn room2_work_plane_finds_few_points_inside_furniture() {
     };
     let loaded = load(&path);
     let scene = &loaded.scene;
-    let (mut grid, _) =
-        tracer_core::measure::placement::work_plane(scene, 1.0, "m", &[]).unwrap();
+    let (mut grid, _) = tracer_core::measure::placement::work_plane(scene, 1.0, "m", &[]).unwrap();
     (grid.nu, grid.nv) = (40, 40);
     let points: Vec<_> = grid.points().collect();
     let buried = tracer_core::measure::buried_points(scene, &loaded.setup, &points);
     let count = buried.iter().filter(|&&b| b).count();
-    eprintln!("room2: {count} of {} work-plane points inside objects", points.len());
+    eprintln!(
+        "room2: {count} of {} work-plane points inside objects",
+        points.len()
+    );
     assert!(count * 4 < points.len(), "{count} of {}", points.len());
     for (p, b) in points.iter().zip(&buried) {
         if *b {
             let up = scene
                 .closest_drawn(&tracer_core::geometry::Ray::new(p.position, Vec3::Y), &[])
                 .unwrap();
-            assert!(up.t < 0.9 * (scene.bounds.max.y - p.position.y), "{p:?} is in the open");
+            assert!(
+                up.t < 0.9 * (scene.bounds.max.y - p.position.y),
+                "{p:?} is in the open"
+            );
         }
     }
 }
