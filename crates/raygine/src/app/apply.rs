@@ -132,6 +132,8 @@ impl RaygineApp {
     /// load warnings as the notice, its file first in the recent list, and rendering resumed,
     /// so the new scene gets a picture (the old scene's picture is never shown for it).
     pub(super) fn install_document(&mut self, doc: Document) {
+        // The same scene read again (another unit) keeps its ground plane.
+        let keep_ground = self.doc.without_ground.is_some() && self.doc.path == doc.path;
         // The viewer has its own unit control.
         self.notice = load_notice(&doc.warnings).map(|n| {
             n.replace(
@@ -159,6 +161,9 @@ impl RaygineApp {
         self.meter = None;
         if self.paused {
             self.set_paused(false);
+        }
+        if keep_ground {
+            self.set_ground(true);
         }
     }
 

@@ -99,6 +99,11 @@ impl RaygineApp {
     pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
         let started = Instant::now();
         let ctx = ui.ctx().clone();
+        if !std::mem::replace(&mut self.focus_asked, true) {
+            // Take the keyboard at launch: without a window manager that hands focus over (a
+            // bare X server, some tiling setups) the first keys, Ctrl+Q among them, went nowhere.
+            ctx.send_viewport_cmd(egui::ViewportCommand::Focus);
+        }
         self.record_frame_time();
         self.poll_background();
         self.poll_denoise(&ctx);

@@ -86,6 +86,8 @@ pub struct RaygineApp {
     pub pending_switch: Option<crate::unsaved::Switch>,
     /// The user agreed to close: the window's close request goes through.
     allow_close: bool,
+    /// The window has asked for the keyboard focus (once, at launch).
+    focus_asked: bool,
     /// The luminaire file being read for "Add luminaire".
     adding_luminaire: Option<edits::PendingLuminaire>,
     /// When the wheel last turned: a dolly by wheel becomes one undo step once it rests.
@@ -195,6 +197,7 @@ impl RaygineApp {
             allow_close: false,
             last_scroll: None,
             adding_luminaire: None,
+            focus_asked: false,
             measure: crate::measure_worker::MeasureWorker::default(),
             show_grids: true,
             meter: None,

@@ -134,12 +134,14 @@ pub fn lights_ui(
 fn intensity_ui(ui: &mut egui::Ui, light: &mut Light) {
     ui.horizontal(|ui| {
         let label = ui.label("intensity (cd)");
-        let speed = f64::from(light.intensity_cd.abs().max(0.01)) * 0.005;
+        let speed = f64::from(light.intensity_cd.abs().max(1e-9)) * 0.005;
+        // Three significant digits at least: 0.00670 cd, not 0.01.
+        let decimals = (2 - light.intensity_cd.abs().max(1e-9).log10().floor() as i32).clamp(2, 9);
         ui.add(
             egui::DragValue::new(&mut light.intensity_cd)
                 .speed(speed)
                 .range(0.0..=1.0e9)
-                .max_decimals(2)
+                .max_decimals(decimals as usize)
                 .update_while_editing(false),
         )
         .labelled_by(label.id)

@@ -86,8 +86,9 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
     }
     ui.separator();
     let selected_slot = measure.selected_slot;
+    // Many lights (a room's nine luminaires) would push the rest out of sight: folded then.
     egui::CollapsingHeader::new("Lights")
-        .default_open(true)
+        .default_open(doc.setup.lights.len() <= 3)
         .show(ui, |ui| {
             lights::lights_ui(ui, doc, &mut state.luminaire_path, adding_luminaire, out);
         });
