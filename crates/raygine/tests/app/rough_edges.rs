@@ -239,6 +239,16 @@ fn scratch_dir(test: &str) -> std::path::PathBuf {
     dir
 }
 
+/// Writes `text` as `dir/name` and opens it in the viewer; returns its path.
+fn open_scene(h: &mut Viewer, dir: &std::path::Path, name: &str, text: &str) -> std::path::PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    h.state_mut().open_path(&path);
+    h.state_mut().finish_loading_blocking(TIMEOUT);
+    h.run_steps(2);
+    path
+}
+
 /// Steps until `done` holds (or fails after TIMEOUT).
 fn step_until(h: &mut Viewer, what: &str, done: impl Fn(&RaygineApp) -> bool) {
     let deadline = std::time::Instant::now() + TIMEOUT;
@@ -444,15 +454,12 @@ fn a_saved_box_sidecar_opens_in_the_viewer() {
 fn a_small_object_offers_another_unit_in_one_click() {
     let mut h = viewer();
     let dir = scratch_dir("tiny");
-    let scene = dir.join("tent.obj");
-    std::fs::write(
-        &scene,
+    open_scene(
+        &mut h,
+        &dir,
+        "tent.obj",
         "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\nv 0 2 0\nf 1 2 3\nf 1 3 4\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n",
-    )
-    .unwrap();
-    h.state_mut().open_path(&scene);
-    h.state_mut().finish_loading_blocking(TIMEOUT);
-    h.run_steps(2);
+    );
     assert_eq!(h.state().doc.setup.unit, tracer_core::scene::LengthUnit::Mm);
     assert!(
         h.query_by_label_contains("written in m?").is_some(),
@@ -538,15 +545,12 @@ fn grid_points_inside_objects_are_counted_and_left_out() {
 fn a_ground_plane_goes_under_a_lone_object() {
     let mut h = viewer();
     let dir = scratch_dir("ground");
-    let scene = dir.join("tent.obj");
-    std::fs::write(
-        &scene,
+    open_scene(
+        &mut h,
+        &dir,
+        "tent.obj",
         "v -3 1 -3\nv 3 1 -3\nv 3 1 3\nv -3 1 3\nv 0 3 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n",
-    )
-    .unwrap();
-    h.state_mut().open_path(&scene);
-    h.state_mut().finish_loading_blocking(TIMEOUT);
-    h.run_steps(2);
+    );
     let slots = h.state().doc.scene.slots.len();
     // An edit before, to undo after.
     h.state_mut().doc.setup.camera.fov_deg = 30.0;
