@@ -252,8 +252,13 @@ fn profile_ui(
     let top = pts.iter().map(|p| p[1]).fold(0.0_f64, f64::max);
     let digits = top.abs().max(1.0).log10().floor() as usize + 1;
     let char_w = ui.fonts_mut(|f| f.glyph_width(&egui::TextStyle::Body.resolve(ui.style()), '0'));
+    // Inside the panel's visible width, with room past the last point for the x axis's last
+    // tick label ("400", which the panel's edge used to cut to "40").
+    let width = (ui.clip_rect().right() - ui.cursor().left() - 12.0).clamp(160.0, 480.0);
     Plot::new(ui.make_persistent_id("profile-plot"))
         .height(140.0)
+        .width(width)
+        .set_margin_fraction(egui::vec2(0.08, 0.1))
         .y_axis_min_width(char_w * (digits as f32 + 2.0))
         .allow_drag(false)
         .allow_zoom(false)

@@ -57,9 +57,10 @@ pub fn polar_diagram(ui: &mut egui::Ui, p: &Photometry, multiplier: f32, size: f
     for k in 1..=rings as u32 {
         let r = radius * (k as f32 * step / scale_max);
         painter.circle_stroke(centre, r, faint);
+        // Along the 165° spoke, clear of the 180° label at the top.
         painter.text(
-            centre + Vec2::new(2.0, -r),
-            Align2::LEFT_BOTTOM,
+            at(165.0, r, true) + Vec2::new(2.0, 0.0),
+            Align2::LEFT_CENTER,
             crate::format::format_quantity(k as f32 * step, "cd"),
             font.clone(),
             text,
