@@ -7,6 +7,7 @@ mod apply;
 mod edits;
 mod files;
 mod frame;
+mod inspect;
 
 use crate::document::Document;
 use crate::file_ops::{PendingDialog, PendingLoad, PendingWrite};
@@ -43,47 +44,47 @@ pub struct AppOptions {
     pub unit: Option<tracer_core::scene::LengthUnit>,
 }
 
-/// The viewer's state. Fields are public for the UI tests, which read them and set up
-/// situations; in the app itself only [`RaygineApp::apply`] and the background polls change
-/// them, apart from the values panels edit in place (see [`crate::command`]).
+/// The viewer's state. Only [`RaygineApp::apply`] and the background polls change it, apart
+/// from the values panels edit in place (see [`crate::command`]); tests and scripts read it and
+/// give their inputs through `inspect.rs`.
 pub struct RaygineApp {
     /// The frame-statistics log has reported the first full-resolution image.
-    pub first_full_logged: bool,
+    pub(crate) first_full_logged: bool,
     /// The egui context, for waking the UI from background threads.
-    pub ctx: egui::Context,
-    pub doc: Document,
-    pub history: History,
-    pub render: RenderPrefs,
-    pub display: DisplaySettings,
+    pub(crate) ctx: egui::Context,
+    pub(crate) doc: Document,
+    pub(crate) history: History,
+    pub(crate) render: RenderPrefs,
+    pub(crate) display: DisplaySettings,
     /// The scene's exposure: automatic on its first view, then held, or the user's.
-    pub exposure: crate::scene_exposure::ExposureKeeper,
-    pub false_colour: FalseColourUi,
-    pub worker: RenderWorker,
+    pub(crate) exposure: crate::scene_exposure::ExposureKeeper,
+    pub(crate) false_colour: FalseColourUi,
+    pub(crate) worker: RenderWorker,
     /// The denoised display (Open Image Denoise on a background thread).
-    pub denoise: crate::denoise_view::DenoiseView,
-    pub prefs: Prefs,
-    pub selected_slot: Option<u32>,
-    pub error: Option<String>,
-    pub notice: Option<String>,
+    pub(crate) denoise: crate::denoise_view::DenoiseView,
+    pub(crate) prefs: Prefs,
+    pub(crate) selected_slot: Option<u32>,
+    pub(crate) error: Option<String>,
+    pub(crate) notice: Option<String>,
     /// When the error and the notice appeared; they expire or are dismissed.
-    pub banners: crate::banners::Banners,
-    pub loading: Option<PendingLoad>,
-    pub dialog: Option<PendingDialog>,
-    pub writes: Vec<PendingWrite>,
-    pub prompt: Option<PathPrompt>,
-    pub render_image_form: Option<RenderImageForm>,
-    pub render_image_job: Option<RenderImageJob>,
-    pub hover: Option<HoverInfo>,
-    pub paused: bool,
-    pub show_help: bool,
+    pub(crate) banners: crate::banners::Banners,
+    pub(crate) loading: Option<PendingLoad>,
+    pub(crate) dialog: Option<PendingDialog>,
+    pub(crate) writes: Vec<PendingWrite>,
+    pub(crate) prompt: Option<PathPrompt>,
+    pub(crate) render_image_form: Option<RenderImageForm>,
+    pub(crate) render_image_job: Option<RenderImageJob>,
+    pub(crate) hover: Option<HoverInfo>,
+    pub(crate) paused: bool,
+    pub(crate) show_help: bool,
     /// Whether the side panel is shown (View > Side panel hides it for a small window).
-    pub show_controls: bool,
+    pub(crate) show_controls: bool,
     /// The panels' own state (text fields kept between frames).
-    pub panels: PanelState,
+    pub(crate) panels: PanelState,
     /// The setup as loaded or last saved: anything else is an unsaved edit.
-    pub saved_setup: Setup,
+    pub(crate) saved_setup: Setup,
     /// A scene switch or quit waiting for the user's answer about unsaved edits.
-    pub pending_switch: Option<crate::unsaved::Switch>,
+    pub(crate) pending_switch: Option<crate::unsaved::Switch>,
     /// The user agreed to close: the window's close request goes through.
     allow_close: bool,
     /// The window has asked for the keyboard focus (once, at launch).
@@ -93,29 +94,29 @@ pub struct RaygineApp {
     /// When the wheel last turned: a dolly by wheel becomes one undo step once it rests.
     last_scroll: Option<std::time::Instant>,
     /// The grids' background measurement (Measure panel, grid overlay).
-    pub measure: crate::measure_worker::MeasureWorker,
+    pub(crate) measure: crate::measure_worker::MeasureWorker,
     /// Whether grid readings are drawn over the picture.
-    pub show_grids: bool,
+    pub(crate) show_grids: bool,
     /// The luminance meter's rectangle (Ctrl+drag over the picture), film pixels.
-    pub meter: Option<crate::luminance_meter::Meter>,
+    pub(crate) meter: Option<crate::luminance_meter::Meter>,
     /// Where the current Ctrl+drag started (film position).
-    pub meter_anchor: Option<(f32, f32)>,
+    pub(crate) meter_anchor: Option<(f32, f32)>,
     /// What the current orbit turns about (shown while dragging).
-    pub orbit_pivot: Option<glam::Vec3>,
+    pub(crate) orbit_pivot: Option<glam::Vec3>,
     /// The viewport's screen rectangle in the last frame (points), for reports.
-    pub viewport_rect: Option<egui::Rect>,
+    pub(crate) viewport_rect: Option<egui::Rect>,
     /// A measurement report waiting for its screenshot.
-    pub report: Option<crate::report::ReportStatus>,
+    pub(crate) report: Option<crate::report::ReportStatus>,
     /// Film size of the viewport, pixels.
-    pub viewport_px: [u32; 2],
+    pub(crate) viewport_px: [u32; 2],
     /// Whether the last frame drew a picture (only ever one of the scene open).
-    pub picture_drawn: bool,
+    pub(crate) picture_drawn: bool,
     /// The film's brightness at the last pass measured (for `picture_hint`).
-    pub film_levels: Option<crate::picture_hints::FilmLevels>,
+    pub(crate) film_levels: Option<crate::picture_hints::FilmLevels>,
     /// Why the picture is black, when it is.
-    pub picture_hint: Option<String>,
+    pub(crate) picture_hint: Option<String>,
     /// UI frame times while rendering (the p95 in the status bar).
-    pub frame_stats: FrameStats,
+    pub(crate) frame_stats: FrameStats,
 }
 
 impl std::fmt::Debug for RaygineApp {

@@ -34,8 +34,8 @@ fn viewer() -> Viewer {
             )
             .unwrap()
         });
-    h.state_mut().render.target_spp = 1;
-    h.state_mut().render.integrator = IntegratorKind::Direct;
+    h.state_mut().render_prefs_mut().target_spp = 1;
+    h.state_mut().render_prefs_mut().integrator = IntegratorKind::Direct;
     h.run_steps(3);
     h
 }
@@ -52,19 +52,21 @@ fn a_bad_path_from_the_path_window_is_an_error() {
     h.state_mut().finish_loading_blocking(TIMEOUT);
     h.run_steps(2);
     let app = h.state();
-    let error = app.error.clone().expect("no error shown");
+    let error = app.error().map(str::to_owned).expect("no error shown");
     assert!(error.contains("none.shp"), "{error}");
-    assert_eq!(app.doc.path, None, "the built-in scene stays");
+    assert_eq!(app.document().path, None, "the built-in scene stays");
 }
 
 /// Every way of installing a document clears the last error (the built-in box did not).
 #[test]
 fn switching_to_the_builtin_scene_clears_the_error() {
     let mut h = viewer();
-    h.state_mut().error = Some("an earlier failure".to_owned());
+    h.state_mut().apply(raygine::command::Command::Error(
+        "an earlier failure".to_owned(),
+    ));
     h.state_mut().apply(Command::Switch(Switch::Builtin));
     h.run_steps(2);
-    assert_eq!(h.state().error, None);
+    assert_eq!(h.state().error(), None);
 }
 
 /// Pause from the View menu and from the P key are one action: each toggles both the flag and
@@ -78,13 +80,16 @@ fn pause_from_the_menu_and_the_key_agree() {
     h.get_by_role_and_label(Role::Button, "Pause rendering P")
         .click();
     h.run_steps(2);
-    assert!(h.state().paused);
-    assert!(h.state().worker.stats().paused, "the render did not pause");
+    assert!(h.state().paused());
+    assert!(
+        h.state().worker().stats().paused,
+        "the render did not pause"
+    );
     h.key_press(egui::Key::P);
     h.run_steps(2);
-    assert!(!h.state().paused);
+    assert!(!h.state().paused());
     assert!(
-        !h.state().worker.stats().paused,
+        !h.state().worker().stats().paused,
         "the render did not resume"
     );
 }
@@ -99,10 +104,14 @@ fn a_failed_write_is_shown() {
         text: "x".to_owned(),
     });
     let deadline = std::time::Instant::now() + TIMEOUT;
-    while !h.state().writes.is_empty() && std::time::Instant::now() < deadline {
+    while h.state().writing() && std::time::Instant::now() < deadline {
         h.step();
         std::thread::sleep(Duration::from_millis(5));
     }
-    let error = h.state().error.clone().expect("no error shown");
+    let error = h
+        .state()
+        .error()
+        .map(str::to_owned)
+        .expect("no error shown");
     assert!(error.contains("grids.csv"), "{error}");
 }

@@ -41,8 +41,8 @@ fn step_until(h: &mut Viewer, secs: u64, done: impl Fn(&RaygineApp) -> bool) -> 
 
 /// Waits for the denoiser to load; false (skipped) when it is not there.
 fn denoiser_ready(h: &mut Viewer) -> bool {
-    step_until(h, 30, |a| a.denoise.availability != Availability::Loading);
-    match &h.state().denoise.availability {
+    step_until(h, 30, |a| a.denoise().availability != Availability::Loading);
+    match &h.state().denoise().availability {
         Availability::Ready(_) => true,
         other => {
             assert!(
@@ -61,27 +61,27 @@ fn d_flips_the_denoised_picture_without_touching_the_render_or_its_readouts() {
     if !denoiser_ready(&mut h) {
         return;
     }
-    assert!(h.state().denoise.wanted(IntegratorKind::Bidirectional));
-    let shown = step_until(&mut h, 120, |a| a.worker.denoised_shown().is_some());
+    assert!(h.state().denoise().wanted(IntegratorKind::Bidirectional));
+    let shown = step_until(&mut h, 120, |a| a.worker().denoised_shown().is_some());
     assert!(shown, "no denoised picture after 120 s");
     assert!(
         h.query_by_label("denoised display · readouts unbiased")
             .is_some()
     );
-    let generation = h.state().worker.generation();
+    let generation = h.state().worker().generation();
     let sums = |h: &Viewer| {
         h.state()
-            .worker
+            .worker()
             .with_film(|f| f.map(|f| f.accum.pixels.clone()))
             .unwrap()
     };
     // Let the render finish, so the sums stand still while the toggle is flipped.
-    assert!(step_until(&mut h, 120, |a| a.worker.stats().finished));
+    assert!(step_until(&mut h, 120, |a| a.worker().stats().finished));
     let before = sums(&h);
     h.key_press(egui::Key::D);
     h.run_steps(3);
     assert!(
-        h.state().worker.denoised_shown().is_none(),
+        h.state().worker().denoised_shown().is_none(),
         "D did not show the raw picture"
     );
     assert!(
@@ -89,46 +89,48 @@ fn d_flips_the_denoised_picture_without_touching_the_render_or_its_readouts() {
             .is_none()
     );
     assert_eq!(
-        h.state().worker.generation(),
+        h.state().worker().generation(),
         generation,
         "D restarted the render"
     );
     assert_eq!(sums(&h), before, "the toggle changed the film's sums");
     h.key_press(egui::Key::D);
     assert!(step_until(&mut h, 60, |a| a
-        .worker
+        .worker()
         .denoised_shown()
         .is_some()));
-    assert_eq!(h.state().worker.generation(), generation);
+    assert_eq!(h.state().worker().generation(), generation);
     assert_eq!(sums(&h), before);
     // Direct mode starts with the toggle off.
-    assert!(!h.state().denoise.wanted(IntegratorKind::Direct));
+    assert!(!h.state().denoise().wanted(IntegratorKind::Direct));
 }
 
 #[test]
 fn without_the_library_the_toggle_is_disabled_and_says_why() {
     let mut h = viewer();
     step_until(&mut h, 30, |a| {
-        a.denoise.availability != Availability::Loading
+        a.denoise().availability != Availability::Loading
     });
     // As a machine without the library would have it (whatever this one has).
-    h.state_mut().denoise.availability =
-        Availability::Unavailable("not found (tried libOpenImageDenoise.so.2)".to_owned());
+    h.state_mut()
+        .set_denoiser_availability(Availability::Unavailable(
+            "not found (tried libOpenImageDenoise.so.2)".to_owned(),
+        ));
     h.run_steps(3);
     assert!(
         h.query_by_label_contains("denoise unavailable: not found")
             .is_some(),
         "no reason shown"
     );
-    let wanted = h.state().denoise.wanted(IntegratorKind::Bidirectional);
+    let wanted = h.state().denoise().wanted(IntegratorKind::Bidirectional);
     h.key_press(egui::Key::D);
     h.run_steps(2);
     assert_eq!(
-        h.state().denoise.wanted(IntegratorKind::Bidirectional),
+        h.state().denoise().wanted(IntegratorKind::Bidirectional),
         wanted,
         "D changed a toggle that cannot work"
     );
-    assert!(h.state().worker.denoised_shown().is_none());
+    assert!(h.state().worker().denoised_shown().is_none());
     // Nothing else changed: the render goes on and shows the raw picture.
-    assert!(step_until(&mut h, 60, |a| a.picture_drawn));
+    assert!(step_until(&mut h, 60, |a| a.picture_drawn()));
 }

@@ -42,13 +42,13 @@ fn step_until(h: &mut Viewer, what: &str, done: impl Fn(&RaygineApp) -> bool) {
 /// has a second sample.
 fn ceiling_band_of_the_preview(integrator: IntegratorKind) -> f64 {
     let mut h = viewer(integrator, 64, 0.5);
-    let g = h.state().worker.generation();
+    let g = h.state().worker().generation();
     assert!(g >= 1, "no render started");
     step_until(&mut h, "the previews", |a| {
-        let s = a.worker.stats();
+        let s = a.worker().stats();
         s.generation >= g && s.passes_done >= 2 && s.pass_fraction > 0.3
     });
-    let (band, spp) = h.state().worker.with_film(|f| {
+    let (band, spp) = h.state().worker().with_film(|f| {
         let f = f.expect("a film");
         let (w, rows) = (f.width() as usize, (f.height() / 6) as usize);
         let sum: f64 = (0..w * rows)
@@ -77,20 +77,20 @@ fn bidirectional_previews_show_the_light_a_path_traced_preview_misses() {
 #[test]
 fn status_figures_advance_within_one_pass() {
     let mut h = viewer(IntegratorKind::Bidirectional, 64, 1.0);
-    let g = h.state().worker.generation();
+    let g = h.state().worker().generation();
     assert!(g >= 1, "no render started");
     let in_first_full = |a: &RaygineApp| {
-        let s = a.worker.stats();
+        let s = a.worker().stats();
         s.generation >= g && s.pass == "sample 1" && s.pass_fraction > 0.01
     };
     step_until(&mut h, "the first full pass", in_first_full);
-    let a = h.state().worker.stats();
+    let a = h.state().worker().stats();
     std::thread::sleep(Duration::from_millis(300));
     step_until(&mut h, "progress", |app| {
-        let s = app.worker.stats();
+        let s = app.worker().stats();
         s.pass == "sample 1" && s.pass_fraction > a.pass_fraction + 0.01
     });
-    let b = h.state().worker.stats();
+    let b = h.state().worker().stats();
     assert_eq!(b.samples_per_pixel, 0, "{b:?}");
     assert!(b.elapsed_secs > a.elapsed_secs, "{a:?} → {b:?}");
     assert!(b.samples_done() > a.samples_done(), "{a:?} → {b:?}");
@@ -141,15 +141,15 @@ fn open(h: &mut Viewer, path: &Path) {
     h.state_mut().open_path(path);
     h.state_mut().finish_loading_blocking(TIMEOUT);
     h.run_steps(1);
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
 }
 
 /// Waits until the current scene's exposure is settled and its first full pass shown.
 fn first_full_pass(h: &mut Viewer) {
-    let g = h.state().worker.generation();
+    let g = h.state().worker().generation();
     step_until(h, "the first full pass", |a| {
-        let s = a.worker.stats();
-        s.generation >= g && s.samples_per_pixel >= 1 && a.exposure.held()
+        let s = a.worker().stats();
+        s.generation >= g && s.samples_per_pixel >= 1 && a.exposure_held()
     });
 }
 
@@ -160,16 +160,16 @@ fn exposure_is_set_on_first_view_held_while_editing_and_kept_per_scene() {
     // The box: automatic, from its first full pass, mapping its median surface to middle grey.
     let app = h.state();
     let box_key = scene_key(None);
-    let box_stops = app.display.exposure_stops;
+    let box_stops = app.display().exposure_stops;
     assert_eq!(
-        app.prefs.exposures.get(&box_key),
+        app.prefs().exposures.get(&box_key),
         Some(&SceneExposure {
             stops: box_stops,
             by_user: false
         })
     );
     let median_now = app
-        .worker
+        .worker()
         .with_film(|f| f.and_then(median_exposure_stops))
         .unwrap();
     assert!(
@@ -178,14 +178,14 @@ fn exposure_is_set_on_first_view_held_while_editing_and_kept_per_scene() {
     );
 
     // Editing restarts the render; the exposure holds.
-    let light = h.state().doc.setup.lights[0].position;
-    h.state_mut().doc.setup.lights[0].position = [light[0] + 80.0, light[1] - 150.0, light[2]];
-    let g = h.state().worker.generation();
+    let light = h.state().document().setup.lights[0].position;
+    h.state_mut().setup_mut().lights[0].position = [light[0] + 80.0, light[1] - 150.0, light[2]];
+    let g = h.state().worker().generation();
     step_until(&mut h, "the edit's render", |a| {
-        let s = a.worker.stats();
+        let s = a.worker().stats();
         s.generation > g && s.finished
     });
-    assert_eq!(h.state().display.exposure_stops, box_stops);
+    assert_eq!(h.state().display().exposure_stops, box_stops);
 
     // Another scene: its own first view.
     let dir = scratch_dir("per-scene");
@@ -195,15 +195,15 @@ fn exposure_is_set_on_first_view_held_while_editing_and_kept_per_scene() {
     open(&mut h, &a_path);
     first_full_pass(&mut h);
     let a_key = scene_key(Some(&a_path));
-    let a_auto = h.state().prefs.exposures[&a_key];
+    let a_auto = h.state().prefs().exposures[&a_key];
     assert!(!a_auto.by_user);
-    assert_eq!(a_auto.stops, h.state().display.exposure_stops);
+    assert_eq!(a_auto.stops, h.state().display().exposure_stops);
     // The user's own exposure for it wins.
     let mine = a_auto.stops + 1.75;
-    h.state_mut().display.exposure_stops = mine;
+    h.state_mut().display_mut().exposure_stops = mine;
     h.run_steps(2);
     assert_eq!(
-        h.state().prefs.exposures[&a_key],
+        h.state().prefs().exposures[&a_key],
         SceneExposure {
             stops: mine,
             by_user: true
@@ -214,14 +214,14 @@ fn exposure_is_set_on_first_view_held_while_editing_and_kept_per_scene() {
     first_full_pass(&mut h);
     assert!(
         h.state()
-            .prefs
+            .prefs()
             .exposures
             .contains_key(&scene_key(Some(&b_path)))
     );
     open(&mut h, &a_path);
-    assert_eq!(h.state().display.exposure_stops, mine);
+    assert_eq!(h.state().display().exposure_stops, mine);
     first_full_pass(&mut h);
     h.run_steps(3);
-    assert_eq!(h.state().display.exposure_stops, mine);
-    assert_eq!(h.state().prefs.exposures[&box_key].stops, box_stops);
+    assert_eq!(h.state().display().exposure_stops, mine);
+    assert_eq!(h.state().prefs().exposures[&box_key].stops, box_stops);
 }

@@ -32,8 +32,8 @@ fn box_viewer(
             )
             .expect("the app starts")
         });
-    h.state_mut().render.integrator = integrator;
-    h.state_mut().render.target_spp = target_spp;
-    h.state_mut().render.resolution_scale = scale;
+    h.state_mut().render_prefs_mut().integrator = integrator;
+    h.state_mut().render_prefs_mut().target_spp = target_spp;
+    h.state_mut().render_prefs_mut().resolution_scale = scale;
     h
 }

@@ -49,7 +49,7 @@ fn drag_with(h: &mut Viewer, from: Pos2, by: Vec2, modifiers: Modifiers) {
 #[test]
 fn drags_move_lengths_by_the_scenes_size_and_shift_is_fine() {
     let mut h = viewer();
-    let x0 = h.state().doc.setup.lights[0].position[0];
+    let x0 = h.state().document().setup.lights[0].position[0];
     let field = h
         .get_by_role_and_label(Role::SpinButton, "light x (mm)")
         .rect();
@@ -59,7 +59,7 @@ fn drags_move_lengths_by_the_scenes_size_and_shift_is_fine() {
         Vec2::new(30.0, 0.0),
         Modifiers::NONE,
     );
-    let x1 = h.state().doc.setup.lights[0].position[0];
+    let x1 = h.state().document().setup.lights[0].position[0];
     assert!(
         (25.0..=60.0).contains(&(x1 - x0)),
         "30 points moved the light {} mm",
@@ -71,19 +71,19 @@ fn drags_move_lengths_by_the_scenes_size_and_shift_is_fine() {
         Vec2::new(30.0, 0.0),
         Modifiers::SHIFT,
     );
-    let x2 = h.state().doc.setup.lights[0].position[0];
+    let x2 = h.state().document().setup.lights[0].position[0];
     assert!(
         (2.5..=6.0).contains(&(x2 - x1)),
         "30 points with Shift moved the light {} mm",
         x2 - x1
     );
 
-    let fov0 = h.state().doc.setup.camera.fov_deg;
+    let fov0 = h.state().document().setup.camera.fov_deg;
     let fov = h
         .get_by_role_and_label(Role::SpinButton, "field of view (°)")
         .rect();
     drag_with(&mut h, fov.center(), Vec2::new(28.0, 0.0), Modifiers::NONE);
-    let fov1 = h.state().doc.setup.camera.fov_deg;
+    let fov1 = h.state().document().setup.camera.fov_deg;
     assert!(
         (4.0..=8.0).contains(&(fov1 - fov0)),
         "28 points moved the field of view from {fov0}° to {fov1}°"
@@ -103,7 +103,7 @@ fn rest(h: &mut Viewer) {
 #[test]
 fn camera_moves_undo_one_gesture_at_a_time_and_reset_camera_returns_home() {
     let mut h = viewer();
-    let home = h.state().doc.setup.camera;
+    let home = h.state().document().setup.camera;
     let view = h.get_by_label("viewport").rect();
 
     drag_with(
@@ -112,7 +112,7 @@ fn camera_moves_undo_one_gesture_at_a_time_and_reset_camera_returns_home() {
         Vec2::new(60.0, 20.0),
         Modifiers::NONE,
     );
-    let orbited = h.state().doc.setup.camera;
+    let orbited = h.state().document().setup.camera;
     assert_ne!(orbited.position, home.position, "the drag did not orbit");
 
     drag_with(
@@ -121,7 +121,7 @@ fn camera_moves_undo_one_gesture_at_a_time_and_reset_camera_returns_home() {
         Vec2::new(30.0, 0.0),
         Modifiers::SHIFT,
     );
-    let panned = h.state().doc.setup.camera;
+    let panned = h.state().document().setup.camera;
     assert_ne!(panned.look_at, orbited.look_at, "Shift+drag did not pan");
 
     h.hover_at(view.center());
@@ -136,13 +136,13 @@ fn camera_moves_undo_one_gesture_at_a_time_and_reset_camera_returns_home() {
         h.step();
     }
     rest(&mut h);
-    let dollied = h.state().doc.setup.camera;
+    let dollied = h.state().document().setup.camera;
     assert_ne!(dollied.position, panned.position, "the wheel did not dolly");
 
     let undo = |h: &mut Viewer| {
         h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
         h.step();
-        h.state().doc.setup.camera
+        h.state().document().setup.camera
     };
     assert_eq!(
         undo(&mut h),
@@ -159,14 +159,14 @@ fn camera_moves_undo_one_gesture_at_a_time_and_reset_camera_returns_home() {
         Vec2::new(-80.0, 0.0),
         Modifiers::NONE,
     );
-    assert_ne!(h.state().doc.setup.camera, home);
+    assert_ne!(h.state().document().setup.camera, home);
     h.get_by_label("View").click();
     h.run_steps(2);
     h.get_by_role_and_label(Role::Button, "Reset camera Home")
         .click();
     h.run_steps(2);
     assert_eq!(
-        h.state().doc.setup.camera,
+        h.state().document().setup.camera,
         home,
         "Reset camera did not return home"
     );
@@ -175,7 +175,7 @@ fn camera_moves_undo_one_gesture_at_a_time_and_reset_camera_returns_home() {
     h.key_press(egui::Key::Home);
     h.run_steps(2);
     assert_eq!(
-        h.state().doc.setup.camera,
+        h.state().document().setup.camera,
         home,
         "Home did not reset the camera"
     );
@@ -186,7 +186,7 @@ fn camera_moves_undo_one_gesture_at_a_time_and_reset_camera_returns_home() {
 #[test]
 fn orbit_turns_about_the_surface_point_under_the_cursor() {
     let mut h = viewer();
-    let before = h.state().doc.setup.camera;
+    let before = h.state().document().setup.camera;
     let view = h.get_by_label("viewport").rect();
     // The left (red) wall, well off the view's axis.
     let from = view.lerp_inside(Vec2::new(0.1, 0.5));
@@ -195,14 +195,14 @@ fn orbit_turns_about_the_surface_point_under_the_cursor() {
     h.step();
     h.hover_at(from + Vec2::new(20.0, 0.0));
     h.step();
-    let pivot = h.state().orbit_pivot.expect("no pivot while orbiting");
+    let pivot = h.state().orbit_pivot().expect("no pivot while orbiting");
     let look_at = glam::Vec3::from(before.look_at);
     assert!(
         pivot.distance(look_at) > 50.0,
         "the pivot {pivot} is the look-at point {look_at}"
     );
     // The box is drawn left-handed: its red wall, on the left of the picture, is at x = 556.
-    let b = h.state().doc.scene.bounds;
+    let b = h.state().document().scene.bounds;
     assert!(
         (pivot.x - b.min.x).abs().min((pivot.x - b.max.x).abs()) < 30.0,
         "the pivot {pivot} is not on the left wall"
@@ -214,10 +214,10 @@ fn orbit_turns_about_the_surface_point_under_the_cursor() {
     h.drop_at(from + Vec2::new(80.0, 0.0));
     h.step();
     assert!(
-        h.state().orbit_pivot.is_none(),
+        h.state().orbit_pivot().is_none(),
         "the pivot outlives the drag"
     );
-    let after = h.state().doc.setup.camera;
+    let after = h.state().document().setup.camera;
     let eye = |c: &tracer_core::scene::Camera| glam::Vec3::from(c.position);
     assert!(
         (eye(&after).distance(pivot) - eye(&before).distance(pivot)).abs()
@@ -287,9 +287,9 @@ fn the_notes_window_lists_every_warning_with_file_and_line() {
     h.state_mut().open_path(&scene);
     h.state_mut().finish_loading_blocking(TIMEOUT);
     h.run_steps(2);
-    let notes = h.state().doc.warnings.clone();
+    let notes = h.state().document().warnings.clone();
     assert!(notes.len() >= 7, "{notes:?}");
-    let notice = h.state().notice.clone().unwrap_or_default();
+    let notice = h.state().notice().map(str::to_owned).unwrap_or_default();
     assert!(notice.contains("View > Notes"), "{notice}");
     assert!(!notice.contains("terminal"), "{notice}");
     assert!(
@@ -359,19 +359,19 @@ fn adding_a_luminaire_near_a_surface_warns_at_once_naming_the_light() {
     let mut h = viewer();
     let ies = scratch_dir("near").join("down.ies");
     std::fs::write(&ies, DOWN_IES).unwrap();
-    h.state_mut().panels.luminaire_path = ies.display().to_string();
+    h.state_mut().set_luminaire_path(&ies.display().to_string());
     h.step();
     h.get_by_role_and_label(Role::Button, "Add luminaire")
         .click();
     step_until(&mut h, "the luminaire", |app| {
-        app.doc.setup.lights.len() == 2
+        app.document().setup.lights.len() == 2
     });
-    let notice = h.state().notice.clone().unwrap_or_default();
+    let notice = h.state().notice().map(str::to_owned).unwrap_or_default();
     assert!(
         notice.starts_with("Light 2: a surface is") && notice.contains("point source"),
         "{notice}"
     );
-    assert!(h.state().doc.warnings.contains(&notice));
+    assert!(h.state().document().warnings.contains(&notice));
     // Its polar diagram names both planes and the peak, in cd.
     h.run_steps(2);
     assert!(h.query_by_label_contains("C0-C180").is_some());
@@ -380,7 +380,7 @@ fn adding_a_luminaire_near_a_surface_warns_at_once_naming_the_light() {
     // One undo takes the luminaire away again.
     h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
     h.step();
-    assert_eq!(h.state().doc.setup.lights.len(), 1);
+    assert_eq!(h.state().document().setup.lights.len(), 1);
 }
 
 /// A saved sidecar has no float noise and names a luminaire beside it by a relative path, so
@@ -397,19 +397,19 @@ fn the_saved_sidecar_is_tidy_and_its_luminaire_path_relative() {
     h.state_mut().open_path(&scene);
     h.state_mut().finish_loading_blocking(TIMEOUT);
     h.step();
-    h.state_mut().panels.luminaire_path = ies.display().to_string();
+    h.state_mut().set_luminaire_path(&ies.display().to_string());
     h.step();
     h.get_by_role_and_label(Role::Button, "Add luminaire")
         .click();
     step_until(&mut h, "the luminaire", |app| {
-        app.doc.setup.lights.len() == 2
+        app.document().setup.lights.len() == 2
     });
     // A value with f32 noise, and a negative zero, as edits leave them.
-    h.state_mut().doc.setup.materials[0].kd = [0.630_000_3, 0.065_000_004, 0.049_999_982];
-    h.state_mut().doc.setup.lights[1].position[0] = -0.0;
+    h.state_mut().setup_mut().materials[0].kd = [0.630_000_3, 0.065_000_004, 0.049_999_982];
+    h.state_mut().setup_mut().lights[1].position[0] = -0.0;
     h.key_press_modifiers(Modifiers::COMMAND, egui::Key::S);
     h.step();
-    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
+    step_until(&mut h, "the sidecar write", |app| !app.writing());
     let text = std::fs::read_to_string(dir.join("floor.raygine.toml")).unwrap();
     assert!(text.contains("file = \"lamps/down.ies\""), "{text}");
     assert!(text.contains("kd = [0.63, 0.065, 0.05]"), "{text}");
@@ -428,23 +428,23 @@ fn a_saved_box_sidecar_opens_in_the_viewer() {
     let mut h = viewer();
     let dir = scratch_dir("box-sidecar");
     let path = dir.join("my_box.raygine.toml");
-    h.state_mut().doc.setup.camera.fov_deg = 25.0;
-    h.state_mut().doc.setup.lights[0].intensity_cd = 321.0;
-    let ctx = h.state().ctx.clone();
+    h.state_mut().setup_mut().camera.fov_deg = 25.0;
+    h.state_mut().setup_mut().lights[0].intensity_cd = 321.0;
+    let ctx = h.state().context().clone();
     h.state_mut().save_sidecar(&ctx, path.clone());
-    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
+    step_until(&mut h, "the sidecar write", |app| !app.writing());
     // Back to the plain box, then open the saved settings.
     h.state_mut().request(raygine::unsaved::Switch::Builtin);
     h.run_steps(2);
-    assert_eq!(h.state().doc.setup.lights[0].intensity_cd, 100.0);
+    assert_eq!(h.state().document().setup.lights[0].intensity_cd, 100.0);
     h.state_mut().open_path(&path);
     h.state_mut().finish_loading_blocking(TIMEOUT);
     h.run_steps(2);
     let app = h.state();
-    assert!(app.error.is_none(), "{:?}", app.error);
-    assert_eq!(app.doc.path, None, "the box has no scene file");
-    assert_eq!(app.doc.setup.camera.fov_deg, 25.0);
-    assert_eq!(app.doc.setup.lights[0].intensity_cd, 321.0);
+    assert!(app.error().is_none(), "{:?}", app.error());
+    assert_eq!(app.document().path, None, "the box has no scene file");
+    assert_eq!(app.document().setup.camera.fov_deg, 25.0);
+    assert_eq!(app.document().setup.lights[0].intensity_cd, 321.0);
 }
 
 /// A tent 6 units across in an OBJ (millimetres unless told): the panel says it is tiny in mm
@@ -460,7 +460,10 @@ fn a_small_object_offers_another_unit_in_one_click() {
         "tent.obj",
         "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\nv 0 2 0\nf 1 2 3\nf 1 3 4\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n",
     );
-    assert_eq!(h.state().doc.setup.unit, tracer_core::scene::LengthUnit::Mm);
+    assert_eq!(
+        h.state().document().setup.unit,
+        tracer_core::scene::LengthUnit::Mm
+    );
     assert!(
         h.query_by_label_contains("written in m?").is_some(),
         "no unit hint in the panel"
@@ -471,7 +474,10 @@ fn a_small_object_offers_another_unit_in_one_click() {
     h.step();
     h.state_mut().finish_loading_blocking(TIMEOUT);
     h.run_steps(2);
-    assert_eq!(h.state().doc.setup.unit, tracer_core::scene::LengthUnit::M);
+    assert_eq!(
+        h.state().document().setup.unit,
+        tracer_core::scene::LengthUnit::M
+    );
     assert!(h.query_by_label_contains("written in").is_none());
     assert!(h.query_by_label_contains("m across").is_some());
 }
@@ -491,15 +497,15 @@ fn grid_points_inside_objects_are_counted_and_left_out() {
     h.get_by_role_and_label(Role::Button, "Add work plane")
         .click();
     h.step();
-    let mut g = h.state().doc.setup.grids[0].clone();
+    let mut g = h.state().document().setup.grids[0].clone();
     (g.nu, g.nv) = (12, 12);
-    h.state_mut().doc.setup.grids[0] = g;
+    h.state_mut().setup_mut().grids[0] = g;
     step_until(&mut h, "the readings", |app| {
-        app.measure
+        app.measure()
             .readings()
             .is_some_and(|r| r.results.first().is_some_and(|g| g.points.len() == 144))
     });
-    let r = h.state().measure.readings().unwrap().results[0].clone();
+    let r = h.state().measure().readings().unwrap().results[0].clone();
     let buried = r.buried_count();
     assert!(
         (10..=50).contains(&buried),
@@ -551,32 +557,32 @@ fn a_ground_plane_goes_under_a_lone_object() {
         "tent.obj",
         "v -3 1 -3\nv 3 1 -3\nv 3 1 3\nv -3 1 3\nv 0 3 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n",
     );
-    let slots = h.state().doc.scene.slots.len();
+    let slots = h.state().document().scene.slots.len();
     // An edit before, to undo after.
-    h.state_mut().doc.setup.camera.fov_deg = 30.0;
+    h.state_mut().setup_mut().camera.fov_deg = 30.0;
     h.run_steps(2);
     h.get_by_label("View").click();
     h.run_steps(2);
     h.get_by_label("Ground plane").click();
     h.run_steps(3);
     let app = h.state();
-    assert!(app.doc.scene.has_ground());
-    assert_eq!(app.doc.scene.slots.len(), slots + 1);
-    assert_eq!(app.doc.setup.materials.len(), slots + 1);
-    assert_eq!(app.doc.setup.materials[slots].kd, [0.2; 3]);
+    assert!(app.document().scene.has_ground());
+    assert_eq!(app.document().scene.slots.len(), slots + 1);
+    assert_eq!(app.document().setup.materials.len(), slots + 1);
+    assert_eq!(app.document().setup.materials[slots].kd, [0.2; 3]);
     assert!(
-        app.worker.current().unwrap().scene.has_ground(),
+        app.worker().current().unwrap().scene.has_ground(),
         "not rendered"
     );
     assert!(h.query_by_label("ground_plane").is_some(), "not listed");
     // The plane lies under the object: straight down from above its corner, outside it.
-    let b = app.doc.scene.bounds;
+    let b = app.document().scene.bounds;
     let down = tracer_core::geometry::Ray::new(
         glam::Vec3::new(b.max.x + 1.0, b.max.y, b.max.z + 1.0),
         glam::Vec3::NEG_Y,
     );
     let hit = app
-        .doc
+        .document()
         .scene
         .bvh
         .intersect(&down)
@@ -584,11 +590,11 @@ fn a_ground_plane_goes_under_a_lone_object() {
     assert!((b.max.y - hit.t - b.min.y).abs() < 1e-4);
     h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
     h.run_steps(2);
-    assert_eq!(h.state().doc.setup.materials.len(), slots + 1);
-    let ctx = h.state().ctx.clone();
+    assert_eq!(h.state().document().setup.materials.len(), slots + 1);
+    let ctx = h.state().context().clone();
     let side = dir.join("tent.raygine.toml");
     h.state_mut().save_sidecar(&ctx, side.clone());
-    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
+    step_until(&mut h, "the sidecar write", |app| !app.writing());
     assert!(
         !std::fs::read_to_string(&side)
             .unwrap()
@@ -598,6 +604,6 @@ fn a_ground_plane_goes_under_a_lone_object() {
     h.run_steps(2);
     h.get_by_label("Ground plane").click();
     h.run_steps(2);
-    assert!(!h.state().doc.scene.has_ground());
-    assert_eq!(h.state().doc.setup.materials.len(), slots);
+    assert!(!h.state().document().scene.has_ground());
+    assert_eq!(h.state().document().setup.materials.len(), slots);
 }

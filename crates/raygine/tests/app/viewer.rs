@@ -104,10 +104,10 @@ fn viewer() -> (Viewer, TextureMirror) {
             )
             .unwrap()
         });
-    h.state_mut().render.target_spp = TEST_SPP;
+    h.state_mut().render_prefs_mut().target_spp = TEST_SPP;
     // UI mechanics are tested on the cheaper direct mode; `starts_in_global_illumination`
     // covers the default.
-    h.state_mut().render.integrator = IntegratorKind::Direct;
+    h.state_mut().render_prefs_mut().integrator = IntegratorKind::Direct;
     settle(&mut h);
     (h, mirror)
 }
@@ -119,7 +119,7 @@ fn viewer() -> (Viewer, TextureMirror) {
 fn starts_in_global_illumination() {
     let (mut h, _mirror) = viewer();
     let mean = |h: &Viewer| {
-        h.state().worker.with_film(|f| {
+        h.state().worker().with_film(|f| {
             let f = f.unwrap();
             (0..f.accum.pixels.len())
                 .map(|i| f64::from(tracer_core::scene::luminance(f.shown_rgb(i))))
@@ -132,17 +132,17 @@ fn starts_in_global_illumination() {
         IntegratorKind::Bidirectional,
         "a new user gets global illumination (bidirectional)"
     );
-    h.state_mut().render.integrator = IntegratorKind::Bidirectional;
-    h.state_mut().render.target_spp = 1;
+    h.state_mut().render_prefs_mut().integrator = IntegratorKind::Bidirectional;
+    h.state_mut().render_prefs_mut().target_spp = 1;
     settle(&mut h);
     let gi = mean(&h);
     assert!(gi > 1.3 * direct, "GI {gi} vs direct {direct}");
 }
 
 fn render_done(app: &RaygineApp) -> bool {
-    let w = &app.worker;
+    let w = &app.worker();
     let s = w.stats();
-    app.loading.is_none()
+    !app.loading()
         && w.current().is_some()
         && s.finished
         && s.generation == w.generation()
@@ -160,7 +160,7 @@ fn settle(h: &mut Viewer) {
             return;
         }
         assert!(Instant::now() < deadline, "the render did not finish");
-        h.state().worker.wait_finished(Duration::from_millis(20));
+        h.state().worker().wait_finished(Duration::from_millis(20));
         std::thread::sleep(Duration::from_millis(2));
     }
 }
@@ -177,7 +177,7 @@ fn step_until(h: &mut Viewer, what: &str, done: impl Fn(&RaygineApp) -> bool) {
 
 /// The film as shown (linear cd/m² per channel), with its size.
 fn film_rgb(app: &RaygineApp) -> ([usize; 2], Vec<Vec3>) {
-    app.worker
+    app.worker()
         .with_film(|f| {
             let f = f?;
             let n = f.width() as usize * f.height() as usize;
@@ -190,10 +190,10 @@ fn film_rgb(app: &RaygineApp) -> ([usize; 2], Vec<Vec3>) {
 /// The film through the app's current display mapping (and the backdrop), as the texture should
 /// hold it.
 fn expected_texture(app: &RaygineApp) -> ColorImage {
-    assert!(!app.display.auto_exposure && !app.false_colour.enabled);
-    let exposure = app.display.exposure_stops;
-    app.worker
-        .with_film(|f| f.map(|f| texture_rect(f, &app.display, exposure, None, None, None)))
+    assert!(!app.display().auto_exposure && !app.false_colour_on());
+    let exposure = app.display().exposure_stops;
+    app.worker()
+        .with_film(|f| f.map(|f| texture_rect(f, app.display(), exposure, None, None, None)))
         .expect("no film yet")
 }
 
@@ -219,7 +219,7 @@ fn changed_fraction(a: &[Vec3], b: &[Vec3]) -> f64 {
 }
 
 fn light_x(app: &RaygineApp) -> f32 {
-    app.doc.setup.lights[0].position[0]
+    app.document().setup.lights[0].position[0]
 }
 
 /// A directory of its own for one test under cargo's scratch space.
@@ -273,7 +273,12 @@ fn two_brep_scene(floor_triangle: &str) -> String {
 }
 
 fn brep_names(app: &RaygineApp) -> Vec<String> {
-    app.doc.scene.breps.iter().map(|b| b.name.clone()).collect()
+    app.document()
+        .scene
+        .breps
+        .iter()
+        .map(|b| b.name.clone())
+        .collect()
 }
 
 /// Asserts that the side panel lists each brep name.
@@ -290,15 +295,11 @@ fn assert_listed(h: &Viewer, names: &[&str]) {
 fn open(h: &mut Viewer, path: &Path) {
     h.state_mut().open_path(path);
     h.state_mut().finish_loading_blocking(TIMEOUT);
-    assert!(
-        h.state().loading.is_none(),
-        "loading {} hung",
-        path.display()
-    );
-    h.state_mut().render.target_spp = TEST_SPP;
+    assert!(!h.state().loading(), "loading {} hung", path.display());
+    h.state_mut().render_prefs_mut().target_spp = TEST_SPP;
     // UI mechanics are tested on the cheaper direct mode; `starts_in_global_illumination`
     // covers the default.
-    h.state_mut().render.integrator = IntegratorKind::Direct;
+    h.state_mut().render_prefs_mut().integrator = IntegratorKind::Direct;
     settle(h);
 }
 
@@ -336,7 +337,7 @@ fn drag(h: &mut Viewer, from: Pos2, by: Vec2) {
 #[test]
 fn dragging_the_light_slider_restarts_the_render_and_changes_the_film() {
     let (mut h, mirror) = viewer();
-    let generation = h.state().worker.generation();
+    let generation = h.state().worker().generation();
     let x0 = light_x(h.state());
     let (size, before) = film_rgb(h.state());
     assert_eq!(mirror.film(size).pixels, expected_texture(h.state()).pixels);
@@ -352,8 +353,8 @@ fn dragging_the_light_slider_restarts_the_render_and_changes_the_film() {
 
     settle(&mut h);
     let app = h.state();
-    assert!(app.worker.generation() > generation, "no new generation");
-    let key = app.worker.current().unwrap();
+    assert!(app.worker().generation() > generation, "no new generation");
+    let key = app.worker().current().unwrap();
     assert_eq!(key.setup.lights[0].position[0], x1, "renders a stale light");
     let (size_after, after) = film_rgb(app);
     assert_eq!(size, size_after);
@@ -370,7 +371,7 @@ fn dragging_the_light_slider_restarts_the_render_and_changes_the_film() {
 #[test]
 fn exposure_remaps_the_texture_without_restarting() {
     let (mut h, mirror) = viewer();
-    let generation = h.state().worker.generation();
+    let generation = h.state().worker().generation();
     let (size, film_before) = film_rgb(h.state());
     let texture_before = mirror.film(size);
 
@@ -379,13 +380,13 @@ fn exposure_remaps_the_texture_without_restarting() {
     h.run_steps(3);
 
     let app = h.state();
-    assert_eq!(app.display.exposure_stops, 2.0);
+    assert_eq!(app.display().exposure_stops, 2.0);
     assert_eq!(
-        app.worker.generation(),
+        app.worker().generation(),
         generation,
         "exposure restarted the render"
     );
-    assert!(app.worker.stats().finished);
+    assert!(app.worker().stats().finished);
     assert_eq!(film_rgb(app).1, film_before, "the film changed");
     let texture_after = mirror.film(size);
     assert_ne!(texture_after.pixels, texture_before.pixels, "no re-map");
@@ -401,7 +402,7 @@ fn opening_a_scene_by_typed_path_lists_its_breps() {
     h.key_press_modifiers(Modifiers::COMMAND, Key::O);
     h.step();
     assert!(
-        h.state().prompt.is_some(),
+        h.state().prompt().is_some(),
         "Ctrl+O did not open the path window"
     );
     let field = h.get_by_role_and_label(Role::TextInput, "Path:");
@@ -410,13 +411,13 @@ fn opening_a_scene_by_typed_path_lists_its_breps() {
     h.step();
     h.get_by_role_and_label(Role::Button, "Open").click();
     h.step();
-    step_until(&mut h, "the scene to load", |app| app.loading.is_none());
+    step_until(&mut h, "the scene to load", |app| !app.loading());
     h.step();
 
     let app = h.state();
-    assert!(app.error.is_none(), "{:?}", app.error);
-    assert!(app.prompt.is_none(), "the path window stayed open");
-    assert_eq!(app.doc.path.as_deref(), Some(path.as_path()));
+    assert!(app.error().is_none(), "{:?}", app.error());
+    assert!(app.prompt().is_none(), "the path window stayed open");
+    assert_eq!(app.document().path.as_deref(), Some(path.as_path()));
     assert_eq!(brep_names(app), ["floor", "lamp_shade"]);
     assert_listed(&h, &["floor", "lamp_shade"]);
     assert!(
@@ -446,8 +447,8 @@ fn a_broken_file_shows_an_error_and_keeps_the_scene() {
     let good = dir.join("two_breps.shp");
     std::fs::write(&good, two_brep_scene("0 2 3")).unwrap();
     open(&mut h, &good);
-    let scene = Arc::clone(&h.state().doc.scene);
-    let generation = h.state().worker.generation();
+    let scene = Arc::clone(&h.state().document().scene);
+    let generation = h.state().worker().generation();
 
     let broken = dir.join("broken.shp");
     let text = two_brep_scene("0 2 7");
@@ -458,7 +459,7 @@ fn a_broken_file_shows_an_error_and_keeps_the_scene() {
     h.step();
 
     let app = h.state();
-    let error = app.error.as_deref().expect("no error shown");
+    let error = app.error().expect("no error shown");
     assert!(
         error.contains("broken.shp"),
         "error without the file: {error}"
@@ -472,12 +473,16 @@ fn a_broken_file_shows_an_error_and_keeps_the_scene() {
         "error without the cause: {error}"
     );
     assert!(
-        Arc::ptr_eq(&app.doc.scene, &scene),
+        Arc::ptr_eq(&app.document().scene, &scene),
         "the scene was replaced"
     );
-    assert_eq!(app.doc.path.as_deref(), Some(good.as_path()));
+    assert_eq!(app.document().path.as_deref(), Some(good.as_path()));
     assert_eq!(brep_names(app), ["floor", "lamp_shade"]);
-    assert_eq!(app.worker.generation(), generation, "the render restarted");
+    assert_eq!(
+        app.worker().generation(),
+        generation,
+        "the render restarted"
+    );
     assert_listed(&h, &["floor", "lamp_shade"]);
 }
 
@@ -494,9 +499,9 @@ fn opening_the_integra_room_lists_its_twenty_materials() {
     h.step();
     h.step();
     let app = h.state();
-    assert!(app.error.is_none(), "{:?}", app.error);
-    assert_eq!(app.doc.scene.slots.len(), 20);
-    assert_eq!(app.doc.setup.lights.len(), 9);
+    assert!(app.error().is_none(), "{:?}", app.error());
+    assert_eq!(app.document().scene.slots.len(), 20);
+    assert_eq!(app.document().setup.lights.len(), 9);
     // Each part with its .atr attribute (the material's name in the bundle) beside it.
     let parts: Vec<String> = (1..=20)
         .map(|i| format!("proom2_{i:04} · a{i:06}"))
@@ -509,7 +514,7 @@ fn opening_the_integra_room_lists_its_twenty_materials() {
     h.get_by_role_and_label(Role::TextInput, "filter")
         .type_text("a000003");
     h.run_steps(2);
-    assert_eq!(h.state().panels.part_filter, "a000003");
+    assert_eq!(h.state().part_filter(), "a000003");
     assert!(h.query_by_label("proom2_0003 · a000003").is_some());
     assert!(h.query_by_label("proom2_0004 · a000004").is_none());
 }
@@ -521,7 +526,7 @@ fn a_broken_integra_bundle_shows_file_and_line_and_keeps_the_scene() {
     let good = dir.join("two_breps.shp");
     std::fs::write(&good, two_brep_scene("0 2 3")).unwrap();
     open(&mut h, &good);
-    let scene = Arc::clone(&h.state().doc.scene);
+    let scene = Arc::clone(&h.state().document().scene);
 
     let room = dir.join("room.shp");
     std::fs::write(&room, two_brep_scene("0 2 3")).unwrap();
@@ -532,14 +537,14 @@ fn a_broken_integra_bundle_shows_file_and_line_and_keeps_the_scene() {
     h.step();
 
     let app = h.state();
-    let error = app.error.as_deref().expect("no error shown");
+    let error = app.error().expect("no error shown");
     assert!(error.contains("room.atr:2: kd"), "{error}");
     assert!(!error.contains('\n'), "not one line: {error}");
     assert!(
-        Arc::ptr_eq(&app.doc.scene, &scene),
+        Arc::ptr_eq(&app.document().scene, &scene),
         "the scene was replaced"
     );
-    assert_eq!(app.doc.path.as_deref(), Some(good.as_path()));
+    assert_eq!(app.document().path.as_deref(), Some(good.as_path()));
 }
 
 #[test]
@@ -552,18 +557,18 @@ fn exported_png_matches_an_independent_render() {
     settle(&mut h);
 
     let path = scratch_dir("export").join("view.png");
-    let ctx = h.state().ctx.clone();
+    let ctx = h.state().context().clone();
     h.state_mut().export_png(&ctx, path.clone());
-    step_until(&mut h, "the PNG write", |app| app.writes.is_empty());
+    step_until(&mut h, "the PNG write", |app| !app.writing());
     let app = h.state();
-    assert!(app.error.is_none(), "{:?}", app.error);
-    let notice = app.notice.as_deref().unwrap_or_default();
+    assert!(app.error().is_none(), "{:?}", app.error());
+    let notice = app.notice().unwrap_or_default();
     assert!(notice.contains("view.png"), "notice: {notice}");
 
-    let key = app.worker.current().unwrap().clone();
+    let key = app.worker().current().unwrap().clone();
     assert_eq!(key.settings.samples_per_pixel, TEST_SPP);
     let (film, _) = tracer_core::render::render(&key.scene, &key.setup, &key.settings);
-    let expected = app.display.map_film(&film);
+    let expected = app.display().map_film(&film);
     let png = image::open(&path).unwrap().to_rgba8();
     assert_eq!(
         [png.width(), png.height()],
@@ -589,7 +594,7 @@ fn undo_and_redo_restore_the_light_position() {
     h.step();
     assert_eq!(light_x(h.state()), x0, "Ctrl+Z did not restore the light");
     settle(&mut h);
-    let current = h.state().worker.current().unwrap();
+    let current = h.state().worker().current().unwrap();
     assert_eq!(
         current.setup.lights[0].position[0], x0,
         "renders the undone light"
@@ -619,16 +624,16 @@ fn undo_and_redo_restore_the_light_position() {
 #[test]
 fn clicking_the_left_wall_selects_its_red_material() {
     let (mut h, _mirror) = viewer();
-    assert_eq!(h.state().selected_slot, None);
+    assert_eq!(h.state().selected_slot(), None);
     let view = h.get_by_label("viewport").rect();
     // The red wall fills the left part of the picture between the opening and the back wall.
     click_at(&mut h, view.lerp_inside(Vec2::new(0.15, 0.5)));
 
     let app = h.state();
-    let slot = app.selected_slot.expect("the click selected nothing");
-    let label = app.doc.scene.slot_label(slot);
+    let slot = app.selected_slot().expect("the click selected nothing");
+    let label = app.document().scene.slot_label(slot);
     assert!(label.starts_with("red_wall"), "selected {label}");
-    let kd = app.doc.setup.materials[slot as usize].kd;
+    let kd = app.document().setup.materials[slot as usize].kd;
     assert!(kd[0] > 4.0 * kd[1], "not a red material: {kd:?}");
     h.step();
     assert!(
@@ -640,20 +645,24 @@ fn clicking_the_left_wall_selects_its_red_material() {
 #[test]
 fn orbit_then_f_frames_the_scene() {
     let (mut h, _mirror) = viewer();
-    let start = h.state().doc.setup.camera;
+    let start = h.state().document().setup.camera;
     let view = h.get_by_label("viewport").rect();
     drag(&mut h, view.center(), Vec2::new(120.0, 40.0));
-    let orbited = h.state().doc.setup.camera;
+    let orbited = h.state().document().setup.camera;
     assert_ne!(orbited, start, "dragging the viewport did not orbit");
-    assert_eq!(h.state().selected_slot, None, "a drag is not a click");
+    assert_eq!(h.state().selected_slot(), None, "a drag is not a click");
 
     h.key_press(Key::F);
     h.step();
     let app = h.state();
-    let framed = framing_camera(&app.doc.scene, orbited.fov_deg);
-    assert_eq!(app.doc.setup.camera, framed, "F did not frame the scene");
+    let framed = framing_camera(&app.document().scene, orbited.fov_deg);
+    assert_eq!(
+        app.document().setup.camera,
+        framed,
+        "F did not frame the scene"
+    );
     settle(&mut h);
-    let current = h.state().worker.current().unwrap();
+    let current = h.state().worker().current().unwrap();
     assert_eq!(current.setup.camera, framed, "renders a stale camera");
 }
 
@@ -719,44 +728,41 @@ fn render_image_job_writes_the_chosen_size() {
     let (mut h, _mirror) = viewer();
     settle(&mut h);
     let path = scratch_dir("render-image").join("big.png");
-    h.state_mut().render_image_form = Some(raygine::app::RenderImageForm {
-        width: 200,
-        height: 120,
-        samples: 3,
-        path: path.display().to_string(),
-    });
+    h.state_mut()
+        .fill_render_image_form(raygine::app::RenderImageForm {
+            width: 200,
+            height: 120,
+            samples: 3,
+            path: path.display().to_string(),
+        });
     // The form and the help window draw (every glyph in them must exist in the fonts).
-    h.state_mut().show_help = true;
+    h.state_mut().show_help();
     h.step();
     h.state_mut().start_render_image(path.clone());
     assert!(
-        h.state().render_image_job.is_some(),
+        h.state().rendering_image(),
         "the job runs in the background"
     );
     step_until(&mut h, "the render-image job and its write", |app| {
-        app.render_image_job.is_none() && app.writes.is_empty()
+        !app.rendering_image() && !app.writing()
     });
     let app = h.state();
-    assert!(app.error.is_none(), "{:?}", app.error);
-    assert!(
-        app.notice
-            .as_deref()
-            .unwrap_or_default()
-            .contains("big.png")
-    );
+    assert!(app.error().is_none(), "{:?}", app.error());
+    assert!(app.notice().unwrap_or_default().contains("big.png"));
     let png = image::open(&path).unwrap().to_rgba8();
     assert_eq!([png.width(), png.height()], [200, 120]);
     let settings = tracer_core::render::RenderSettings {
         width: 200,
         height: 120,
         samples_per_pixel: 3,
-        max_depth: app.render.max_depth,
-        integrator: app.render.integrator,
+        max_depth: app.render_prefs().max_depth,
+        integrator: app.render_prefs().integrator,
         max_bounces: None,
         pixel_illuminance: true,
         guides: false,
     };
-    let (film, _) = tracer_core::render::render(&app.doc.scene, &app.doc.setup, &settings);
+    let (film, _) =
+        tracer_core::render::render(&app.document().scene, &app.document().setup, &settings);
     let expected = app.effective_display().map_film(&film);
     let worst = max_code_diff(png.as_raw(), &expected);
     assert_eq!(
@@ -782,14 +788,13 @@ fn adding_a_luminaire_from_a_typed_path() {
     h.step();
     assert!(
         h.state()
-            .error
-            .as_deref()
+            .error()
             .unwrap_or_default()
             .contains("type the path"),
         "{:?}",
-        h.state().error
+        h.state().error()
     );
-    let generation = h.state().worker.generation();
+    let generation = h.state().worker().generation();
     let field = h.get_by_role_and_label(Role::TextInput, "luminaire file");
     field.focus();
     field.type_text(&path.display().to_string());
@@ -798,16 +803,19 @@ fn adding_a_luminaire_from_a_typed_path() {
         .click();
     h.run_steps(3);
     let app = h.state();
-    assert!(app.error.is_none(), "{:?}", app.error);
+    assert!(app.error().is_none(), "{:?}", app.error());
     let lum = app
-        .doc
+        .document()
         .setup
         .lights
         .iter()
         .find(|l| l.kind == tracer_core::scene::LightKind::Luminaire)
         .expect("a luminaire");
     assert!((lum.flux_lm() - 628.3).abs() < 1.0, "{}", lum.flux_lm());
-    assert!(app.worker.generation() > generation, "the render restarted");
+    assert!(
+        app.worker().generation() > generation,
+        "the render restarted"
+    );
     assert!(h.query_by_label_contains("flux 628 lm").is_some());
 }
 
@@ -836,25 +844,19 @@ fn measure_panel_adds_a_work_plane_and_shows_its_statistics() {
     h.get_by_role_and_label(Role::Button, "Add work plane")
         .click();
     h.step();
-    assert_eq!(h.state().doc.setup.grids.len(), 1);
-    let grid = h.state().doc.setup.grids[0].clone();
+    assert_eq!(h.state().document().setup.grids.len(), 1);
+    let grid = h.state().document().setup.grids[0].clone();
     assert_eq!(grid.name, "workplane1");
     // The box is 0.55 m tall: the work plane goes a quarter of the way up, below the camera at
     // mid-height, and the user is told.
-    let b = h.state().doc.scene.bounds;
+    let b = h.state().document().scene.bounds;
     assert!((grid.origin[1] - (b.min.y + 0.25 * b.extent().y)).abs() < 1e-2);
-    assert!(
-        h.state()
-            .notice
-            .as_deref()
-            .unwrap_or_default()
-            .contains("small")
-    );
+    assert!(h.state().notice().unwrap_or_default().contains("small"));
     step_until(&mut h, "the first refinement", |app| {
-        app.measure.readings().is_some_and(|r| r.samples >= 16)
+        app.measure().readings().is_some_and(|r| r.samples >= 16)
     });
     h.step();
-    let readings = h.state().measure.readings().unwrap();
+    let readings = h.state().measure().readings().unwrap();
     let r = &readings.results[0];
     assert_eq!(r.points.len(), grid.point_count());
     assert!(h.query_by_label_contains("Emin ").is_some());
@@ -867,13 +869,16 @@ fn measure_panel_adds_a_work_plane_and_shows_its_statistics() {
     );
     let app = h.state();
     let settings = tracer_core::measure::MeasureSettings {
-        integrator: app.render.integrator,
+        integrator: app.render_prefs().integrator,
         max_bounces: None,
         samples: readings.samples,
         time_limit: None,
         target_error: None,
     };
-    let (scene, setup) = (std::sync::Arc::clone(&app.doc.scene), app.doc.setup.clone());
+    let (scene, setup) = (
+        std::sync::Arc::clone(&app.document().scene),
+        app.document().setup.clone(),
+    );
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
@@ -891,22 +896,22 @@ fn measure_panel_adds_a_work_plane_and_shows_its_statistics() {
 fn ctrl_drag_measures_the_mean_luminance_of_a_rectangle() {
     let (mut h, _mirror) = viewer();
     let view = h.get_by_label("viewport").rect();
-    let camera = h.state().doc.setup.camera;
+    let camera = h.state().document().setup.camera;
     let from = view.min + view.size() * Vec2::new(0.3, 0.6);
     h.event(Event::ModifiersChanged(Modifiers::COMMAND));
     drag(&mut h, from, view.size() * Vec2::new(0.2, 0.15));
     h.event(Event::ModifiersChanged(Modifiers::NONE));
     h.step();
     assert_eq!(
-        h.state().doc.setup.camera,
+        h.state().document().setup.camera,
         camera,
         "a Ctrl+drag must not orbit"
     );
-    let m = h.state().meter.expect("a meter rectangle");
+    let m = h.state().meter().expect("a meter rectangle");
     assert!(m.x1 > m.x0 + 10 && m.y1 > m.y0 + 10, "{m:?}");
     settle(&mut h);
     let app = h.state();
-    let (reading, manual) = app.worker.with_film(|f| {
+    let (reading, manual) = app.worker().with_film(|f| {
         let f = f.unwrap();
         let mut sum = 0.0;
         for y in m.y0..m.y1 {
@@ -930,16 +935,24 @@ fn ctrl_drag_measures_the_mean_luminance_of_a_rectangle() {
 fn a_grid_on_the_selected_surface_covers_it() {
     let (mut h, _mirror) = viewer();
     open_measure(&mut h, false);
-    let floor = h.state().doc.scene.slots_for_key("floor").unwrap()[0];
-    h.state_mut().selected_slot = Some(floor);
+    let floor = h.state().document().scene.slots_for_key("floor").unwrap()[0];
+    h.state_mut()
+        .apply(raygine::command::Command::Select(Some(floor)));
     h.step();
     h.get_by_role_and_label(Role::Button, "Add grid on selected surface")
         .click();
     h.step();
-    let g = h.state().doc.setup.grids.last().cloned().expect("a grid");
+    let g = h
+        .state()
+        .document()
+        .setup
+        .grids
+        .last()
+        .cloned()
+        .expect("a grid");
     assert_eq!(g.name, "floor1");
     assert!(g.normal[1] > 0.999, "facing up: {:?}", g.normal);
-    let b = h.state().doc.scene.bounds;
+    let b = h.state().document().scene.bounds;
     assert!(
         g.origin[1] > b.min.y && g.origin[1] < b.min.y + 2.0,
         "{:?}",
@@ -957,20 +970,20 @@ fn a_grid_on_the_selected_surface_covers_it() {
 fn save_report_writes_the_csv_and_waits_for_the_picture() {
     let (mut h, _mirror) = viewer();
     let dir = scratch_dir("report");
-    h.state_mut().doc.path = Some(dir.join("box.shp"));
+    h.state_mut().set_document_path(dir.join("box.shp"));
     open_measure(&mut h, true);
     h.get_by_role_and_label(Role::Button, "Add work plane")
         .click();
     h.step();
     step_until(&mut h, "the first refinement", |app| {
-        app.measure.readings().is_some_and(|r| r.samples >= 16)
+        app.measure().readings().is_some_and(|r| r.samples >= 16)
     });
     h.run_steps(2);
     h.get_by_role_and_label(Role::Button, "Save report").click();
     h.step();
     let csv = std::fs::read_to_string(dir.join("box.grids.csv")).unwrap();
     assert!(csv.starts_with("grid,i,j,x,y,z,illuminance_lx,std_error_lx\nworkplane1,"));
-    assert!(h.state().report.is_some() || h.state().notice.is_some());
+    assert!(h.state().report_pending() || h.state().notice().is_some());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1017,7 +1030,7 @@ fn ctrl_o_focuses_the_path_field_and_enter_opens() {
     // Orbit, so F would visibly change the camera.
     let view = h.get_by_label("viewport").rect();
     drag(&mut h, view.center(), Vec2::new(80.0, 20.0));
-    let camera = h.state().doc.setup.camera;
+    let camera = h.state().document().setup.camera;
 
     h.key_press_modifiers(Modifiers::COMMAND, Key::O);
     h.run_steps(2);
@@ -1025,33 +1038,40 @@ fn ctrl_o_focuses_the_path_field_and_enter_opens() {
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.step();
     let app = h.state();
-    assert!(!app.paused, "typing p paused rendering");
-    assert_eq!(app.doc.setup.camera, camera, "typing f framed the scene");
+    assert!(!app.paused(), "typing p paused rendering");
+    assert_eq!(
+        app.document().setup.camera,
+        camera,
+        "typing f framed the scene"
+    );
     assert_eq!(
         light_x(app),
         x0 + 50.0,
         "Ctrl+Z in the field undid a scene edit"
     );
-    assert_eq!(app.prompt.as_ref().map(|p| p.text.as_str()), Some(""));
+    assert_eq!(app.prompt().map(|p| p.text.as_str()), Some(""));
 
     type_keys(&mut h, &path.display().to_string());
     assert_eq!(
-        h.state().prompt.as_ref().map(|p| p.text.clone()),
+        h.state().prompt().map(|p| p.text.clone()),
         Some(path.display().to_string())
     );
     h.key_press(Key::Enter);
     h.run_steps(2);
     // The light was moved: the viewer asks before dropping the edit.
-    assert!(h.state().pending_switch.is_some());
+    assert!(h.state().pending_switch().is_some());
     h.get_by_role_and_label(Role::Button, "Discard changes")
         .click();
     h.step();
-    step_until(&mut h, "the scene to load", |app| app.loading.is_none());
+    step_until(&mut h, "the scene to load", |app| !app.loading());
     let app = h.state();
-    assert!(app.error.is_none(), "{:?}", app.error);
-    assert!(app.prompt.is_none(), "Enter did not close the path window");
-    assert_eq!(app.doc.path.as_deref(), Some(path.as_path()));
-    assert!(!app.paused);
+    assert!(app.error().is_none(), "{:?}", app.error());
+    assert!(
+        app.prompt().is_none(),
+        "Enter did not close the path window"
+    );
+    assert_eq!(app.document().path.as_deref(), Some(path.as_path()));
+    assert!(!app.paused());
 }
 
 /// A scene opened while rendering is paused resumes rendering, and no frame draws the previous
@@ -1061,59 +1081,63 @@ fn a_scene_opened_while_paused_never_shows_the_old_picture() {
     let (mut h, _mirror) = viewer();
     h.key_press(Key::P);
     h.step();
-    assert!(h.state().paused);
-    assert!(h.state().picture_drawn);
-    let old_generation = h.state().worker.generation();
+    assert!(h.state().paused());
+    assert!(h.state().picture_drawn());
+    let old_generation = h.state().worker().generation();
     let path = scratch_dir("paused-open").join("two_breps.shp");
     std::fs::write(&path, two_brep_scene("0 2 3")).unwrap();
     h.state_mut().open_path(&path);
     h.state_mut().finish_loading_blocking(TIMEOUT);
-    assert!(h.state().loading.is_none());
+    assert!(!h.state().loading());
     let deadline = Instant::now() + TIMEOUT;
     loop {
         h.step();
         let app = h.state();
-        let first = app.worker.scene_first_generation();
-        if app.picture_drawn {
+        let first = app.worker().scene_first_generation();
+        if app.picture_drawn() {
             assert!(first > old_generation, "the new scene was never started");
             assert!(
-                app.worker.shown_generation() >= first,
+                app.worker().shown_generation() >= first,
                 "a frame drew the old scene's picture (generation {} < {first})",
-                app.worker.shown_generation()
+                app.worker().shown_generation()
             );
         }
-        if app.picture_drawn && render_done(app) {
+        if app.picture_drawn() && render_done(app) {
             break;
         }
         assert!(Instant::now() < deadline, "the new scene never rendered");
         std::thread::sleep(Duration::from_millis(10));
     }
-    assert!(!h.state().paused, "opening a scene resumes rendering");
+    assert!(!h.state().paused(), "opening a scene resumes rendering");
 }
 
 /// Banners have a dismiss button, and they expire on their own.
 #[test]
 fn banners_can_be_dismissed_and_expire() {
     let (mut h, _mirror) = viewer();
-    h.state_mut().error = Some("something failed".to_owned());
-    h.state_mut().notice = Some("something saved".to_owned());
+    h.state_mut().apply(raygine::command::Command::Error(
+        "something failed".to_owned(),
+    ));
+    h.state_mut().apply(raygine::command::Command::Notice(
+        "something saved".to_owned(),
+    ));
     h.step();
     assert!(h.query_by_label_contains("something failed").is_some());
     h.get_by_role_and_label(Role::Button, "Dismiss error")
         .click();
     h.step();
-    assert_eq!(h.state().error, None, "the error was not dismissed");
+    assert_eq!(h.state().error(), None, "the error was not dismissed");
     assert!(
-        h.state().notice.is_some(),
+        h.state().notice().is_some(),
         "dismissing the error hid the notice"
     );
     h.step();
     assert!(h.query_by_label_contains("something failed").is_none());
 
-    h.state_mut().banners.notice_ttl = Duration::from_millis(50);
+    h.state_mut().set_notice_duration(Duration::from_millis(50));
     std::thread::sleep(Duration::from_millis(60));
     h.run_steps(2);
-    assert_eq!(h.state().notice, None, "the notice did not expire");
+    assert_eq!(h.state().notice(), None, "the notice did not expire");
 }
 
 /// A drag of a light's position stays within the scene's bounds; a typed value may go outside, and then the
@@ -1121,7 +1145,7 @@ fn banners_can_be_dismissed_and_expire() {
 #[test]
 fn light_sliders_keep_to_the_bounds_and_a_light_outside_is_pointed_out() {
     let (mut h, _mirror) = viewer();
-    let bounds = h.state().doc.scene.bounds;
+    let bounds = h.state().document().scene.bounds;
     let slider = h.get_by_role_and_label(Role::SpinButton, LIGHT_X).rect();
     // Left and down: 500 points of drag, 700 mm at the box's speed, more than the box is wide.
     drag(&mut h, slider.center(), Vec2::new(-250.0, 250.0));
@@ -1131,7 +1155,7 @@ fn light_sliders_keep_to_the_bounds_and_a_light_outside_is_pointed_out() {
         "a drag left took the light to x = {x}, outside {bounds:?}"
     );
     assert!(h.query_by_label("outside the scene's bounds").is_none());
-    assert_eq!(h.state().picture_hint, None);
+    assert_eq!(h.state().picture_hint(), None);
 
     h.get_by_role_and_label(Role::SpinButton, LIGHT_X)
         .set_value_accesskit(-5000.0);
@@ -1140,7 +1164,11 @@ fn light_sliders_keep_to_the_bounds_and_a_light_outside_is_pointed_out() {
     settle(&mut h);
     h.step();
     assert!(h.query_by_label("outside the scene's bounds").is_some());
-    let hint = h.state().picture_hint.clone().unwrap_or_default();
+    let hint = h
+        .state()
+        .picture_hint()
+        .map(str::to_owned)
+        .unwrap_or_default();
     assert!(
         hint.starts_with("Every pixel is 0 cd/m²") && hint.contains("Light 1 is outside"),
         "hint: {hint}"
@@ -1151,40 +1179,44 @@ fn light_sliders_keep_to_the_bounds_and_a_light_outside_is_pointed_out() {
 #[test]
 fn a_picture_black_at_this_exposure_says_so() {
     let (mut h, _mirror) = viewer();
-    assert_eq!(h.state().picture_hint, None);
+    assert_eq!(h.state().picture_hint(), None);
     h.get_by_role_and_label(Role::Slider, EXPOSURE)
         .set_value_accesskit(-12.0);
     h.run_steps(2);
-    let hint = h.state().picture_hint.clone().unwrap_or_default();
+    let hint = h
+        .state()
+        .picture_hint()
+        .map(str::to_owned)
+        .unwrap_or_default();
     assert!(hint.starts_with("Black at this exposure"), "hint: {hint}");
     // The panel's checkbox is below the test window's fold.
-    h.state_mut().display.auto_exposure = true;
+    h.state_mut().display_mut().auto_exposure = true;
     h.run_steps(2);
-    assert_eq!(h.state().picture_hint, None);
+    assert_eq!(h.state().picture_hint(), None);
 }
 
 /// A 20-point drag on the intensity changes it by a little (about 10 %), not by a factor of 50.
 #[test]
 fn intensity_drag_is_fine() {
     let (mut h, _mirror) = viewer();
-    let i0 = h.state().doc.setup.lights[0].intensity_cd;
+    let i0 = h.state().document().setup.lights[0].intensity_cd;
     let field = h
         .get_by_role_and_label(Role::SpinButton, "intensity (cd)")
         .rect();
     drag(&mut h, field.center(), Vec2::new(20.0, 0.0));
-    let i1 = h.state().doc.setup.lights[0].intensity_cd;
+    let i1 = h.state().document().setup.lights[0].intensity_cd;
     let ratio = i1 / i0;
     assert!(ratio > 1.02 && ratio < 1.3, "{i0} -> {i1}");
     h.get_by_role_and_label(Role::Button, "×2").click();
     h.step();
-    assert_eq!(h.state().doc.setup.lights[0].intensity_cd, 2.0 * i1);
+    assert_eq!(h.state().document().setup.lights[0].intensity_cd, 2.0 * i1);
 }
 
 /// A typed value applies when committed (Enter), not at each keystroke, and undoes in one step.
 #[test]
 fn a_typed_value_is_one_undo_step() {
     let (mut h, _mirror) = viewer();
-    let i0 = h.state().doc.setup.lights[0].intensity_cd;
+    let i0 = h.state().document().setup.lights[0].intensity_cd;
     let field = h
         .get_by_role_and_label(Role::SpinButton, "intensity (cd)")
         .rect();
@@ -1195,22 +1227,22 @@ fn a_typed_value_is_one_undo_step() {
     type_keys(&mut h, "150");
     type_keys(&mut h, "");
     assert_eq!(
-        h.state().doc.setup.lights[0].intensity_cd,
+        h.state().document().setup.lights[0].intensity_cd,
         i0,
         "the value applied before it was committed"
     );
     h.key_press(Key::Enter);
     h.run_steps(2);
-    assert_eq!(h.state().doc.setup.lights[0].intensity_cd, 150.0);
+    assert_eq!(h.state().document().setup.lights[0].intensity_cd, 150.0);
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.step();
     assert_eq!(
-        h.state().doc.setup.lights[0].intensity_cd,
+        h.state().document().setup.lights[0].intensity_cd,
         i0,
         "one undo did not return to the value before typing"
     );
     assert!(
-        !h.state().history.can_undo(),
+        !h.state().history().can_undo(),
         "typing left more than one step"
     );
 }
@@ -1222,8 +1254,11 @@ fn add_light_offsets_the_new_light() {
     h.get_by_role_and_label(Role::Button, "Add light").click();
     h.step();
     let app = h.state();
-    let b = app.doc.scene.bounds;
-    let [a, n] = [&app.doc.setup.lights[0], &app.doc.setup.lights[1]];
+    let b = app.document().scene.bounds;
+    let [a, n] = [
+        &app.document().setup.lights[0],
+        &app.document().setup.lights[1],
+    ];
     let gap = a.position().distance(n.position());
     assert!(
         gap > 0.1 * b.extent().max_element(),
@@ -1246,14 +1281,14 @@ fn unit_and_handedness_controls() {
     h.get_by_label("m").click();
     h.run_steps(2);
     let app = h.state();
-    assert_eq!(app.doc.setup.unit, tracer_core::scene::LengthUnit::M);
+    assert_eq!(app.document().setup.unit, tracer_core::scene::LengthUnit::M);
     assert!(
         h.query_by_role_and_label(Role::SpinButton, "light x (m)")
             .is_some(),
         "sliders still in mm"
     );
     settle(&mut h);
-    let generation = h.state().worker.generation();
+    let generation = h.state().worker().generation();
     h.get_by_role_and_label(Role::ComboBox, "handedness")
         .click();
     h.run_steps(2);
@@ -1261,11 +1296,11 @@ fn unit_and_handedness_controls() {
     h.run_steps(2);
     let app = h.state();
     assert_eq!(
-        app.doc.setup.handedness,
+        app.document().setup.handedness,
         tracer_core::scene::Handedness::Right
     );
     assert!(
-        app.worker.generation() > generation,
+        app.worker().generation() > generation,
         "the render did not restart"
     );
 
@@ -1288,7 +1323,10 @@ fn unit_and_handedness_controls() {
             )
             .unwrap()
         });
-    assert_eq!(h.state().doc.setup.unit, tracer_core::scene::LengthUnit::Cm);
+    assert_eq!(
+        h.state().document().setup.unit,
+        tracer_core::scene::LengthUnit::Cm
+    );
 }
 
 /// Reflectance can be typed (one grey value, or 0-1 per channel), and Kd + Ks above 1 is shown
@@ -1298,13 +1336,13 @@ fn reflectance_numbers_and_the_kd_ks_limit_are_shown() {
     let (mut h, _mirror) = viewer();
     h.get_by_label("red_wall").click();
     h.run_steps(2);
-    let slot = h.state().selected_slot.unwrap() as usize;
+    let slot = h.state().selected_slot().unwrap() as usize;
     h.get_all_by_role_and_label(Role::SpinButton, "grey")
         .next()
         .unwrap()
         .set_value_accesskit(0.5);
     h.run_steps(2);
-    assert_eq!(h.state().doc.setup.materials[slot].kd, [0.5; 3]);
+    assert_eq!(h.state().document().setup.materials[slot].kd, [0.5; 3]);
     assert!(h.query_by_label_contains("Kd + Ks = 0.500").is_some());
 
     // Ks red 0.8: Kd + Ks = 1.3 in red.
@@ -1313,9 +1351,9 @@ fn reflectance_numbers_and_the_kd_ks_limit_are_shown() {
         .unwrap()
         .set_value_accesskit(0.8);
     h.run_steps(2);
-    let m = h.state().doc.setup.materials[slot];
+    let m = h.state().document().setup.materials[slot];
     assert!((m.kd[0] + m.ks[0] - 1.0).abs() < 1e-5, "{m:?}");
-    let notice = h.state().notice.clone().unwrap_or_default();
+    let notice = h.state().notice().map(str::to_owned).unwrap_or_default();
     assert!(
         notice.contains("Kd + Ks was above 1 in red (1.30"),
         "notice: {notice}"
@@ -1332,12 +1370,10 @@ fn browse_without_a_portal_says_why_and_keeps_the_path() {
     h.run_steps(2);
     type_keys(&mut h, "/tmp/typed.shp");
     // What rfd does without a portal (a real dialog never opens in tests).
-    h.state_mut().dialog = Some(raygine::file_ops::PendingDialog::finished(
-        raygine::file_ops::DialogPurpose::Open,
-        None,
-    ));
+    h.state_mut()
+        .finish_dialog(raygine::file_ops::DialogPurpose::Open, None);
     h.run_steps(2);
-    let prompt = h.state().prompt.as_ref().expect("the path window closed");
+    let prompt = h.state().prompt().expect("the path window closed");
     assert_eq!(prompt.text, "/tmp/typed.shp");
     assert!(
         prompt
@@ -1380,7 +1416,7 @@ fn a_small_window_keeps_a_usable_viewport() {
     h.run_steps(2);
     h.get_by_label("Side panel").click();
     h.run_steps(3);
-    assert!(!h.state().show_controls);
+    assert!(!h.state().side_panel_shown());
     let view = h.get_by_label("viewport").rect();
     assert!(view.width() > 630.0, "viewport {view:?}");
 }
@@ -1400,17 +1436,17 @@ fn a_narrow_window_keeps_one_status_line_and_the_render_finishes() {
         "the status bar wraps: viewport {view:?}"
     );
     // Rendering again (a new light position): the viewport keeps its size frame after frame.
-    h.state_mut().doc.setup.lights[0].position[0] -= 50.0;
+    h.state_mut().setup_mut().lights[0].position[0] -= 50.0;
     h.step();
-    let generation = h.state().worker.generation();
-    let size = h.state().viewport_px;
+    let generation = h.state().worker().generation();
+    let size = h.state().viewport_px();
     for _ in 0..20 {
         h.step();
-        assert_eq!(h.state().viewport_px, size, "the viewport changed size");
+        assert_eq!(h.state().viewport_px(), size, "the viewport changed size");
         std::thread::sleep(Duration::from_millis(5));
     }
     assert_eq!(
-        h.state().worker.generation(),
+        h.state().worker().generation(),
         generation,
         "the render restarted"
     );
@@ -1447,7 +1483,7 @@ fn false_colour_legend_covers_above_and_below_the_range() {
     );
 
     let (mut h, _mirror) = viewer();
-    h.state_mut().false_colour.enabled = true;
+    h.state_mut().set_false_colour(true);
     h.run_steps(3);
     assert!(h.state().effective_display().false_colour.is_some());
 }
@@ -1457,10 +1493,10 @@ fn false_colour_legend_covers_above_and_below_the_range() {
 fn the_sidecar_keeps_each_array_on_one_line() {
     let (mut h, _mirror) = viewer();
     let path = scratch_dir("sidecar-arrays").join("box.raygine.toml");
-    let ctx = h.state().ctx.clone();
+    let ctx = h.state().context().clone();
     h.state_mut().save_sidecar(&ctx, path.clone());
-    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
-    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    step_until(&mut h, "the sidecar write", |app| !app.writing());
+    assert!(h.state().error().is_none(), "{:?}", h.state().error());
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(
         text.lines()
@@ -1475,7 +1511,7 @@ fn the_sidecar_keeps_each_array_on_one_line() {
     let sidecar: tracer_core::scene::Sidecar = toml::from_str(&text).unwrap();
     assert_eq!(
         sidecar.lights.map(|l| l.len()),
-        Some(h.state().doc.setup.lights.len())
+        Some(h.state().document().setup.lights.len())
     );
 }
 
@@ -1501,21 +1537,21 @@ fn unsaved_edits_are_not_thrown_away_without_asking() {
     assert!(h.query_by_label("Unsaved changes").is_some());
     h.get_by_role_and_label(Role::Button, "Cancel").click();
     h.step();
-    assert!(h.state().pending_switch.is_none());
-    assert_eq!(h.state().doc.path.as_deref(), Some(path.as_path()));
+    assert!(h.state().pending_switch().is_none());
+    assert_eq!(h.state().document().path.as_deref(), Some(path.as_path()));
     assert_eq!(light_x(h.state()), x0 + 40.0, "Cancel dropped the edit");
 
     // Ctrl+Q: asked; Save writes the sidecar and quits.
     h.key_press_modifiers(Modifiers::COMMAND, Key::Q);
     h.run_steps(2);
     assert_eq!(
-        h.state().pending_switch,
-        Some(raygine::unsaved::Switch::Quit)
+        h.state().pending_switch(),
+        Some(&raygine::unsaved::Switch::Quit)
     );
     h.get_by_role_and_label(Role::Button, "Save and continue")
         .click();
     h.step();
-    step_until(&mut h, "the sidecar write", |app| app.writes.is_empty());
+    step_until(&mut h, "the sidecar write", |app| !app.writing());
     let sidecar = std::fs::read_to_string(dir.join("two_breps.raygine.toml")).unwrap();
     assert!(
         sidecar.contains(&format!("{}", x0 + 40.0)),
@@ -1526,8 +1562,8 @@ fn unsaved_edits_are_not_thrown_away_without_asking() {
     // Nothing unsaved: switching does not ask.
     h.state_mut().request(raygine::unsaved::Switch::Builtin);
     h.step();
-    assert!(h.state().pending_switch.is_none());
-    assert_eq!(h.state().doc.path, None);
+    assert!(h.state().pending_switch().is_none());
+    assert_eq!(h.state().document().path, None);
 }
 
 /// The colour picker's numeric row ("U8", the copy button "📋", R G B) and the viewer's own
@@ -1562,7 +1598,7 @@ fn the_background_is_told_apart_from_unlit_surfaces() {
     assert_eq!(texture.pixels, expected_texture(h.state()).pixels);
     let fraction = |x: usize, y: usize| {
         h.state()
-            .worker
+            .worker()
             .with_film(|f| f.unwrap().background_fraction(y * w + x))
     };
     // The Cornell box's opening is narrower than the picture: its left column sees outside;
@@ -1579,9 +1615,9 @@ fn the_background_is_told_apart_from_unlit_surfaces() {
     assert_eq!(texture.pixels[mid * w + w / 2], egui::Color32::BLACK);
 
     let path = scratch_dir("backdrop").join("view.png");
-    let ctx = h.state().ctx.clone();
+    let ctx = h.state().context().clone();
     h.state_mut().export_png(&ctx, path.clone());
-    step_until(&mut h, "the PNG write", |app| app.writes.is_empty());
+    step_until(&mut h, "the PNG write", |app| !app.writing());
     let png = image::open(&path).unwrap().to_rgb8();
     assert_eq!(
         png.get_pixel(0, mid as u32).0,
@@ -1626,7 +1662,7 @@ fn box_scene(lo: [f32; 3], hi: [f32; 3]) -> String {
 fn an_object_opens_seen_from_its_largest_side() {
     let (mut h, _mirror) = viewer();
     assert_eq!(
-        h.state().doc.setup.camera.position,
+        h.state().document().setup.camera.position,
         [278.0, 273.0, 800.0],
         "the Cornell box keeps its camera"
     );
@@ -1634,18 +1670,22 @@ fn an_object_opens_seen_from_its_largest_side() {
     std::fs::write(&path, box_scene([0.0, 0.0, 0.0], [50.0, 1000.0, 2000.0])).unwrap();
     open(&mut h, &path);
     let from_x = |h: &Viewer| {
-        let camera = h.state().doc.setup.camera;
-        let c = h.state().doc.scene.bounds.center();
+        let camera = h.state().document().setup.camera;
+        let c = h.state().document().scene.bounds.center();
         let eye = Vec3::from(camera.position) - c;
         eye.x > 0.0 && eye.y.abs() < 1e-3 * eye.x && eye.z.abs() < 1e-3 * eye.x
     };
-    assert!(from_x(&h), "camera {:?}", h.state().doc.setup.camera);
+    assert!(from_x(&h), "camera {:?}", h.state().document().setup.camera);
     let view = h.get_by_label("viewport").rect();
     drag(&mut h, view.center(), Vec2::new(120.0, 40.0));
     assert!(!from_x(&h), "the drag did not orbit");
     h.key_press(Key::F);
     h.step();
-    assert!(from_x(&h), "F: camera {:?}", h.state().doc.setup.camera);
+    assert!(
+        from_x(&h),
+        "F: camera {:?}",
+        h.state().document().setup.camera
+    );
     // The picture shows the slab's face: most of the middle row is lit.
     settle(&mut h);
     let (size, rgb) = film_rgb(h.state());
@@ -1662,7 +1702,7 @@ fn light_labels_and_the_hover_readout_sit_on_dark_plates() {
     let view = h.get_by_label("viewport").rect();
     h.hover_at(view.lerp_inside(Vec2::new(0.5, 0.95)));
     h.run_steps(2);
-    assert!(h.state().hover.is_some(), "no read-out under the pointer");
+    assert!(h.state().hover().is_some(), "no read-out under the pointer");
     let mut texts = Vec::new();
     let mut plates = Vec::new();
     let mut todo: Vec<egui::Shape> = h.output().shapes.iter().map(|c| c.shape.clone()).collect();
