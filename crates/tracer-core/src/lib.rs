@@ -6,7 +6,9 @@
 //!                                        ▼
 //!                                      Scene ──bvh::Bvh::build──▶ BVH over world triangles
 //!                                        │
-//!                     shading::radiance (direct light E = I cos θ / R², Lambert + Blinn-Phong, mirrors)
+//!                                        │ lit_scene::LitScene (+ setup: lights, material constants, emitters)
+//!                                        ▼
+//!                     integrator (direct, path, bidirectional, light tracing; shading's BSDFs)
 //!                                        │
 //!                     render (tiles, passes, samples seeded by pixel and sample index)
 //!                                        ▼
@@ -32,6 +34,7 @@ pub mod geometry;
 pub mod integrator;
 mod lanes8;
 pub mod light;
+pub mod lit_scene;
 pub mod measure;
 mod pages;
 pub mod render;

@@ -111,9 +111,9 @@ impl RayBoxes {
 /// `-inf` maxima) miss.
 trait NodeTest: Copy {
     /// The ray in the form this test wants.
-    type Prepared: Copy;
-    fn prepare(self, boxes: &RayBoxes) -> Self::Prepared;
-    fn enter(self, ray: &Self::Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]);
+    type LitScene: Copy;
+    fn prepare(self, boxes: &RayBoxes) -> Self::LitScene;
+    fn enter(self, ray: &Self::LitScene, node: &WideNode, t_max: f32) -> (u32, [f32; WIDTH]);
 }
 
 /// Four lanes at a time ([`F4`]: SSE on x86_64, plain arrays elsewhere).
@@ -121,7 +121,7 @@ trait NodeTest: Copy {
 struct Portable;
 
 impl NodeTest for Portable {
-    type Prepared = RayBoxes;
+    type LitScene = RayBoxes;
 
     #[inline(always)]
     fn prepare(self, boxes: &RayBoxes) -> RayBoxes {
@@ -167,7 +167,7 @@ struct Avx2Ray {
 /// All eight lanes at once (x86_64 with AVX2 and FMA, detected at run time).
 #[cfg(target_arch = "x86_64")]
 impl NodeTest for Avx2 {
-    type Prepared = Avx2Ray;
+    type LitScene = Avx2Ray;
 
     #[inline(always)]
     fn prepare(self, b: &RayBoxes) -> Avx2Ray {
@@ -371,7 +371,7 @@ impl Bvh {
         &self,
         test: T,
         ray: &Ray,
-        boxes: &T::Prepared,
+        boxes: &T::LitScene,
         reach: f32,
         root: (u32, [f32; WIDTH]),
         mut stack: Stack<StackEntry>,
@@ -426,7 +426,7 @@ impl Bvh {
         &self,
         test: T,
         ray: &Ray,
-        boxes: &T::Prepared,
+        boxes: &T::LitScene,
         limit: f32,
         root: u32,
         mut stack: Stack<u32>,

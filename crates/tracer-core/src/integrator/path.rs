@@ -17,11 +17,13 @@
 //!   purely Lambertian surface the same estimate gives the luminance, `L = Le + Kd/π · E`, so
 //!   one path serves both.
 
-use super::Sample;
+use super::{Integrator, IntegratorKind, Sample, Splat};
 use crate::geometry::Ray;
 use crate::light::luminance;
+use crate::lit_scene::LitScene;
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
-use crate::shading::{Bsdf, Prepared, Surface, bsdf_at};
+use crate::scene::CameraBasis;
+use crate::shading::{Bsdf, Surface, bsdf_at};
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -59,7 +61,7 @@ enum Came {
 /// A path tracer over a prepared scene.
 #[derive(Clone, Copy, Debug)]
 pub struct PathTracer<'p, 'a> {
-    pub prep: &'p Prepared<'a>,
+    pub lit: &'p LitScene<'a>,
     /// Non-delta bounces allowed (u32::MAX: unlimited).
     pub max_bounces: u32,
     /// Throughput below which Russian roulette starts ([`RR_THRESHOLD`]; 1 for the cheaper
@@ -67,12 +69,72 @@ pub struct PathTracer<'p, 'a> {
     pub rr_threshold: f32,
 }
 
+/// Path tracing as an integrator.
+#[derive(Debug)]
+pub struct PathTracing<'a> {
+    pub lit: LitScene<'a>,
+    /// Non-delta bounces allowed (None: unlimited).
+    pub max_bounces: Option<u32>,
+}
+
+impl PathTracing<'_> {
+    fn tracer(&self, rr_threshold: f32) -> PathTracer<'_, '_> {
+        PathTracer {
+            lit: &self.lit,
+            max_bounces: self.max_bounces.unwrap_or(u32::MAX),
+            rr_threshold,
+        }
+    }
+}
+
+impl Integrator for PathTracing<'_> {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Path
+    }
+
+    fn lit(&self) -> &LitScene<'_> {
+        &self.lit
+    }
+
+    /// Sample 0 takes the cheaper roulette (see the module docs).
+    fn sample_camera(
+        &self,
+        _basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        sample_index: u32,
+        _splats: &mut Vec<Splat>,
+    ) -> Sample {
+        let rr = if sample_index == 0 { 1.0 } else { RR_THRESHOLD };
+        self.tracer(rr).trace(ray, rng)
+    }
+
+    fn preview_camera(&self, _basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample {
+        self.tracer(1.0).trace(ray, rng)
+    }
+
+    fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32) {
+        let mut rays = 0;
+        let e = self.tracer(RR_THRESHOLD).irradiance(p, n, rng, &mut rays);
+        (luminance(e), rays)
+    }
+}
+
 fn power_heuristic(a: f32, b: f32) -> f32 {
     let (a2, b2) = (a * a, b * b);
     if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }
 
-impl PathTracer<'_, '_> {
+impl<'p, 'a> PathTracer<'p, 'a> {
+    /// Direct light only: one bounce, the roulette as in path mode.
+    pub fn direct_only(lit: &'p LitScene<'a>) -> Self {
+        PathTracer {
+            lit,
+            max_bounces: 1,
+            rr_threshold: RR_THRESHOLD,
+        }
+    }
+
     /// Luminance along the camera ray `ray` and the illuminance of the first surface it meets.
     pub fn trace(&self, ray: &Ray, rng: &mut SampleRng) -> Sample {
         let mut sample = Sample::default();
@@ -82,7 +144,7 @@ impl PathTracer<'_, '_> {
             sample.missed = true;
             return sample;
         };
-        let mat = self.prep.material_of(v.prim);
+        let mat = self.lit.material_of(v.prim);
         if self.max_bounces == 0 {
             sample.rgb = le;
             sample.rays = rays;
@@ -107,7 +169,7 @@ impl PathTracer<'_, '_> {
     /// the side of unit normal `n`, counting this point as one bounce. Blocks no light; rays
     /// leave from just above `p` so a surface at `p` does not shadow it.
     pub fn irradiance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
-        let origin = p + n * self.prep.epsilon;
+        let origin = p + n * self.lit.epsilon;
         self.irradiance_from(p, n, n, origin, rng, rays)
     }
 
@@ -122,7 +184,7 @@ impl PathTracer<'_, '_> {
         rng: &mut SampleRng,
         rays: &mut u32,
     ) -> Vec3 {
-        let prep = self.prep;
+        let lit = self.lit;
         let mut e = Vec3::ZERO;
         if self.max_bounces == 0 {
             return e;
@@ -130,23 +192,23 @@ impl PathTracer<'_, '_> {
         // Lights count by the shading normal (the shadow ray from the lifted origin decides);
         // a sampled continuation must also leave above the triangle.
         let above = |wi: Vec3| ng.dot(wi) > 0.0;
-        for light in &prep.lights {
-            let Some((_, lx)) = prep.light_at(light, p, n) else {
+        for light in &lit.lights {
+            let Some((_, lx)) = lit.light_at(light, p, n) else {
                 continue;
             };
             *rays += 1;
-            if !prep.occluded(origin, light.position - origin) {
+            if !lit.occluded(origin, light.position - origin) {
                 e += light.tint * lx;
             }
         }
-        if !prep.emitters.is_empty() {
+        if !lit.emitters.is_empty() {
             let u_pick = rng.next_f32();
             let (u, v) = rng.next_2d();
-            if let Some(s) = prep.emitters.sample(origin, u_pick, u, v) {
+            if let Some(s) = lit.emitters.sample(origin, u_pick, u, v) {
                 let cos = n.dot(s.wi);
                 if cos > 0.0 && s.radiance.max_element() > 0.0 {
                     *rays += 1;
-                    if !prep.occluded(origin, s.point - origin) {
+                    if !lit.occluded(origin, s.point - origin) {
                         let w = power_heuristic(s.pdf_solid_angle, cos / PI);
                         e += s.radiance * (cos * w / s.pdf_solid_angle);
                     }
@@ -183,22 +245,22 @@ impl PathTracer<'_, '_> {
     /// Traces `ray` to the next drawn surface; returns the vertex and the MIS-weighted emission
     /// seen there.
     fn arrive(&self, ray: &Ray, came: Came, rays: &mut u32) -> Option<(Vertex, Vec3)> {
-        let prep = self.prep;
+        let lit = self.lit;
         *rays += 1;
-        let hit = prep.closest_visible(ray)?;
+        let hit = lit.closest_visible(ray)?;
         let dir = ray.dir.normalize();
         let p = ray.at(hit.t);
-        let surface = Surface::at(prep, &hit, p, dir);
+        let surface = Surface::at(lit, &hit, p, dir);
         let wo = -dir;
-        let mat = prep.material_of(hit.prim);
+        let mat = lit.material_of(hit.prim);
         let mut le = Vec3::ZERO;
         if mat.emission.max_element() > 0.0 {
-            let radiance = prep.emitters.radiance(hit.prim, wo);
+            let radiance = lit.emitters.radiance(hit.prim, wo);
             let w = match came {
                 Came::Delta => 1.0,
                 Came::Pdf(pdf) => {
                     let distance = hit.t * ray.dir.length();
-                    power_heuristic(pdf, prep.emitters.pdf(hit.prim, dir, distance))
+                    power_heuristic(pdf, lit.emitters.pdf(hit.prim, dir, distance))
                 }
             };
             le = radiance * w;
@@ -217,13 +279,13 @@ impl PathTracer<'_, '_> {
     /// Luminance reflected at `v` towards `v.wo`, by a path continued from it; `bounces` is the
     /// number of non-delta bounces before `v`.
     fn continue_at(&self, v: Vertex, bounces: u32, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
-        let prep = self.prep;
+        let lit = self.lit;
         let mut l = Vec3::ZERO;
         let mut beta = Vec3::ONE;
         let mut v = v;
         let mut bounces = bounces;
         for _ in 0..MAX_VERTICES {
-            let bsdf = bsdf_at(prep, v.prim, v.wo);
+            let bsdf = bsdf_at(lit, v.prim, v.wo);
             if bsdf.is_black() {
                 break;
             }
@@ -265,7 +327,7 @@ impl PathTracer<'_, '_> {
             let origin = if v.ng.dot(s.wi) >= 0.0 {
                 v.origin
             } else {
-                v.point - v.ng * prep.epsilon
+                v.point - v.ng * lit.epsilon
             };
             let Some((next, le)) = self.arrive(&Ray::new(origin, s.wi), came, rays) else {
                 break;
@@ -278,10 +340,10 @@ impl PathTracer<'_, '_> {
 
     /// Light sampled at `v` and reflected towards `v.wo` by the smooth lobes.
     fn next_event(&self, bsdf: &Bsdf, v: &Vertex, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
-        let prep = self.prep;
+        let lit = self.lit;
         let mut l = Vec3::ZERO;
-        for light in &prep.lights {
-            let Some((wi, lx)) = prep.light_at(light, v.point, v.n) else {
+        for light in &lit.lights {
+            let Some((wi, lx)) = lit.light_at(light, v.point, v.n) else {
                 continue;
             };
             let f = bsdf.eval(v.n, v.wo, wi);
@@ -289,20 +351,20 @@ impl PathTracer<'_, '_> {
                 continue;
             }
             *rays += 1;
-            if !prep.occluded(v.origin, light.position - v.origin) {
+            if !lit.occluded(v.origin, light.position - v.origin) {
                 l += f * light.tint * lx;
             }
         }
-        if !prep.emitters.is_empty() {
+        if !lit.emitters.is_empty() {
             let u_pick = rng.next_f32();
             let (a, b) = rng.next_2d();
-            if let Some(s) = prep.emitters.sample(v.origin, u_pick, a, b) {
+            if let Some(s) = lit.emitters.sample(v.origin, u_pick, a, b) {
                 let cos = v.n.dot(s.wi);
                 if cos > 0.0 && s.radiance.max_element() > 0.0 {
                     let f = bsdf.eval(v.n, v.wo, s.wi);
                     if f.max_element() > 0.0 {
                         *rays += 1;
-                        if !prep.occluded(v.origin, s.point - v.origin) {
+                        if !lit.occluded(v.origin, s.point - v.origin) {
                             let w = power_heuristic(s.pdf_solid_angle, bsdf.pdf(v.n, v.wo, s.wi));
                             l += f * s.radiance * (cos * w / s.pdf_solid_angle);
                         }

@@ -3,11 +3,11 @@
 //! standard error.
 
 use super::grid::{Grid, SensorPoint};
-use crate::integrator::{Integrator, IntegratorKind, Sample};
+use crate::integrator::{Integrator, IntegratorKind, IntegratorSettings, Sample};
+use crate::lit_scene::LitScene;
 use crate::render::PixelSum;
 use crate::sampling::SampleRng;
 use crate::scene::{Scene, Setup};
-use crate::shading::Prepared;
 use glam::Vec3;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -94,14 +94,18 @@ fn integrator_for<'a>(
     scene: &'a Scene,
     setup: &Setup,
     settings: &MeasureSettings,
-) -> Integrator<'a> {
-    let prep = Prepared::new(scene, setup, crate::render::DEFAULT_MAX_DEPTH);
-    Integrator::new(settings.integrator, prep, settings.max_bounces)
+) -> Box<dyn Integrator + 'a> {
+    let lit = LitScene::new(scene, setup, crate::render::DEFAULT_MAX_DEPTH);
+    let integrator = IntegratorSettings {
+        max_bounces: settings.max_bounces,
+        pixel_illuminance: false,
+    };
+    crate::integrator::build(settings.integrator, lit, integrator)
 }
 
 /// Adds sample indices `samples` of every point to its sum; returns the rays traced.
 fn add_samples(
-    integrator: &Integrator<'_>,
+    integrator: &dyn Integrator,
     points: &Points,
     sums: &mut [PixelSum],
     samples: Range<u32>,
@@ -139,7 +143,7 @@ pub fn measure_samples(
     let integrator = integrator_for(scene, setup, settings);
     let points = sensor_points(&setup.grids);
     let mut sums = vec![PixelSum::default(); points.len()];
-    let rays = add_samples(&integrator, &points, &mut sums, samples);
+    let rays = add_samples(integrator.as_ref(), &points, &mut sums, samples);
     (sums, rays)
 }
 
@@ -160,7 +164,7 @@ pub fn measure_grids_with_progress(
     let mut done = 0u32;
     while done < cap {
         let end = (done + ROUND).min(cap);
-        rays_total += add_samples(&integrator, &points, &mut sums, done..end);
+        rays_total += add_samples(integrator.as_ref(), &points, &mut sums, done..end);
         done = end;
         let worst = settings
             .target_error

@@ -9,8 +9,9 @@
 use super::film::round_half_away;
 use crate::bvh::Hit;
 use crate::geometry::Ray;
+use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
-use crate::shading::{Prepared, Surface, bsdf_at};
+use crate::shading::{Surface, bsdf_at};
 use glam::Vec3;
 
 /// Fixed-point units per unit of albedo or normal component (2^24): one sample adds at most
@@ -121,16 +122,16 @@ impl GuideFilm {
 
 /// The guide of a camera ray: mirrors and glass are followed (one lobe picked at random, as
 /// the integrators do) to the first diffuse or glossy surface.
-pub fn trace_guide(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Guide {
+pub fn trace_guide(lit: &LitScene<'_>, ray: &Ray, rng: &mut SampleRng) -> Guide {
     let mut ray = *ray;
     let mut throughput = Vec3::ONE;
     for _ in 0..=MAX_DELTA_BOUNCES {
-        let Some(hit) = prep.closest_visible(&ray) else {
+        let Some(hit) = lit.closest_visible(&ray) else {
             return Guide::default();
         };
-        let (surface, wo) = frame(prep, &hit, &ray);
-        let bsdf = bsdf_at(prep, hit.prim, wo);
-        let mat = prep.material_of(hit.prim);
+        let (surface, wo) = frame(lit, &hit, &ray);
+        let bsdf = bsdf_at(lit, hit.prim, wo);
+        let mat = lit.material_of(hit.prim);
         let guide = |albedo: Vec3| Guide {
             albedo: (throughput * albedo).clamp(Vec3::ZERO, Vec3::ONE),
             normal: surface.ns,
@@ -154,7 +155,7 @@ pub fn trace_guide(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Guide
             return guide(Vec3::ZERO);
         };
         throughput = (throughput * s.weight).min(Vec3::ONE);
-        ray = Ray::new(surface.origin_towards(s.wi, prep.epsilon), s.wi);
+        ray = Ray::new(surface.origin_towards(s.wi, lit.epsilon), s.wi);
     }
     Guide {
         albedo: Vec3::ZERO,
@@ -162,10 +163,10 @@ pub fn trace_guide(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Guide
     }
 }
 
-fn frame(prep: &Prepared<'_>, hit: &Hit, ray: &Ray) -> (Surface, Vec3) {
+fn frame(lit: &LitScene<'_>, hit: &Hit, ray: &Ray) -> (Surface, Vec3) {
     let dir = ray.dir.normalize();
     let p = ray.at(hit.t);
-    (Surface::at(prep, hit, p, dir), -dir)
+    (Surface::at(lit, hit, p, dir), -dir)
 }
 
 #[cfg(test)]

@@ -10,11 +10,11 @@ use super::guides::{Guide, trace_guide};
 use super::sampler::pixel_sample_offset;
 use crate::geometry::Ray;
 use crate::integrator::{
-    DirectBatch, Integrator, IntegratorKind, Sample, Splat, trace_direct_batch,
+    DirectBatch, Integrator, IntegratorKind, IntegratorSettings, Sample, Splat, trace_direct_batch,
 };
+use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
 use crate::scene::{CameraBasis, Scene, Setup};
-use crate::shading::Prepared;
 use std::ops::Range;
 
 /// Stream key of preview samples (never accumulated), apart from every pixel's.
@@ -46,7 +46,7 @@ pub struct BatchScratch {
 /// An integrator and a camera for one image.
 #[derive(Debug)]
 pub struct FrameSampler<'a> {
-    pub integrator: Integrator<'a>,
+    pub integrator: Box<dyn Integrator + 'a>,
     pub basis: CameraBasis,
     /// Whether the denoiser's guides are traced too ([`super::RenderSettings::guides`]).
     pub guides: bool,
@@ -54,9 +54,15 @@ pub struct FrameSampler<'a> {
 
 impl<'a> FrameSampler<'a> {
     pub fn new(scene: &'a Scene, setup: &Setup, settings: &RenderSettings) -> Self {
-        let prep = Prepared::new(scene, setup, settings.max_depth);
-        let mut integrator = Integrator::new(settings.integrator, prep, settings.max_bounces);
-        integrator.pixel_illuminance = settings.pixel_illuminance;
+        let lit = LitScene::new(scene, setup, settings.max_depth);
+        let integrator = crate::integrator::build(
+            settings.integrator,
+            lit,
+            IntegratorSettings {
+                max_bounces: settings.max_bounces,
+                pixel_illuminance: settings.pixel_illuminance,
+            },
+        );
         Self {
             integrator,
             basis: setup
@@ -80,7 +86,7 @@ impl<'a> FrameSampler<'a> {
         let (ray, _) = self.camera_ray(SampleJob { x, y, s });
         let key = u64::from(y) * u64::from(self.basis.width) + u64::from(x);
         let mut rng = SampleRng::new(GUIDE_STREAM ^ key, s);
-        trace_guide(&self.integrator.prep, &ray, &mut rng)
+        trace_guide(self.integrator.lit(), &ray, &mut rng)
     }
 
     /// The camera ray of a sample and its random stream.
@@ -110,14 +116,14 @@ impl<'a> FrameSampler<'a> {
         out: &mut Vec<Sample>,
     ) {
         out.clear();
-        if self.integrator.kind != IntegratorKind::Direct {
+        if self.integrator.kind() != IntegratorKind::Direct {
             out.extend(jobs.iter().map(|j| self.sample(j.x, j.y, j.s, splats)));
             return;
         }
         camera_rays(&self.basis, jobs, &mut scratch.rays);
         out.resize(jobs.len(), Sample::default());
         trace_direct_batch(
-            &self.integrator.prep,
+            self.integrator.lit(),
             &scratch.rays,
             |i| self.sample_rng(jobs[i]),
             &mut scratch.direct,

@@ -13,7 +13,7 @@
 //! (η_wo / η_wi)², light paths (importance, [`Bsdf::for_light_paths`]) do not.
 
 use super::dielectric::{fresnel, refract};
-use super::prepared::PreparedMaterial;
+use super::material::PreparedMaterial;
 use crate::light::luminance;
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
 use glam::Vec3;

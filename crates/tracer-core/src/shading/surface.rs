@@ -14,7 +14,7 @@
 //!   the triangle (or above it for a refraction) ends the path, since it would pass through
 //!   the mesh.
 
-use super::Prepared;
+use super::LitScene;
 use crate::bvh::Hit;
 use glam::Vec3;
 
@@ -35,8 +35,8 @@ impl Surface {
     /// The frame at `hit` of a ray travelling along `dir`. (Inlined: called, its vector
     /// arguments went through memory in pieces the CPU could not forward to its loads.)
     #[inline(always)]
-    pub fn at(prep: &Prepared<'_>, hit: &Hit, p: Vec3, dir: Vec3) -> Surface {
-        let scene = prep.scene;
+    pub fn at(lit: &LitScene<'_>, hit: &Hit, p: Vec3, dir: Vec3) -> Surface {
+        let scene = lit.scene;
         let prim = hit.prim as usize;
         let n = scene.normals[prim];
         let ng = if n.dot(dir) > 0.0 { -n } else { n };
@@ -49,7 +49,7 @@ impl Surface {
                 p,
                 ng,
                 ns: ng,
-                origin: p + ng * prep.epsilon,
+                origin: p + ng * lit.epsilon,
             };
         };
         let (u, v) = (hit.u, hit.v);
@@ -77,7 +77,7 @@ impl Surface {
             p,
             ng,
             ns,
-            origin: lifted + ng * prep.epsilon,
+            origin: lifted + ng * lit.epsilon,
         }
     }
 
@@ -112,21 +112,21 @@ mod tests {
         assert!(!scene.corner_normals.is_empty());
 
         let setup = Setup::defaults(&scene, LengthUnit::M);
-        let prep = Prepared::new(&scene, &setup, 1);
+        let lit = LitScene::new(&scene, &setup, 1);
         let flat = Scene::build_with(sphere(24, 48), "sphere", 0.0).expect("sphere");
         assert!(flat.corner_normals.is_empty());
         let flat_setup = Setup::defaults(&flat, LengthUnit::M);
-        let flat_prep = Prepared::new(&flat, &flat_setup, 1);
+        let flat_prep = LitScene::new(&flat, &flat_setup, 1);
         let (mut worst, mut worst_flat) = (0.0f32, 0.0f32);
         let mut rng = crate::sampling::SampleRng::new(7, 0);
         for _ in 0..20_000 {
             let (u, v) = rng.next_2d();
             let dir = crate::sampling::uniform_sphere(u, v);
             let ray = Ray::new(dir * 3.0, -dir);
-            for (prep, worst) in [(&prep, &mut worst), (&flat_prep, &mut worst_flat)] {
-                let hit = prep.closest_visible(&ray).expect("the sphere is hit");
+            for (lit, worst) in [(&lit, &mut worst), (&flat_prep, &mut worst_flat)] {
+                let hit = lit.closest_visible(&ray).expect("the sphere is hit");
                 let p = ray.at(hit.t);
-                let s = Surface::at(prep, &hit, p, ray.dir);
+                let s = Surface::at(lit, &hit, p, ray.dir);
                 let analytic = p.normalize();
                 *worst = worst.max(s.ns.dot(analytic).clamp(-1.0, 1.0).acos().to_degrees());
                 // The lifted origin stays outside the sphere's triangles, never inside.
@@ -144,32 +144,32 @@ mod tests {
     fn blotches(lifted: bool) -> f64 {
         let scene = Scene::build(sphere(6, 12), "sphere").expect("sphere");
         let setup = Setup::defaults(&scene, LengthUnit::M);
-        let prep = Prepared::new(&scene, &setup, 1);
+        let lit = LitScene::new(&scene, &setup, 1);
         let light = Vec3::new(1.0, 0.3, 0.2).normalize() * 1000.0;
-        let (mut lit, mut blocked) = (0u32, 0u32);
+        let (mut facing, mut blocked) = (0u32, 0u32);
         let mut rng = crate::sampling::SampleRng::new(11, 0);
         for _ in 0..50_000 {
             let (u, v) = rng.next_2d();
             let dir = crate::sampling::uniform_sphere(u, v);
             let ray = Ray::new(dir * 3.0, -dir);
-            let hit = prep.closest_visible(&ray).expect("the sphere is hit");
+            let hit = lit.closest_visible(&ray).expect("the sphere is hit");
             let p = ray.at(hit.t);
-            let s = Surface::at(&prep, &hit, p, ray.dir);
+            let s = Surface::at(&lit, &hit, p, ray.dir);
             let wi = (light - p).normalize();
             if !s.lit_from(wi) || s.ns.dot(wi) < 0.05 {
                 continue;
             }
-            lit += 1;
+            facing += 1;
             let origin = if lifted {
                 s.origin
             } else {
-                p + s.ng * prep.epsilon
+                p + s.ng * lit.epsilon
             };
-            if prep.occluded(origin, light - origin) {
+            if lit.occluded(origin, light - origin) {
                 blocked += 1;
             }
         }
-        f64::from(blocked) / f64::from(lit)
+        f64::from(blocked) / f64::from(facing)
     }
 
     #[test]

@@ -150,7 +150,7 @@ fn accumulated_mean_converges_to_an_independent_reference() {
         ..RenderSettings::default()
     };
     let (film, _) = render(&scene, &loaded.setup, &settings);
-    let prep = tracer_core::shading::Prepared::new(&scene, &loaded.setup, 5);
+    let lit = tracer_core::lit_scene::LitScene::new(&scene, &loaded.setup, 5);
     let basis = loaded.setup.camera.basis(loaded.setup.handedness, 96, 64);
     let mut checked = 0;
     for y in 0..64u32 {
@@ -159,12 +159,12 @@ fn accumulated_mean_converges_to_an_independent_reference() {
             let mean = film.mean_rgb(i);
             // Pick pixels that are neither flat nor empty: edges.
             let c = tracer_core::integrator::trace_direct(
-                &prep,
+                &lit,
                 &basis.ray(x as f32 + 0.5, y as f32 + 0.5),
                 &mut rng(),
             );
             let corner = tracer_core::integrator::trace_direct(
-                &prep,
+                &lit,
                 &basis.ray(x as f32 + 0.01, y as f32 + 0.01),
                 &mut rng(),
             );
@@ -179,7 +179,7 @@ fn accumulated_mean_converges_to_an_independent_reference() {
                     let fx = (sx as f32 + 0.5) / n as f32;
                     let fy = (sy as f32 + 0.5) / n as f32;
                     let v = tracer_core::integrator::trace_direct(
-                        &prep,
+                        &lit,
                         &basis.ray(x as f32 + fx, y as f32 + fy),
                         &mut rng(),
                     )

@@ -6,9 +6,9 @@ use glam::Vec3;
 use std::f32::consts::PI;
 use tracer_core::Ray;
 use tracer_core::integrator::trace_direct;
+use tracer_core::lit_scene::LitScene;
 use tracer_core::sampling::SampleRng;
 use tracer_core::scene::{Camera, Handedness, LengthUnit, Light, Material, Scene, Setup};
-use tracer_core::shading::Prepared;
 use tracer_core::shp::BrepDef;
 
 use crate::gi_support::{brep, scene};
@@ -54,9 +54,9 @@ fn light(p: [f32; 3], cd: f32) -> Light {
 }
 
 /// Luminance seen along the ray from `eye` towards `target`.
-fn seen(prep: &Prepared<'_>, eye: Vec3, target: Vec3) -> (Vec3, f32) {
+fn seen(lit: &LitScene<'_>, eye: Vec3, target: Vec3) -> (Vec3, f32) {
     let s = trace_direct(
-        prep,
+        lit,
         &Ray::new(eye, (target - eye).normalize()),
         &mut SampleRng::new(0, 0),
     );
@@ -77,8 +77,8 @@ fn lambertian_plane_below_the_light() {
         vec![light([0.0, h, 0.0], i)],
         vec![diffuse(rho)],
     );
-    let prep = Prepared::new(&sc, &st, 5);
-    let (l, e) = seen(&prep, Vec3::new(0.3, 5.0, 0.4), Vec3::ZERO);
+    let lit = LitScene::new(&sc, &st, 5);
+    let (l, e) = seen(&lit, Vec3::new(0.3, 5.0, 0.4), Vec3::ZERO);
     let want = rho * i / (PI * h * h);
     for c in l.to_array() {
         assert!(close(c, want, 1e-4), "L = {c}, want {want}");
@@ -96,10 +96,10 @@ fn falloff_along_the_plane_is_cos_over_r_squared() {
         vec![light([0.0, h, 0.0], i)],
         vec![diffuse(rho)],
     );
-    let prep = Prepared::new(&sc, &st, 5);
+    let lit = LitScene::new(&sc, &st, 5);
     for x in [0.5f32, 1.0, 2.0, 4.0, 8.0, 20.0] {
         let p = Vec3::new(x, 0.0, 0.0);
-        let (l, e) = seen(&prep, Vec3::new(x, 6.0, 1.0), p);
+        let (l, e) = seen(&lit, Vec3::new(x, 6.0, 1.0), p);
         let r2 = x * x + h * h;
         let cos = h / r2.sqrt();
         let e_want = i * cos / r2;
@@ -118,8 +118,8 @@ fn units_convert_distances_to_metres() {
         vec![light([0.0, 2000.0, 0.0], 250.0)],
         vec![diffuse(0.6)],
     );
-    let prep = Prepared::new(&sc, &st, 5);
-    let (l, _) = seen(&prep, Vec3::new(300.0, 5000.0, 400.0), Vec3::ZERO);
+    let lit = LitScene::new(&sc, &st, 5);
+    let (l, _) = seen(&lit, Vec3::new(300.0, 5000.0, 400.0), Vec3::ZERO);
     assert!(close(l.x, 0.6 * 250.0 / (PI * 4.0), 1e-4), "{l}");
 }
 
@@ -142,15 +142,15 @@ fn occluder_casts_a_hard_shadow_and_light_behind_gives_zero() {
         vec![light([0.0, 2.0, 0.0], 100.0)],
         vec![diffuse(0.5), diffuse(0.5)],
     );
-    let prep = Prepared::new(&sc, &st, 5);
+    let lit = LitScene::new(&sc, &st, 5);
     // Below the card: in shadow.
-    let (l, e) = seen(&prep, Vec3::new(3.0, 0.5, 0.0), Vec3::new(0.0, 0.0, 0.0));
+    let (l, e) = seen(&lit, Vec3::new(3.0, 0.5, 0.0), Vec3::new(0.0, 0.0, 0.0));
     assert_eq!((l, e), (Vec3::ZERO, 0.0));
     // Outside the card's shadow: lit.
-    let (l, _) = seen(&prep, Vec3::new(3.0, 0.5, 0.0), Vec3::new(1.0, 0.0, 0.0));
+    let (l, _) = seen(&lit, Vec3::new(3.0, 0.5, 0.0), Vec3::new(1.0, 0.0, 0.0));
     assert!(l.x > 0.0);
     // The floor seen from below (its unlit side): the light is behind that side.
-    let (l, e) = seen(&prep, Vec3::new(0.5, -3.0, 0.5), Vec3::new(1.0, 0.0, 1.0));
+    let (l, e) = seen(&lit, Vec3::new(0.5, -3.0, 0.5), Vec3::new(1.0, 0.0, 1.0));
     assert_eq!((l, e), (Vec3::ZERO, 0.0));
 }
 
@@ -179,12 +179,12 @@ fn mirror_shows_the_wall_at_ks_times_its_luminance() {
         vec![light([0.0, 3.0, 0.0], 400.0)],
         vec![mirror, diffuse(0.8)],
     );
-    let prep = Prepared::new(&sc, &st, 5);
+    let lit = LitScene::new(&sc, &st, 5);
     // Eye at (1, 1, 0) looking at floor point (0, 0, 0): the reflection continues to (-1, 1, 0)
     // direction and hits the wall at (-2, 2, 0).
     let eye = Vec3::new(1.0, 1.0, 0.0);
-    let (via_mirror, e) = seen(&prep, eye, Vec3::ZERO);
-    let (wall_direct, _) = seen(&prep, Vec3::new(0.0, 2.0, 0.0), Vec3::new(-2.0, 2.0, 0.0));
+    let (via_mirror, e) = seen(&lit, eye, Vec3::ZERO);
+    let (wall_direct, _) = seen(&lit, Vec3::new(0.0, 2.0, 0.0), Vec3::new(-2.0, 2.0, 0.0));
     assert!(wall_direct.x > 0.0);
     for (c, ks) in [0.5f32, 0.4, 0.3].into_iter().enumerate() {
         assert!(
@@ -195,7 +195,7 @@ fn mirror_shows_the_wall_at_ks_times_its_luminance() {
     // The mirror has no diffuse part, but the floor point is still lit: E is recorded.
     assert!(close(e, 400.0 / 9.0, 1e-4));
     // Depth 0: no reflection traced, so the mirror floor is black.
-    let prep0 = Prepared::new(&sc, &st, 0);
+    let prep0 = LitScene::new(&sc, &st, 0);
     assert_eq!(seen(&prep0, eye, Vec3::ZERO).0, Vec3::ZERO);
 }
 
@@ -217,12 +217,12 @@ fn blinn_phong_highlight_is_normalised() {
         vec![light([-1.0, 1.0, 0.0], 100.0)],
         vec![m],
     );
-    let prep = Prepared::new(&sc, &st, 5);
-    let (l, e) = seen(&prep, Vec3::new(1.0, 1.0, 0.0), Vec3::ZERO);
+    let lit = LitScene::new(&sc, &st, 5);
+    let (l, e) = seen(&lit, Vec3::new(1.0, 1.0, 0.0), Vec3::ZERO);
     let want = e * 0.3 * (g + 8.0) / (8.0 * PI);
     assert!(close(l.x, want, 1e-3), "{l} vs {want}");
     // Off the mirror direction the lobe falls away.
-    let (off, _) = seen(&prep, Vec3::new(1.0, 3.0, 0.5), Vec3::ZERO);
+    let (off, _) = seen(&lit, Vec3::new(1.0, 3.0, 0.5), Vec3::ZERO);
     assert!(off.x < 0.1 * want);
 }
 
@@ -232,8 +232,8 @@ fn coloured_light_keeps_its_intensity_in_candela() {
     let mut l = light([0.0, 1.0, 0.0], 10.0);
     l.color = [1.0, 0.2, 0.1];
     let st = setup(&sc, LengthUnit::M, vec![l], vec![diffuse(1.0)]);
-    let prep = Prepared::new(&sc, &st, 5);
-    let (rgb, e) = seen(&prep, Vec3::new(0.0, 3.0, 0.1), Vec3::ZERO);
+    let lit = LitScene::new(&sc, &st, 5);
+    let (rgb, e) = seen(&lit, Vec3::new(0.0, 3.0, 0.1), Vec3::ZERO);
     // White Kd 1: pixel luminance = E / π whatever the tint.
     let y = tracer_core::scene::luminance(rgb);
     assert!(close(y, 10.0 / PI, 1e-4), "{y}");

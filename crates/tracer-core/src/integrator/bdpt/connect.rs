@@ -106,10 +106,10 @@ impl Bidirectional<'_, '_> {
             // estimation decides): from the lifted origin.
             Kind::Surface(_) if v.ns.dot(towards) * v.ns.dot(v.wo) > 0.0 => v.origin,
             Kind::Surface(_) | Kind::Light(LightRef::Area(_)) => {
-                v.p + v.facing(towards) * self.prep.epsilon
+                v.p + v.facing(towards) * self.lit.epsilon
             }
             Kind::Eye if v.n != Vec3::ZERO && matches!(self.eye, Eye::Sensor) => {
-                v.p + v.n * self.prep.epsilon
+                v.p + v.n * self.lit.epsilon
             }
             _ => v.p,
         };
@@ -119,7 +119,7 @@ impl Bidirectional<'_, '_> {
         // From the eye side towards the light side, like next-event estimation: a point light
         // on a surface (a lamp on the ceiling) does not shadow itself, since the ray stops
         // short of its end.
-        !self.prep.occluded(on_b, on_a - on_b)
+        !self.lit.occluded(on_b, on_a - on_b)
     }
 
     /// The unweighted contribution of joining light-side `a` to eye-side `b` (without
@@ -191,7 +191,7 @@ impl Bidirectional<'_, '_> {
         if !pt.connectible() {
             return Vec3::ZERO;
         }
-        let Some(start) = self.lights.sample(self.prep, rng) else {
+        let Some(start) = self.lights.sample(self.lit, rng) else {
             return Vec3::ZERO;
         };
         if start.pdf_origin <= 0.0 {

@@ -6,8 +6,8 @@
 //! a connection's geometry term (per squared scene unit) turns it into lx or cd/m².
 
 use crate::light::EmissionSides;
+use crate::lit_scene::{LitScene, PreparedLight, Profile};
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world, uniform_sphere};
-use crate::shading::{Prepared, PreparedLight, Profile};
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -59,19 +59,19 @@ fn point_flux_lm(light: &PreparedLight) -> f64 {
 }
 
 impl LightPicker {
-    pub fn new(prep: &Prepared<'_>) -> Self {
+    pub fn new(lit: &LitScene<'_>) -> Self {
         let mut picker = LightPicker::default();
         let mut total = 0.0f64;
         let mut fluxes = Vec::new();
-        for (i, light) in prep.lights.iter().enumerate() {
+        for (i, light) in lit.lights.iter().enumerate() {
             let flux = point_flux_lm(light);
             if flux > 0.0 && flux.is_finite() {
                 picker.entries.push(Entry::Point(i as u32));
                 fluxes.push(flux);
             }
         }
-        let mpu = prep.metres_per_unit_sq.sqrt();
-        let surfaces = prep.emitters.flux_lm(mpu);
+        let mpu = lit.metres_per_unit_sq.sqrt();
+        let surfaces = lit.emitters.flux_lm(mpu);
         if surfaces > 0.0 && surfaces.is_finite() {
             picker.entries.push(Entry::Surfaces);
             fluxes.push(surfaces);
@@ -95,7 +95,7 @@ impl LightPicker {
     }
 
     /// Picks a light and a point on it.
-    pub fn sample(&self, prep: &Prepared<'_>, rng: &mut SampleRng) -> Option<LightPoint> {
+    pub fn sample(&self, lit: &LitScene<'_>, rng: &mut SampleRng) -> Option<LightPoint> {
         let last = *self.cdf.last()?;
         let u_pick = rng.next_f32();
         let (u, v) = rng.next_2d();
@@ -107,7 +107,7 @@ impl LightPicker {
         match self.entries[i] {
             Entry::Point(index) => Some(LightPoint {
                 light: LightRef::Point(index),
-                p: prep.lights[index as usize].position,
+                p: lit.lights[index as usize].position,
                 n: Vec3::ZERO,
                 pdf_origin: self.probability[i],
             }),
@@ -115,7 +115,7 @@ impl LightPicker {
                 // Reuse u_pick's position inside this entry's interval for the triangle choice.
                 let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] };
                 let inner = ((target - lo) / (self.cdf[i] - lo)).clamp(0.0, 1.0) as f32;
-                let e = prep.emitters.sample_point(inner.min(0.999_999_9), u, v)?;
+                let e = lit.emitters.sample_point(inner.min(0.999_999_9), u, v)?;
                 Some(LightPoint {
                     light: LightRef::Area(e.triangle),
                     p: e.point,
@@ -127,27 +127,27 @@ impl LightPicker {
     }
 
     /// Density of picking this light's position (see [`LightPoint::pdf_origin`]).
-    pub fn pdf_origin(&self, prep: &Prepared<'_>, light: LightRef) -> f32 {
+    pub fn pdf_origin(&self, lit: &LitScene<'_>, light: LightRef) -> f32 {
         match light {
             LightRef::Point(index) => self
                 .entries
                 .iter()
                 .position(|e| *e == Entry::Point(index))
                 .map_or(0.0, |i| self.probability[i]),
-            LightRef::Area(t) => self.surfaces_probability * prep.emitters.pdf_area(t),
+            LightRef::Area(t) => self.surfaces_probability * lit.emitters.pdf_area(t),
         }
     }
 }
 
 /// What a light vertex sends along unit `dir`: for a point light its intensity in the scene's
 /// unit (cd / (m per unit)²) per channel, for a glowing triangle its luminance (cd/m²).
-pub fn emitted(prep: &Prepared<'_>, light: LightRef, dir: Vec3) -> Vec3 {
+pub fn emitted(lit: &LitScene<'_>, light: LightRef, dir: Vec3) -> Vec3 {
     match light {
         LightRef::Point(i) => {
-            let l = &prep.lights[i as usize];
-            l.tint * (l.intensity_towards(dir) / prep.metres_per_unit_sq)
+            let l = &lit.lights[i as usize];
+            l.tint * (l.intensity_towards(dir) / lit.metres_per_unit_sq)
         }
-        LightRef::Area(t) => prep.emitters.radiance(t, dir),
+        LightRef::Area(t) => lit.emitters.radiance(t, dir),
     }
 }
 
@@ -161,13 +161,13 @@ pub fn emission_cosine(light: LightRef, n: Vec3, dir: Vec3) -> f32 {
 
 /// Samples the direction a light subpath leaves in; returns it with its density per sr.
 pub fn sample_direction(
-    prep: &Prepared<'_>,
+    lit: &LitScene<'_>,
     start: &LightPoint,
     rng: &mut SampleRng,
 ) -> Option<(Vec3, f32)> {
     let (u, v) = rng.next_2d();
     match start.light {
-        LightRef::Point(i) => match &prep.lights[i as usize].profile {
+        LightRef::Point(i) => match &lit.lights[i as usize].profile {
             Profile::Spot(s) => {
                 let cos_max = s.falloff.cos();
                 let z = 1.0 - u * (1.0 - cos_max);
@@ -175,12 +175,12 @@ pub fn sample_direction(
                 let phi = 2.0 * PI * v;
                 let local = Vec3::new(r * phi.cos(), r * phi.sin(), z);
                 let dir = to_world(local, s.axis);
-                Some((dir, direction_pdf(prep, start.light, start.n, dir)))
+                Some((dir, direction_pdf(lit, start.light, start.n, dir)))
             }
             _ => Some((uniform_sphere(u, v), 1.0 / (4.0 * PI))),
         },
         LightRef::Area(t) => {
-            let (_, sides) = prep.emitters.orientation(t)?;
+            let (_, sides) = lit.emitters.orientation(t)?;
             let (side, u) = match sides {
                 EmissionSides::Front => (1.0, u),
                 EmissionSides::Back => (-1.0, u),
@@ -188,15 +188,15 @@ pub fn sample_direction(
                 EmissionSides::Both => (-1.0, (u - 0.5) * 2.0),
             };
             let dir = to_world(cosine_hemisphere(u.min(0.999_999_9), v), start.n * side);
-            Some((dir, direction_pdf(prep, start.light, start.n, dir)))
+            Some((dir, direction_pdf(lit, start.light, start.n, dir)))
         }
     }
 }
 
 /// Density per sr of [`sample_direction`] leaving along unit `dir`.
-pub fn direction_pdf(prep: &Prepared<'_>, light: LightRef, n: Vec3, dir: Vec3) -> f32 {
+pub fn direction_pdf(lit: &LitScene<'_>, light: LightRef, n: Vec3, dir: Vec3) -> f32 {
     match light {
-        LightRef::Point(i) => match &prep.lights[i as usize].profile {
+        LightRef::Point(i) => match &lit.lights[i as usize].profile {
             Profile::Spot(s) => {
                 let cos_max = s.falloff.cos();
                 if s.axis.dot(dir) < cos_max || cos_max >= 1.0 {
@@ -208,7 +208,7 @@ pub fn direction_pdf(prep: &Prepared<'_>, light: LightRef, n: Vec3, dir: Vec3) -
             _ => 1.0 / (4.0 * PI),
         },
         LightRef::Area(t) => {
-            let Some((_, sides)) = prep.emitters.orientation(t) else {
+            let Some((_, sides)) = lit.emitters.orientation(t) else {
                 return 0.0;
             };
             let c = n.dot(dir);

@@ -16,15 +16,17 @@
 
 mod connect;
 mod emit;
+mod integrators;
 mod vertex;
 mod walk;
 
 pub use emit::LightPicker;
+pub use integrators::{BidirectionalPathTracing, LightTracing};
 
 use crate::geometry::Ray;
+use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
 use crate::scene::CameraBasis;
-use crate::shading::Prepared;
 use glam::Vec3;
 use std::cell::RefCell;
 use vertex::Vertex;
@@ -107,7 +109,7 @@ pub enum Eye {
 /// Bidirectional transport over a prepared scene, for one eye.
 #[derive(Clone, Copy, Debug)]
 pub struct Bidirectional<'p, 'a> {
-    pub prep: &'p Prepared<'a>,
+    pub lit: &'p LitScene<'a>,
     pub lights: &'p LightPicker,
     pub eye: Eye,
     /// Non-delta bounces allowed (u32::MAX: unlimited).
@@ -240,7 +242,7 @@ impl Bidirectional<'_, '_> {
         let wi = crate::sampling::to_world(crate::sampling::cosine_hemisphere(u, v), n);
         let pdf = vertex::cosine_pdf(n, wi);
         if pdf > 0.0 {
-            let origin = p + n * self.prep.epsilon;
+            let origin = p + n * self.lit.epsilon;
             // W cos θ / pdf = π for cosine sampling.
             let beta = Vec3::splat(std::f32::consts::PI);
             self.walk(

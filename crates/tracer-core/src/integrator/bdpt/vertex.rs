@@ -132,7 +132,7 @@ impl Vertex {
                 }
                 None => Vec3::ZERO,
             },
-            Kind::Light(light) => emitted(bd.prep, light, w),
+            Kind::Light(light) => emitted(bd.lit, light, w),
             Kind::Eye => Vec3::splat(bd.eye_importance(self, w)),
         }
     }
@@ -158,7 +158,7 @@ impl Vertex {
                 let wp = (prev.p - self.p).normalize_or_zero();
                 bsdf.pdf(self.shading_facing(wp), wp, to_next)
             }
-            Kind::Light(light) => direction_pdf(bd.prep, light, self.n, to_next),
+            Kind::Light(light) => direction_pdf(bd.lit, light, self.n, to_next),
             Kind::Eye => bd.eye_direction_pdf(self, to_next),
         };
         self.area_density(pdf_dir, next)
@@ -168,8 +168,8 @@ impl Vertex {
     /// surface point hit by the camera path, or a light vertex).
     pub fn pdf_light_origin(&self, bd: &Bidirectional<'_, '_>) -> f32 {
         match self.kind {
-            Kind::Light(light) => bd.lights.pdf_origin(bd.prep, light),
-            Kind::Surface(prim) => bd.lights.pdf_origin(bd.prep, LightRef::Area(prim)),
+            Kind::Light(light) => bd.lights.pdf_origin(bd.lit, light),
+            Kind::Surface(prim) => bd.lights.pdf_origin(bd.lit, LightRef::Area(prim)),
             Kind::Eye => 0.0,
         }
     }
@@ -182,7 +182,7 @@ impl Vertex {
             Kind::Eye => return 0.0,
         };
         let dir = (next.p - self.p).normalize_or_zero();
-        self.area_density(direction_pdf(bd.prep, light, self.n, dir), next)
+        self.area_density(direction_pdf(bd.lit, light, self.n, dir), next)
     }
 
     /// Whether this is a light with a delta position (point, spot, luminaire).
@@ -193,7 +193,7 @@ impl Vertex {
     /// Luminance this surface vertex emits towards the previous vertex (0 for non-emitters).
     pub fn emission(&self, bd: &Bidirectional<'_, '_>) -> Vec3 {
         match self.kind {
-            Kind::Surface(prim) => bd.prep.emitters.radiance(prim, self.wo),
+            Kind::Surface(prim) => bd.lit.emitters.radiance(prim, self.wo),
             _ => Vec3::ZERO,
         }
     }

@@ -14,7 +14,7 @@ impl Bidirectional<'_, '_> {
     pub fn light_subpath(&self, rng: &mut SampleRng, rays: &mut u32, paths: &mut Subpaths) {
         let path = &mut paths.light;
         path.clear();
-        let Some(start) = self.lights.sample(self.prep, rng) else {
+        let Some(start) = self.lights.sample(self.lit, rng) else {
             return;
         };
         if start.pdf_origin <= 0.0 {
@@ -28,22 +28,22 @@ impl Bidirectional<'_, '_> {
             beta0,
             start.pdf_origin,
         ));
-        let Some((dir, pdf_dir)) = sample_direction(self.prep, &start, rng) else {
+        let Some((dir, pdf_dir)) = sample_direction(self.lit, &start, rng) else {
             return;
         };
         if pdf_dir <= 0.0 {
             return;
         }
-        let le = emitted(self.prep, start.light, dir);
+        let le = emitted(self.lit, start.light, dir);
         let beta = beta0 * le * (emission_cosine(start.light, start.n, dir) / pdf_dir);
         if beta.max_element() <= 0.0 {
             return;
         }
         let origin = if start.n == Vec3::ZERO {
             // A lamp mounted on a surface must not hit that surface at distance 0.
-            start.p + dir * self.prep.epsilon
+            start.p + dir * self.lit.epsilon
         } else {
-            start.p + start.n * (self.prep.epsilon * start.n.dot(dir).signum())
+            start.p + start.n * (self.lit.epsilon * start.n.dot(dir).signum())
         };
         self.walk(Ray::new(origin, dir), beta, pdf_dir, true, rng, path, rays);
     }
@@ -61,18 +61,18 @@ impl Bidirectional<'_, '_> {
         path: &mut Vec<Vertex>,
         rays: &mut u32,
     ) {
-        let prep = self.prep;
+        let lit = self.lit;
         let mut relative = Vec3::ONE;
         while path.len() < MAX_SUBPATH {
             *rays += 1;
-            let Some(hit) = prep.closest_visible(&ray) else {
+            let Some(hit) = lit.closest_visible(&ray) else {
                 break;
             };
             let prim = hit.prim;
             let p = ray.at(hit.t);
-            let surface = Surface::at(prep, &hit, p, ray.dir);
+            let surface = Surface::at(lit, &hit, p, ray.dir);
             // `n` stays the triangle's own normal (emission sides are measured against it).
-            let n = prep.scene.normals[prim as usize];
+            let n = lit.scene.normals[prim as usize];
             let mut v = Vertex::new(Kind::Surface(prim), p, n, beta, 0.0);
             v.ns = if surface.ng.dot(n) < 0.0 {
                 -surface.ns
@@ -82,7 +82,7 @@ impl Bidirectional<'_, '_> {
             v.origin = surface.origin;
             v.adjoint = importance;
             v.wo = -ray.dir;
-            let mut bsdf = bsdf_at(prep, prim, v.wo);
+            let mut bsdf = bsdf_at(lit, prim, v.wo);
             if importance {
                 bsdf = bsdf.for_light_paths();
             }
@@ -148,7 +148,7 @@ impl Bidirectional<'_, '_> {
             let origin = if nf.dot(s.wi) >= 0.0 {
                 v.origin
             } else {
-                p - nf * prep.epsilon
+                p - nf * lit.epsilon
             };
             ray = Ray::new(origin, s.wi);
         }

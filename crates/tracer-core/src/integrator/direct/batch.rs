@@ -6,8 +6,8 @@ use super::matte::{self, Lanes, MatteScratch};
 use super::walk::{Contribution, Walk};
 use crate::bvh::Hit;
 use crate::geometry::Ray;
+use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
-use crate::shading::Prepared;
 
 /// Working memory of [`trace_batch`], kept between batches so a render allocates it once per
 /// thread.
@@ -39,18 +39,18 @@ impl DirectBatch {
 /// asked for only by samples that go past their first hit) and writes what each sees to `out`
 /// (as long as `rays`): the same samples, bit for bit, as tracing them one by one.
 pub fn trace_batch(
-    prep: &Prepared<'_>,
+    lit: &LitScene<'_>,
     rays: &[Ray],
     rng_of: impl Fn(usize) -> SampleRng,
     batch: &mut DirectBatch,
     out: &mut [Sample],
 ) {
-    trace_batch_with(prep, rays, rng_of, Lanes::Native, batch, out);
+    trace_batch_with(lit, rays, rng_of, Lanes::Native, batch, out);
 }
 
 /// [`trace_batch`] with the first hits on matte surfaces shaded in `lanes`.
 pub(super) fn trace_batch_with(
-    prep: &Prepared<'_>,
+    lit: &LitScene<'_>,
     rays: &[Ray],
     rng_of: impl Fn(usize) -> SampleRng,
     lanes: Lanes,
@@ -60,11 +60,11 @@ pub(super) fn trace_batch_with(
     debug_assert!(rays.len() == out.len());
     batch.hits.clear();
     batch.hits.resize(rays.len(), None);
-    prep.closest_visible_many(rays, &mut batch.hits);
+    lit.closest_visible_many(rays, &mut batch.hits);
     // Samples that end at their first hit are done in lanes; the rest walk.
     batch.walked.clear();
     matte::shade_first_hits(
-        prep,
+        lit,
         rays,
         &batch.hits,
         lanes,
@@ -102,18 +102,18 @@ pub(super) fn trace_batch_with(
         if !first {
             batch.hits.clear();
             batch.hits.resize(batch.rays.len(), None);
-            prep.closest_visible_many(&batch.rays, &mut batch.hits);
+            lit.closest_visible_many(&batch.rays, &mut batch.hits);
         }
         let current: &[Ray] = if first && all_walk { rays } else { &batch.rays };
         batch.shadows.clear();
         batch.contributions.clear();
         let steps = batch.active.iter().zip(&batch.hits).zip(current);
         for ((&i, &hit), ray) in steps {
-            walks[i as usize].shade(prep, ray, hit, &mut batch.shadows, &mut batch.contributions);
+            walks[i as usize].shade(lit, ray, hit, &mut batch.shadows, &mut batch.contributions);
         }
         batch.blocked.clear();
         batch.blocked.resize(batch.shadows.len(), false);
-        prep.occluded_many(&batch.shadows, &mut batch.blocked);
+        lit.occluded_many(&batch.shadows, &mut batch.blocked);
         batch.active.retain(|&i| {
             let walk = &mut walks[i as usize];
             walk.resolve(&batch.contributions, &batch.blocked);
@@ -151,7 +151,7 @@ mod tests {
     /// Traces `rays` with the walk alone, with native lanes and with plain-array lanes, in
     /// batches of `size`; checks that all three give the same samples bit for bit and returns
     /// them with the number of samples the lanes finished.
-    fn compare(prep: &Prepared<'_>, rays: &[Ray], size: usize) -> (Vec<Sample>, usize) {
+    fn compare(lit: &LitScene<'_>, rays: &[Ray], size: usize) -> (Vec<Sample>, usize) {
         let rngs: Vec<SampleRng> = (0..rays.len() as u64)
             .map(|k| SampleRng::new(k, 3))
             .collect();
@@ -162,7 +162,7 @@ mod tests {
             let mut all = Vec::new();
             for (r, g) in rays.chunks(size).zip(rngs.chunks(size)) {
                 let mut out = vec![Sample::default(); r.len()];
-                trace_batch_with(prep, r, |i| g[i].clone(), lanes, &mut batch, &mut out);
+                trace_batch_with(lit, r, |i| g[i].clone(), lanes, &mut batch, &mut out);
                 if lanes == Lanes::Native {
                     in_lanes += r.len() - batch.walked.len();
                 }
@@ -222,8 +222,8 @@ mod tests {
             .collect();
         // Without mirror rays (depth 0) the highlight alone sends a hit to the walk.
         for (depth, size) in [(4, 1), (4, 5), (4, 8), (4, 256), (0, 256)] {
-            let prep = Prepared::new(&loaded.scene, &loaded.setup, depth);
-            let (samples, in_lanes) = compare(&prep, &rays, size);
+            let lit = LitScene::new(&loaded.scene, &loaded.setup, depth);
+            let (samples, in_lanes) = compare(&lit, &rays, size);
             // Every branch is taken: lanes, walks (mirror, highlight), misses, shadows.
             assert!(in_lanes > rays.len() / 2, "{in_lanes} in lanes");
             let walked = if depth > 0 { 200 } else { 50 };
@@ -262,7 +262,7 @@ mod tests {
                 ..Light::default()
             },
         ];
-        let prep = Prepared::new(&scene, &setup, 5);
+        let lit = LitScene::new(&scene, &setup, 5);
         let mut rng = SampleRng::new(9, 0);
         let rays: Vec<Ray> = (0..4000)
             .map(|_| {
@@ -273,7 +273,7 @@ mod tests {
                 Ray::new(dir * 3.0, -dir + jitter)
             })
             .collect();
-        let (samples, in_lanes) = compare(&prep, &rays, 256);
+        let (samples, in_lanes) = compare(&lit, &rays, 256);
         assert_eq!(in_lanes, rays.len(), "every sample ends at its first hit");
         assert!(samples.iter().any(|s| s.missed));
         let lit = samples.iter().filter(|s| s.illuminance_lx > 0.0).count();
@@ -286,12 +286,12 @@ mod tests {
         for m in &mut loaded.setup.materials {
             m.ks = [0.4; 3];
         }
-        let prep = Prepared::new(&loaded.scene, &loaded.setup, 5);
+        let lit = LitScene::new(&loaded.scene, &loaded.setup, 5);
         let basis = loaded.setup.camera.basis(loaded.setup.handedness, 40, 30);
         let rays: Vec<Ray> = (0..1200)
             .map(|i| basis.ray((i % 40) as f32, (i / 40) as f32))
             .collect();
-        let (samples, in_lanes) = compare(&prep, &rays, 256);
+        let (samples, in_lanes) = compare(&lit, &rays, 256);
         assert_eq!(in_lanes, 0);
         assert!(samples.iter().any(|s| s.rays > 6), "no mirror chain");
     }
@@ -300,12 +300,12 @@ mod tests {
     fn everything_walks_when_emissive_triangles_are_lights() {
         let mut loaded = builtin_cornell_box(None).unwrap();
         loaded.setup.materials[0].emission_cd_m2 = 20.0;
-        let prep = Prepared::new(&loaded.scene, &loaded.setup, 2);
+        let lit = LitScene::new(&loaded.scene, &loaded.setup, 2);
         let basis = loaded.setup.camera.basis(loaded.setup.handedness, 40, 30);
         let rays: Vec<Ray> = (0..1200)
             .map(|i| basis.ray((i % 40) as f32, (i / 40) as f32))
             .collect();
-        let (_, in_lanes) = compare(&prep, &rays, 256);
+        let (_, in_lanes) = compare(&lit, &rays, 256);
         assert_eq!(in_lanes, 0);
     }
 }

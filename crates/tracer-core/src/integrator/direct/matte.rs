@@ -5,7 +5,7 @@
 //! glows, nor has a highlight, nor mirrors, lit by point-like lights. For those, the walk's
 //! steps (the frame at the hit, each light's illuminance, the shadow rays, the sums) are done
 //! here in lanes. Per lane the operations and their order are those of [`Surface::at`],
-//! [`Prepared::light_at`] and the walk's `direct_light`, without fused multiply-adds, so the
+//! [`LitScene::light_at`] and the walk's `direct_light`, without fused multiply-adds, so the
 //! samples equal the walk's bit for bit on every CPU. The other samples take the walk, and so
 //! does every sample when emissive triangles are lights (their samples draw random numbers).
 //!
@@ -21,7 +21,8 @@ use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;
 use crate::lanes8::{Lanes8, Mask8, Scalar8, ray_columns};
-use crate::shading::{Prepared, PreparedMaterial, Profile};
+use crate::lit_scene::{LitScene, Profile};
+use crate::shading::PreparedMaterial;
 use glam::Vec3;
 
 /// Which lanes shade the first hits.
@@ -64,7 +65,7 @@ fn is_matte(mat: &PreparedMaterial, max_depth: u32) -> bool {
 /// hits on matte surfaces) and writes those samples to `out`. The indices of the other
 /// samples go to `rest`, in order: they take the walk.
 pub(super) fn shade_first_hits(
-    prep: &Prepared<'_>,
+    lit: &LitScene<'_>,
     rays: &[Ray],
     hits: &[Option<Hit>],
     lanes: Lanes,
@@ -73,15 +74,15 @@ pub(super) fn shade_first_hits(
     rest: &mut Vec<u32>,
 ) {
     debug_assert!(rays.len() == hits.len() && rays.len() == out.len());
-    if lanes == Lanes::Off || !prep.emitters.is_empty() {
+    if lanes == Lanes::Off || !lit.emitters.is_empty() {
         rest.extend(0..rays.len() as u32);
         return;
     }
     scratch.matte.clear();
-    let max_depth = prep.max_depth;
+    let max_depth = lit.max_depth;
     scratch
         .matte
-        .extend(prep.materials.iter().map(|m| is_matte(m, max_depth)));
+        .extend(lit.materials.iter().map(|m| is_matte(m, max_depth)));
     if !scratch.matte.contains(&true) {
         // Every surface mirrors, glows or shines (a hall of mirrors): all walk.
         rest.extend(0..rays.len() as u32);
@@ -94,17 +95,17 @@ pub(super) fn shade_first_hits(
     #[cfg(target_arch = "x86_64")]
     if lanes == Lanes::Native && is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2, the only feature `shade_avx2` is compiled for.
-        unsafe { shade_avx2(prep, rays, hits, scratch, out, rest) };
+        unsafe { shade_avx2(lit, rays, hits, scratch, out, rest) };
         done = true;
     }
     if !done {
-        shade::<Scalar8>(prep, rays, hits, scratch, out, rest);
+        shade::<Scalar8>(lit, rays, hits, scratch, out, rest);
     }
     // Every lane's shadow rays at once; then each light's share where its ray was free, per
     // sample in the order the lights were visited (as the walk adds them).
     scratch.blocked.clear();
     scratch.blocked.resize(scratch.shadows.len(), false);
-    prep.occluded_many(&scratch.shadows, &mut scratch.blocked);
+    lit.occluded_many(&scratch.shadows, &mut scratch.blocked);
     let entries = scratch.contributions.iter().zip(&scratch.owners);
     for ((c, &owner), &blocked) in entries.zip(&scratch.blocked) {
         let sample = &mut out[owner as usize];
@@ -119,14 +120,14 @@ pub(super) fn shade_first_hits(
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn shade_avx2(
-    prep: &Prepared<'_>,
+    lit: &LitScene<'_>,
     rays: &[Ray],
     hits: &[Option<Hit>],
     scratch: &mut MatteScratch,
     out: &mut [Sample],
     rest: &mut Vec<u32>,
 ) {
-    shade::<Avx8>(prep, rays, hits, scratch, out, rest);
+    shade::<Avx8>(lit, rays, hits, scratch, out, rest);
 }
 
 /// Three lanes: x, y, z.
@@ -214,7 +215,7 @@ struct Chunk {
 /// left.
 #[inline(always)]
 fn pick(
-    prep: &Prepared<'_>,
+    lit: &LitScene<'_>,
     matte: &[bool],
     base: usize,
     hits: &[Option<Hit>],
@@ -222,7 +223,7 @@ fn pick(
     out: &mut [Sample],
     rest: &mut Vec<u32>,
 ) -> bool {
-    let scene = prep.scene;
+    let scene = lit.scene;
     c.live = 0;
     for (j, hit) in hits.iter().enumerate() {
         let i = base + j;
@@ -272,7 +273,7 @@ struct Frame<L> {
 /// target feature. The closures given to `gather` only load.)
 #[inline(always)]
 fn shade<L: Lanes8>(
-    prep: &Prepared<'_>,
+    lit: &LitScene<'_>,
     rays: &[Ray],
     hits: &[Option<Hit>],
     scratch: &mut MatteScratch,
@@ -280,8 +281,8 @@ fn shade<L: Lanes8>(
     rest: &mut Vec<u32>,
 ) {
     let zero = L::splat(0.0);
-    let metres_sq = L::splat(prep.metres_per_unit_sq);
-    let shadow_t_max = L::splat(Prepared::shadow_ray(Vec3::ZERO, Vec3::X).t_max);
+    let metres_sq = L::splat(lit.metres_per_unit_sq);
+    let shadow_t_max = L::splat(LitScene::shadow_ray(Vec3::ZERO, Vec3::X).t_max);
     let mut c = Chunk {
         live: 0,
         sample: [0; 8],
@@ -292,13 +293,13 @@ fn shade<L: Lanes8>(
         v: [0.0; 8],
     };
     for (k, chunk_hits) in hits.chunks(8).enumerate() {
-        if !pick(prep, &scratch.matte, k * 8, chunk_hits, &mut c, out, rest) {
+        if !pick(lit, &scratch.matte, k * 8, chunk_hits, &mut c, out, rest) {
             continue;
         }
-        let frame = frame::<L>(prep, rays, &c);
-        let kd: V3<L> = gather(|j| prep.materials[c.slot[j]].kd_over_pi);
-        for light in &prep.lights {
-            // Prepared::light_at: E = I cos θ / R², R in metres.
+        let frame = frame::<L>(lit, rays, &c);
+        let kd: V3<L> = gather(|j| lit.materials[c.slot[j]].kd_over_pi);
+        for light in &lit.lights {
+            // LitScene::light_at: E = I cos θ / R², R in metres.
             let pos = splat::<L>(light.position);
             let to_light = sub(&pos, &frame.p);
             let dist2 = dot(&to_light, &to_light);
@@ -310,8 +311,8 @@ fn shade<L: Lanes8>(
             ];
             let cos = dot(&frame.ns, &wi);
             // dist2 > 0 (NaN passes, as in `light_at`), cos θ > 0 (also `Surface::lit_from`).
-            let mut lit = cos.gt(zero).and_not(dist2.le(zero)).bits() & c.live;
-            if lit == 0 {
+            let mut facing = cos.gt(zero).and_not(dist2.le(zero)).bits() & c.live;
+            if facing == 0 {
                 continue;
             }
             let intensity = match light.profile {
@@ -320,7 +321,7 @@ fn shade<L: Lanes8>(
                     let w = to_arrays(&wi);
                     let mut towards = [0.0f32; 8];
                     for j in 0..8 {
-                        if lit & (1 << j) != 0 {
+                        if facing & (1 << j) != 0 {
                             let dir = -Vec3::new(w[0][j], w[1][j], w[2][j]);
                             towards[j] = light.intensity_towards(dir);
                         }
@@ -328,8 +329,8 @@ fn shade<L: Lanes8>(
                     L::from_array(towards)
                 }
             };
-            lit &= !intensity.le(zero).bits();
-            if lit == 0 {
+            facing &= !intensity.le(zero).bits();
+            if facing == 0 {
                 continue;
             }
             let e = intensity.mul(cos).div(dist2.mul(metres_sq));
@@ -356,7 +357,7 @@ fn shade<L: Lanes8>(
                 zero,
                 zero,
             ]);
-            let mut left = lit;
+            let mut left = facing;
             while left != 0 {
                 let j = left.trailing_zeros() as usize;
                 left &= left - 1;
@@ -382,8 +383,8 @@ fn shade<L: Lanes8>(
 /// on smooth triangles the interpolated normal and the lifted origin (Hanika's terminator
 /// fix), each step as `Surface::at` does it.
 #[inline(always)]
-fn frame<L: Lanes8>(prep: &Prepared<'_>, rays: &[Ray], c: &Chunk) -> Frame<L> {
-    let scene = prep.scene;
+fn frame<L: Lanes8>(lit: &LitScene<'_>, rays: &[Ray], c: &Chunk) -> Frame<L> {
+    let scene = lit.scene;
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
     let [ox, oy, oz, dx, dy, dz, _, _] = ray_columns::<L>(|j| &rays[c.sample[j]]);
     let (o, d) = ([ox, oy, oz], [dx, dy, dz]);
@@ -391,7 +392,7 @@ fn frame<L: Lanes8>(prep: &Prepared<'_>, rays: &[Ray], c: &Chunk) -> Frame<L> {
     let n: V3<L> = gather(|j| scene.normals[c.prim[j]]);
     let minus_one = L::splat(-1.0);
     let ng = select(dot(&n, &d).gt(zero), &scale(&n, minus_one), &n);
-    let eps = L::splat(prep.epsilon);
+    let eps = L::splat(lit.epsilon);
     let flat_origin = add(&p, &scale(&ng, eps));
     let flat = Frame {
         p,

@@ -21,14 +21,58 @@ mod walk;
 
 pub use batch::{DirectBatch, trace_batch};
 
-use super::Sample;
+use super::{Integrator, IntegratorKind, PathTracer, Sample, Splat};
 use crate::geometry::Ray;
+use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
-use crate::shading::Prepared;
+use crate::scene::CameraBasis;
+use glam::Vec3;
 use std::cell::RefCell;
 
+/// The coursework's model as an integrator.
+///
+/// Named substitution: a sensor (a grid point) is measured by the path tracer's irradiance
+/// estimator cut after its first bounce ([`PathTracer::direct_only`]): the same light as a
+/// camera sample's illuminance here (point-like lights exactly, glowing surfaces sampled with
+/// MIS), estimated at a point with no surface of its own.
+#[derive(Debug)]
+pub struct DirectLighting<'a> {
+    pub lit: LitScene<'a>,
+}
+
+impl Integrator for DirectLighting<'_> {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Direct
+    }
+
+    fn lit(&self) -> &LitScene<'_> {
+        &self.lit
+    }
+
+    fn sample_camera(
+        &self,
+        _basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        _sample_index: u32,
+        _splats: &mut Vec<Splat>,
+    ) -> Sample {
+        trace(&self.lit, ray, rng)
+    }
+
+    fn preview_camera(&self, _basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample {
+        trace(&self.lit, ray, rng)
+    }
+
+    fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32) {
+        let mut rays = 0;
+        let e = PathTracer::direct_only(&self.lit).irradiance(p, n, rng, &mut rays);
+        (crate::light::luminance(e), rays)
+    }
+}
+
 /// Luminance arriving along the camera ray `ray`, with the first hit's direct illuminance.
-pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
+pub fn trace(lit: &LitScene<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
     thread_local! {
         // Working memory reused by single samples (previews, tests), so none allocates.
         static BATCH: RefCell<DirectBatch> = RefCell::new(DirectBatch::default());
@@ -36,7 +80,7 @@ pub fn trace(prep: &Prepared<'_>, ray: &Ray, rng: &mut SampleRng) -> Sample {
     let mut out = [Sample::default()];
     BATCH.with(|batch| {
         let mut batch = batch.borrow_mut();
-        trace_batch(prep, &[*ray], |_| rng.clone(), &mut batch, &mut out);
+        trace_batch(lit, &[*ray], |_| rng.clone(), &mut batch, &mut out);
         // Callers that draw more from the stream go on from where the sample left it.
         if let Some(after) = batch.final_rng(0) {
             *rng = after;

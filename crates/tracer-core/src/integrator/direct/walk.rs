@@ -6,8 +6,9 @@
 use super::super::Sample;
 use crate::bvh::Hit;
 use crate::geometry::Ray;
+use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
-use crate::shading::{Prepared, PreparedMaterial, Surface};
+use crate::shading::{PreparedMaterial, Surface};
 use glam::Vec3;
 
 /// What one light adds at a hit when its shadow ray is free: illuminance (lx) and reflected
@@ -70,7 +71,7 @@ impl Walk {
     #[inline(always)]
     pub fn shade(
         &mut self,
-        prep: &Prepared<'_>,
+        lit: &LitScene<'_>,
         ray: &Ray,
         hit: Option<Hit>,
         shadows: &mut Vec<Ray>,
@@ -86,18 +87,18 @@ impl Walk {
         };
         let ray = *ray;
         let p = ray.at(hit.t);
-        let surface = Surface::at(prep, &hit, p, ray.dir);
+        let surface = Surface::at(lit, &hit, p, ray.dir);
         let n = surface.ns;
-        let mat = prep.material_of(hit.prim);
+        let mat = lit.material_of(hit.prim);
         // Towards the viewer; only emission and highlights need it (a square root and a
         // division per hit saved on matte surfaces).
         let view = || -ray.dir.normalize();
         if mat.emission.max_element() > 0.0 {
-            self.sample.rgb += self.weight * prep.emitters.radiance(hit.prim, view());
+            self.sample.rgb += self.weight * lit.emitters.radiance(hit.prim, view());
         }
         let before = shadows.len();
         direct_light(
-            prep,
+            lit,
             mat,
             &surface,
             view,
@@ -107,7 +108,7 @@ impl Walk {
         );
         self.pending_len = (shadows.len() - before) as u32;
         self.sample.rays += self.pending_len;
-        if self.depth == prep.max_depth {
+        if self.depth == lit.max_depth {
             return;
         }
         let weight = self.weight * mat.ks;
@@ -159,7 +160,7 @@ impl Walk {
 /// then one sample of the emissive triangles.
 #[inline(always)]
 fn direct_light(
-    prep: &Prepared<'_>,
+    lit: &LitScene<'_>,
     mat: &PreparedMaterial,
     surface: &Surface,
     view: impl Fn() -> Vec3,
@@ -178,29 +179,29 @@ fn direct_light(
         }
         f
     };
-    for light in &prep.lights {
+    for light in &lit.lights {
         // E = I cos θ / R², R converted to metres.
-        let Some((wi, e)) = prep.light_at(light, p, n) else {
+        let Some((wi, e)) = lit.light_at(light, p, n) else {
             continue;
         };
         if !surface.lit_from(wi) {
             continue;
         }
-        shadows.push(Prepared::shadow_ray(origin, light.position - origin));
+        shadows.push(LitScene::shadow_ray(origin, light.position - origin));
         contributions.push(Contribution {
             illuminance_lx: e,
             rgb: light.tint * e * brdf(wi),
         });
     }
-    if !prep.emitters.is_empty() {
+    if !lit.emitters.is_empty() {
         let u_pick = rng.next_f32();
         let (u, v) = rng.next_2d();
-        if let Some(s) = prep.emitters.sample(p, u_pick, u, v) {
+        if let Some(s) = lit.emitters.sample(p, u_pick, u, v) {
             let cos_theta = n.dot(s.wi);
             if surface.lit_from(s.wi) && s.radiance.max_element() > 0.0 {
                 // dE = L cos θ dω: the sample estimates ∫ L cos θ dω over the emitters.
                 let e_rgb = s.radiance * (cos_theta / s.pdf_solid_angle);
-                shadows.push(Prepared::shadow_ray(origin, s.point - origin));
+                shadows.push(LitScene::shadow_ray(origin, s.point - origin));
                 contributions.push(Contribution {
                     illuminance_lx: crate::light::luminance(e_rgb),
                     rgb: e_rgb * brdf(s.wi),

@@ -1,0 +1,284 @@
+//! The splatting integrators over the bidirectional transport: [`BidirectionalPathTracing`] and
+//! [`LightTracing`], with what both do around one camera sample (the pixel's illuminance, the
+//! splats joined per pixel).
+
+use super::{BDPT_RR_THRESHOLD, Bidirectional, Eye, LightPicker, Splat, Strategies};
+use crate::geometry::Ray;
+use crate::integrator::{Integrator, IntegratorKind, IntegratorSettings, Sample};
+use crate::lit_scene::LitScene;
+use crate::sampling::SampleRng;
+use crate::scene::CameraBasis;
+use glam::Vec3;
+
+/// Bidirectional path tracing: every (s, t) strategy, power-heuristic MIS.
+#[derive(Debug)]
+pub struct BidirectionalPathTracing<'a> {
+    pub lit: LitScene<'a>,
+    /// Non-delta bounces allowed (None: unlimited).
+    pub max_bounces: Option<u32>,
+    /// Which strategies combine.
+    pub strategies: Strategies,
+    /// Whether camera samples also measure the first surface's illuminance.
+    pub pixel_illuminance: bool,
+    /// Lights by flux.
+    lights: LightPicker,
+}
+
+/// Light tracing: every light vertex joined to the eye (t = 1) at weight 1; eye subpaths go
+/// past their first surface only after a delta lobe.
+///
+/// Named substitutions: its previews, which have no film to splat to, and its pixel
+/// illuminance (a sensor at a pixel's surface point, often close to other surfaces, where
+/// joining light vertices alone is heavy-tailed) use bidirectional transport.
+#[derive(Debug)]
+pub struct LightTracing<'a> {
+    pub lit: LitScene<'a>,
+    /// Non-delta bounces allowed (None: unlimited).
+    pub max_bounces: Option<u32>,
+    /// Whether camera samples also measure the first surface's illuminance.
+    pub pixel_illuminance: bool,
+    lights: LightPicker,
+}
+
+impl<'a> BidirectionalPathTracing<'a> {
+    pub fn new(lit: LitScene<'a>, settings: IntegratorSettings) -> Self {
+        Self {
+            lights: LightPicker::new(&lit),
+            lit,
+            max_bounces: settings.max_bounces,
+            strategies: Strategies::All,
+            pixel_illuminance: settings.pixel_illuminance,
+        }
+    }
+}
+
+impl<'a> LightTracing<'a> {
+    pub fn new(lit: LitScene<'a>, settings: IntegratorSettings) -> Self {
+        Self {
+            lights: LightPicker::new(&lit),
+            lit,
+            max_bounces: settings.max_bounces,
+            pixel_illuminance: settings.pixel_illuminance,
+        }
+    }
+}
+
+/// The transport for `eye` over `lit` with `lights`.
+fn transport<'p, 'a>(
+    lit: &'p LitScene<'a>,
+    lights: &'p LightPicker,
+    max_bounces: Option<u32>,
+    eye: Eye,
+) -> Bidirectional<'p, 'a> {
+    Bidirectional {
+        lit,
+        lights,
+        eye,
+        max_bounces: max_bounces.unwrap_or(u32::MAX),
+        rr_threshold: BDPT_RR_THRESHOLD,
+        strategies: Strategies::All,
+        light_tracing: false,
+        splats: true,
+    }
+}
+
+impl Integrator for BidirectionalPathTracing<'_> {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Bidirectional
+    }
+
+    fn lit(&self) -> &LitScene<'_> {
+        &self.lit
+    }
+
+    fn sample_camera(
+        &self,
+        basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        _sample_index: u32,
+        splats: &mut Vec<Splat>,
+    ) -> Sample {
+        let camera = Bidirectional {
+            strategies: self.strategies,
+            ..transport(
+                &self.lit,
+                &self.lights,
+                self.max_bounces,
+                Eye::Camera(*basis),
+            )
+        };
+        camera_sample(&camera, self.pixel_illuminance, ray, rng, splats)
+    }
+
+    /// Bidirectional transport without the t = 1 strategies (the power heuristic renormalised
+    /// over the rest), so previews show what the mode converges to (a lamp's hot spot on the
+    /// ceiling, the light its shades throw), not a path tracer's guess.
+    fn preview_camera(&self, basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample {
+        preview(
+            &self.lit,
+            &self.lights,
+            self.max_bounces,
+            self.pixel_illuminance,
+            basis,
+            ray,
+            rng,
+        )
+    }
+
+    fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32) {
+        let sensor = Bidirectional {
+            strategies: self.strategies,
+            ..transport(&self.lit, &self.lights, self.max_bounces, Eye::Sensor)
+        };
+        sensor_illuminance(&sensor, p, n, rng)
+    }
+}
+
+impl Integrator for LightTracing<'_> {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Light
+    }
+
+    fn lit(&self) -> &LitScene<'_> {
+        &self.lit
+    }
+
+    fn sample_camera(
+        &self,
+        basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        _sample_index: u32,
+        splats: &mut Vec<Splat>,
+    ) -> Sample {
+        let camera = Bidirectional {
+            light_tracing: true,
+            ..transport(
+                &self.lit,
+                &self.lights,
+                self.max_bounces,
+                Eye::Camera(*basis),
+            )
+        };
+        camera_sample(&camera, self.pixel_illuminance, ray, rng, splats)
+    }
+
+    /// Substitution: bidirectional transport without splats, as for
+    /// [`BidirectionalPathTracing`] (light tracing proper can only splat).
+    fn preview_camera(&self, basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample {
+        preview(
+            &self.lit,
+            &self.lights,
+            self.max_bounces,
+            self.pixel_illuminance,
+            basis,
+            ray,
+            rng,
+        )
+    }
+
+    fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32) {
+        let sensor = Bidirectional {
+            light_tracing: true,
+            ..transport(&self.lit, &self.lights, self.max_bounces, Eye::Sensor)
+        };
+        sensor_illuminance(&sensor, p, n, rng)
+    }
+}
+
+/// A preview sample: `camera`'s transport without the t = 1 strategies.
+fn preview(
+    lit: &LitScene<'_>,
+    lights: &LightPicker,
+    max_bounces: Option<u32>,
+    pixel_illuminance: bool,
+    basis: &CameraBasis,
+    ray: &Ray,
+    rng: &mut SampleRng,
+) -> Sample {
+    let camera = Bidirectional {
+        splats: false,
+        ..transport(lit, lights, max_bounces, Eye::Camera(*basis))
+    };
+    let mut none = Vec::new();
+    let sample = camera_sample(&camera, pixel_illuminance, ray, rng, &mut none);
+    debug_assert!(none.is_empty(), "a preview splatted");
+    sample
+}
+
+/// One camera sample of `camera`, with the first surface's illuminance when asked for
+/// (bidirectional in both modes, reusing the sample's light subpath); its splats are joined
+/// per pixel.
+fn camera_sample(
+    camera: &Bidirectional<'_, '_>,
+    pixel_illuminance: bool,
+    ray: &Ray,
+    rng: &mut SampleRng,
+    splats: &mut Vec<Splat>,
+) -> Sample {
+    let first_splat = splats.len();
+    let mut rays = 0;
+    let (estimate, first, illuminance_lx) = super::with_subpaths(|paths| {
+        camera.light_subpath(&mut super::light_stream(rng), &mut rays, paths);
+        let (estimate, first) = camera.camera_sample(ray, rng, paths, splats);
+        let mut illuminance_lx = 0.0;
+        if let Some((p, n)) = first.filter(|_| pixel_illuminance) {
+            let sensor = Bidirectional {
+                light_tracing: false,
+                eye: Eye::Sensor,
+                ..*camera
+            };
+            let e = sensor.sensor_sample(p, n, &mut super::sensor_stream(rng), paths);
+            rays += e.rays;
+            illuminance_lx = crate::light::luminance(e.value);
+        }
+        (estimate, first, illuminance_lx)
+    });
+    rays += estimate.rays;
+    combine_splats(splats, first_splat);
+    Sample {
+        rgb: estimate.value,
+        illuminance_lx,
+        rays,
+        missed: first.is_none(),
+    }
+}
+
+/// One sensor estimate of `sensor` at `p` facing `n`: (lx, rays).
+fn sensor_illuminance(
+    sensor: &Bidirectional<'_, '_>,
+    p: Vec3,
+    n: Vec3,
+    rng: &mut SampleRng,
+) -> (f32, u32) {
+    let mut rays = 0;
+    let e = super::with_subpaths(|paths| {
+        sensor.light_subpath(&mut super::light_stream(rng), &mut rays, paths);
+        sensor.sensor_sample(p, n, rng, paths)
+    });
+    (crate::light::luminance(e.value), rays + e.rays)
+}
+
+/// Joins the splats from `first` on (one light subpath's) that land in the same pixel, so that
+/// each pixel receives one value per light subpath: the film's variance of the splats squares
+/// whole subpaths' contributions (see `PixelSum::luminance_std_error`).
+fn combine_splats(splats: &mut Vec<Splat>, first: usize) {
+    let mut end = splats.len();
+    let mut i = first;
+    while i < end {
+        let mut j = i + 1;
+        while j < end {
+            if (splats[j].x, splats[j].y) == (splats[i].x, splats[i].y) {
+                let rgb = splats[j].rgb;
+                splats[i].rgb += rgb;
+                splats.swap(j, end - 1);
+                end -= 1;
+            } else {
+                j += 1;
+            }
+        }
+        i += 1;
+    }
+    splats.truncate(end);
+}

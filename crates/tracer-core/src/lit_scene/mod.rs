@@ -1,0 +1,93 @@
+//! The scene as one render sees it: the scene's geometry with its setup resolved once into
+//! what the per-ray code needs, with no conversions left: lights with their tints scaled to
+//! luminance 1 and their profiles, material constants, the emitter table, the hidden parts, the
+//! unit factor and the front side. Integrators, sensors and guides all sample a [`LitScene`].
+
+mod lights;
+mod visibility;
+
+pub use lights::{PreparedLight, Profile};
+
+use crate::light::EmitterTable;
+use crate::scene::{Handedness, Scene, Setup};
+use crate::shading::PreparedMaterial;
+use glam::Vec3;
+
+/// Everything the integrator needs for one render.
+#[derive(Debug)]
+pub struct LitScene<'a> {
+    pub scene: &'a Scene,
+    pub lights: Vec<PreparedLight>,
+    pub materials: Vec<PreparedMaterial>,
+    /// Emissive triangles of drawn surfaces.
+    pub emitters: EmitterTable,
+    /// +1 when the front normal is (v1 − v0) × (v2 − v0) (right-handed scenes), −1 when it is
+    /// its negation (left-handed, as `.shp` files are mirror images).
+    pub front_sign: f32,
+    /// (metres per scene unit)², to turn squared scene distances into m².
+    pub metres_per_unit_sq: f32,
+    /// Offset of secondary ray origins along the normal, scene units.
+    pub epsilon: f32,
+    pub max_depth: u32,
+    /// True when some slot is hidden (then hits on hidden slots are skipped).
+    any_hidden: bool,
+    hidden: Vec<bool>,
+}
+
+impl<'a> LitScene<'a> {
+    pub fn new(scene: &'a Scene, setup: &Setup, max_depth: u32) -> Self {
+        let handedness_sign = match setup.handedness {
+            Handedness::Right => 1.0,
+            Handedness::Left => -1.0,
+        };
+        let lights = setup
+            .lights
+            .iter()
+            .filter(|l| l.is_valid())
+            .map(|l| PreparedLight::new(l, handedness_sign))
+            .collect();
+        let clamped: Vec<_> = (0..scene.slots.len())
+            .map(|slot| {
+                setup
+                    .materials
+                    .get(slot)
+                    .copied()
+                    .unwrap_or_default()
+                    .clamped()
+                    .0
+            })
+            .collect();
+        let materials: Vec<PreparedMaterial> = clamped.iter().map(PreparedMaterial::new).collect();
+        let mpu = setup.unit.metres_per_unit();
+        let hidden: Vec<bool> = (0..scene.slots.len())
+            .map(|s| setup.is_hidden(s as u32))
+            .collect();
+        let front_sign = match setup.handedness {
+            Handedness::Right => 1.0,
+            Handedness::Left => -1.0,
+        };
+        let emitters = lights::emitter_table(scene, &clamped, &materials, &hidden, front_sign);
+        LitScene {
+            scene,
+            lights,
+            materials,
+            emitters,
+            front_sign,
+            metres_per_unit_sq: mpu * mpu,
+            epsilon: scene.ray_epsilon(),
+            max_depth,
+            any_hidden: hidden.iter().any(|&h| h),
+            hidden,
+        }
+    }
+
+    /// The unit front normal of triangle `prim` (see `front_sign`).
+    pub fn front_normal(&self, prim: u32) -> Vec3 {
+        self.scene.normals[prim as usize] * self.front_sign
+    }
+
+    /// The material of triangle `prim`.
+    pub fn material_of(&self, prim: u32) -> &PreparedMaterial {
+        &self.materials[self.scene.triangle_slots[prim as usize] as usize]
+    }
+}

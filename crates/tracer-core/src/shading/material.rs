@@ -1,0 +1,34 @@
+//! A material's per-render constants: Kd / π, the highlight's normalisation, glass and emission,
+//! so the per-ray code does no conversions.
+
+use crate::scene::Material;
+use glam::Vec3;
+
+#[derive(Clone, Copy, Debug)]
+pub struct PreparedMaterial {
+    pub kd_over_pi: Vec3,
+    pub ks: Vec3,
+    pub glossiness: f32,
+    /// (g + 8) / (8π), the normalisation of the Blinn-Phong lobe.
+    pub highlight_norm: f32,
+    /// Weight of the glass interface per channel, and the refractive index behind the front.
+    pub kt: Vec3,
+    pub ior: f32,
+    /// Emitted luminance per channel, cd/m² (zero for surfaces that are not lights).
+    pub emission: Vec3,
+}
+
+impl PreparedMaterial {
+    /// The constants of `m` (already clamped to a physical material).
+    pub fn new(m: &Material) -> Self {
+        Self {
+            kd_over_pi: m.kd() / std::f32::consts::PI,
+            ks: m.ks(),
+            glossiness: m.glossiness,
+            highlight_norm: (m.glossiness + 8.0) / (8.0 * std::f32::consts::PI),
+            kt: m.kt(),
+            ior: m.ior,
+            emission: m.emission(),
+        }
+    }
+}
