@@ -4,8 +4,7 @@
 //! operations and their order are [`CameraBasis::ray`]'s, so the rays are the same bit for
 //! bit (the wavefront test compares whole samples with single ones).
 
-use super::pixel::SampleJob;
-use super::sampler::{MAX_OFFSET, R2_STEP, pixel_shift, sample_offset};
+use super::sampler::{MAX_OFFSET, R2_STEP, SampleJob, pixel_shift, sample_offset};
 use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;

@@ -10,7 +10,7 @@
 use rayon::prelude::*;
 use std::sync::{Mutex, PoisonError};
 
-use super::film::PixelSum;
+use super::pixel_sum::PixelSum;
 
 /// Films with fewer pixels (tiles, thumbnails) allocate as usual: their memory is cheap, and
 /// many of them are made and dropped at once on several threads.

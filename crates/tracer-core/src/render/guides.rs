@@ -6,7 +6,7 @@
 //! fixed point (2⁻²⁴) and added as integers, so they are the same for any thread count and add
 //! exactly across shards. A pixel's guide sum is 56 bytes, kept only while denoising.
 
-use super::film::round_half_away;
+use super::fixed_point::round_half_away;
 use crate::bvh::Hit;
 use crate::geometry::Ray;
 use crate::lit_scene::LitScene;

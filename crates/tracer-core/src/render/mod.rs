@@ -4,22 +4,26 @@
 mod camera_rays;
 mod film;
 mod film_buffers;
+mod fixed_point;
 mod guides;
 pub mod partial;
 mod passes;
 mod pixel;
+mod pixel_sum;
 mod progressive_film;
 mod run_sums;
 mod sampler;
 mod session;
 mod tiles;
 
-pub use film::{Film, FilmError, PixelSum, SQUARE_SCALE, VALUE_SCALE};
+pub use film::{Film, FilmError};
+pub use fixed_point::{SQUARE_SCALE, VALUE_SCALE};
 pub use guides::{GUIDE_SCALE, Guide, GuideFilm, GuideSum, trace_guide};
 pub use passes::{PREVIEW_BLOCKS, Pass};
-pub use pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler, SampleJob};
+pub use pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler};
+pub use pixel_sum::PixelSum;
 pub use progressive_film::ProgressiveFilm;
-pub use sampler::{pixel_sample_offset, sample_hash};
+pub use sampler::{SampleJob, pixel_sample_offset, sample_hash};
 pub use session::{Notify, RenderSession, SessionStats, Snapshot};
 pub use tiles::{Tile, tiles_centre_out};
 

@@ -4,8 +4,9 @@
 //! `shard::PART_FORMAT` raised so older parts are refused rather than misread.
 
 use super::RenderSettings;
-use super::film::{Film, PixelSum};
+use super::film::Film;
 use super::guides::{GuideFilm, GuideSum};
+use super::pixel_sum::PixelSum;
 use crate::shard::varint::{Decoder, Encoder};
 
 /// Integers a pixel holds in a part.

@@ -5,9 +5,9 @@
 
 use super::RenderSettings;
 use super::camera_rays::camera_rays;
-use super::film::PixelSum;
 use super::guides::{Guide, trace_guide};
-use super::sampler::pixel_sample_offset;
+use super::pixel_sum::PixelSum;
+use super::sampler::{SampleJob, pixel_sample_offset};
 use crate::geometry::Ray;
 use crate::integrator::{
     DirectBatch, Integrator, IntegratorKind, IntegratorSettings, Sample, Splat, trace_direct_batch,
@@ -25,14 +25,6 @@ const GUIDE_STREAM: u64 = 1 << 61;
 /// Camera samples traced together: at most this many per batch. Big enough for the wavefront
 /// to keep the CPU busy, small enough for its working set to stay in the first-level caches.
 pub const BATCH_SAMPLES: usize = 256;
-
-/// Sample `s` of pixel (`x`, `y`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SampleJob {
-    pub x: u32,
-    pub y: u32,
-    pub s: u32,
-}
 
 /// Working memory for [`FrameSampler::sample_batch`], reused from batch to batch.
 #[derive(Debug, Default)]

@@ -1,8 +1,9 @@
 //! The film of one generation of a progressive render: accumulated full-resolution samples plus
 //! the latest coarse preview, shown where a pixel has no full sample yet.
 
-use super::film::{Film, PixelSum};
+use super::film::Film;
 use super::guides::{GuideFilm, GuideSum};
+use super::pixel_sum::PixelSum;
 use super::tiles::Tile;
 use crate::integrator::Sample;
 use glam::Vec3;

@@ -1,6 +1,14 @@
 //! Reproducible sample positions: each depends on (pixel, sample index) only, never on time or
 //! thread, so any thread count and any interruption give the same image.
 
+/// Sample `s` of pixel (`x`, `y`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SampleJob {
+    pub x: u32,
+    pub y: u32,
+    pub s: u32,
+}
+
 /// A well-mixed 64-bit hash of a pixel index and a sample index (splitmix64 finaliser).
 pub fn sample_hash(pixel_index: u64, sample_index: u32) -> u64 {
     let mut z = pixel_index

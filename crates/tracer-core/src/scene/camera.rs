@@ -5,6 +5,9 @@ use crate::geometry::Ray;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
+/// Default vertical field of view, degrees.
+pub const DEFAULT_FOV_DEG: f32 = 45.0;
+
 /// A pinhole camera as users edit it: degrees only here, at the edge.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -48,9 +48,9 @@ pub fn framing_side(scene: &Scene) -> (Vec3, Vec3) {
     if scene.bounds.is_empty() {
         return front;
     }
-    let half = (super::setup::DEFAULT_FOV_DEG.to_radians() * 0.5).sin();
+    let half = (super::camera::DEFAULT_FOV_DEG.to_radians() * 0.5).sin();
     let front_eye = scene.bounds.center() + Vec3::Z * (scene.bounds.radius() / half);
-    if super::setup::is_room_seen_from(scene, front_eye) {
+    if super::default_light::is_room_seen_from(scene, front_eye) {
         return front;
     }
     let [x, y, z] = outline_areas(scene);

@@ -3,6 +3,7 @@
 
 mod builtin;
 mod camera;
+mod default_light;
 mod design;
 mod error;
 mod framing;
@@ -20,7 +21,8 @@ mod smoothing;
 mod units;
 
 pub use builtin::{BUILTIN_NAME, builtin_cornell_box};
-pub use camera::{Camera, CameraBasis};
+pub use camera::{Camera, CameraBasis, DEFAULT_FOV_DEG};
+pub use default_light::default_light;
 pub use design::{Design, light_from_description, material_from_description};
 pub use error::SceneError;
 pub use framing::{framing_camera, framing_side, outline_areas};
@@ -30,7 +32,7 @@ pub use light::{LUMINANCE_WEIGHTS, Light, LightKind, luminance};
 pub use light_spec::{GridContext, GridSpec, LightKindSpec, LightSpec, en12464_spacing_m};
 pub use material::Material;
 pub use notes::{SourceText, luminaire_near_surface, relative_below};
-pub use setup::{DEFAULT_FOV_DEG, Setup, default_light};
+pub use setup::Setup;
 pub use sidecar::{Sidecar, sidecar_path};
 pub use sidecar_open::{
     SIDECAR_SUFFIX, builtin_with_sidecar, is_sidecar_file, load_sidecar, scene_of_sidecar,

@@ -26,6 +26,7 @@
 
 mod brep;
 mod brs;
+mod bytes;
 pub mod description;
 mod error;
 mod lexer;

@@ -1,11 +1,12 @@
 //! What a worker does with one tile of a pass: a coarse preview (one sample per block) or one
 //! full sample per pixel, then the result applied to this generation's film under the lock.
 
-use super::super::film::PixelSum;
 use super::super::guides::GuideSum;
 use super::super::passes::Pass;
-use super::super::pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler, SampleJob};
+use super::super::pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler};
+use super::super::pixel_sum::PixelSum;
 use super::super::progressive_film::ProgressiveFilm;
+use super::super::sampler::SampleJob;
 use super::super::tiles::Tile;
 use super::shared::Shared;
 use std::sync::atomic::{AtomicU64, Ordering};
