@@ -156,6 +156,12 @@ impl RenderWorker {
         self.session.stats()
     }
 
+    /// Measure the pixels' illuminance from the next pass on (see
+    /// `RenderSession::measure_illuminance`).
+    pub fn measure_illuminance(&self) {
+        self.session.measure_illuminance();
+    }
+
     pub fn set_paused(&self, paused: bool) {
         self.session.set_paused(paused);
     }

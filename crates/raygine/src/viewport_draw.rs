@@ -15,7 +15,8 @@ use tracer_core::scene::{CameraBasis, LightKind, Setup};
 #[derive(Clone, Debug, Default)]
 pub struct HoverInfo {
     pub luminance: f32,
-    pub illuminance: f32,
+    /// None until the render measures it (from the first readout on).
+    pub illuminance: Option<f32>,
     pub surface: Option<String>,
     pub pixel: [u32; 2],
 }
@@ -265,10 +266,13 @@ pub fn draw_overlays(ui: &mut egui::Ui, v: &Overlays<'_>, rect: Rect, out: &mut 
         None => {}
     }
     if let Some(h) = v.hover {
+        let lx = h
+            .illuminance
+            .map_or_else(|| "(measuring)".to_owned(), format_value);
         let text = format!(
             "{} cd/m²   {} lx   {}",
             format_value(h.luminance),
-            format_value(h.illuminance),
+            lx,
             h.surface.as_deref().unwrap_or("(background)")
         );
         // On a dark plate, like the light labels: white text over a bright floor was lost.

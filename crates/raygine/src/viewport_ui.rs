@@ -260,7 +260,8 @@ fn hover_info(worker: &RenderWorker, doc: &Document, fx: f32, fy: f32) -> Option
             return None;
         }
         let i = f.accum.index(x, y);
-        Some((luminance(f.shown_rgb(i)), f.shown_illuminance(i)))
+        let lx = f.illuminance_measured(i).then(|| f.shown_illuminance(i));
+        Some((luminance(f.shown_rgb(i)), lx))
     })?;
     let surface = pick_slot(worker, fx, fy).map(|s| doc.scene.slot_label(s));
     Some(HoverInfo {

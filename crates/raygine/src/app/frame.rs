@@ -281,6 +281,17 @@ impl RaygineApp {
             orbit_pivot: &mut self.orbit_pivot,
         };
         crate::viewport_ui::viewport_ui(ui, viewport, out);
+        self.show_illuminance();
+    }
+
+    /// The render measures the pixels' illuminance from the first time a readout in lx shows
+    /// (the hover) or the false colour shows illuminance on.
+    fn show_illuminance(&mut self) {
+        let false_colour = self.false_colour.enabled
+            && self.false_colour.quantity == tracer_core::display::FalseColourQuantity::Illuminance;
+        if self.hover.is_some() || false_colour {
+            self.worker.measure_illuminance();
+        }
     }
 
     /// Applies the answer of the unsaved-edits window.

@@ -247,7 +247,8 @@ impl RaygineApp {
             max_depth: self.render.max_depth,
             integrator: self.render.integrator,
             max_bounces: None,
-            pixel_illuminance: true,
+            // Measured once shown (`show_illuminance`), without a restart.
+            pixel_illuminance: false,
             guides: self.denoise.guides_wanted(self.render.integrator),
         }
     }

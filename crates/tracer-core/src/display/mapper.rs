@@ -56,12 +56,13 @@ impl DisplayMapper {
     /// rows in parallel on the current rayon pool.
     pub fn map_film<const CHANNELS: usize>(&self, film: &Film) -> Vec<u8> {
         let width = (film.width as usize).max(1);
+        let skipped = film.illuminance_from;
         let mut out = vec![0u8; film.pixels.len() * CHANNELS];
         out.par_chunks_mut(width * CHANNELS)
             .zip(film.pixels.par_chunks(width))
             .for_each(|(row, sums)| {
                 for (o, p) in row.chunks_exact_mut(CHANNELS).zip(sums) {
-                    let code = self.map(p.mean_rgb(), p.mean_illuminance());
+                    let code = self.map(p.mean_rgb(), p.mean_illuminance_after(skipped));
                     o.copy_from_slice(&code[..CHANNELS]);
                 }
             });
@@ -75,6 +76,7 @@ impl DisplayMapper {
         film: &Film,
     ) -> (Vec<u8>, f64, f32) {
         let width = (film.width as usize).max(1);
+        let skipped = film.illuminance_from;
         let mut out = vec![0u8; film.pixels.len() * CHANNELS];
         let rows: Vec<(f64, f32)> = out
             .par_chunks_mut(width * CHANNELS)
@@ -86,7 +88,7 @@ impl DisplayMapper {
                     let y = luminance(rgb);
                     sum += f64::from(y);
                     max = max.max(y);
-                    let code = self.map(rgb, p.mean_illuminance());
+                    let code = self.map(rgb, p.mean_illuminance_after(skipped));
                     o.copy_from_slice(&code[..CHANNELS]);
                 }
                 (sum, max)

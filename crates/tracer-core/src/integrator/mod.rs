@@ -59,45 +59,51 @@ pub trait Integrator: Send + Sync + std::fmt::Debug {
     /// The scene as this render sees it.
     fn lit(&self) -> &LitScene<'_>;
 
-    /// Camera sample number `sample_index` along `ray` (unit direction) of the camera `basis`;
+    /// Camera sample `want.index` along `ray` (unit direction) of the camera `basis`;
     /// contributions to other pixels (the splatting integrators) are pushed to `splats`, one
-    /// per pixel and light subpath.
+    /// per pixel and light subpath. The first surface's illuminance is estimated when
+    /// `want.illuminance` (else it may read 0); the luminance does not depend on it.
     fn sample_camera(
         &self,
         basis: &CameraBasis,
         ray: &Ray,
         rng: &mut SampleRng,
-        sample_index: u32,
+        want: Want,
         splats: &mut Vec<Splat>,
     ) -> Sample;
 
     /// A preview sample along `ray` (unit direction) of the camera `basis`, for a picture with
     /// no film to splat to: what the mode converges to, as near as a sample without splats
-    /// can show it.
-    fn preview_camera(&self, basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample;
+    /// can show it. The illuminance as for [`Integrator::sample_camera`].
+    fn preview_camera(
+        &self,
+        basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        illuminance: bool,
+    ) -> Sample;
 
     /// One estimate of the illuminance (lx) at a sensor at `p` facing unit `n`, and the rays
     /// it took.
     fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32);
 }
 
-/// The settings the integrators take (each uses those that apply to it).
+/// What a camera sample is asked for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Want {
+    /// The sample's index in its pixel.
+    pub index: u32,
+    /// Whether to estimate the first surface's illuminance too (path mode traces a second
+    /// path for it on surfaces that are not plain Lambertian, the splatting integrators a
+    /// sensor subpath; direct mode has it at no cost).
+    pub illuminance: bool,
+}
+
+/// The settings the integrators take (each uses those that apply to it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct IntegratorSettings {
     /// Non-delta bounces allowed in the global-illumination modes (None: unlimited).
     pub max_bounces: Option<u32>,
-    /// Whether camera samples also measure the first surface's illuminance (the splatting
-    /// integrators trace a sensor subpath for it).
-    pub pixel_illuminance: bool,
-}
-
-impl Default for IntegratorSettings {
-    fn default() -> Self {
-        Self {
-            max_bounces: None,
-            pixel_illuminance: true,
-        }
-    }
 }
 
 /// The integrator `kind` over `lit`.

@@ -17,7 +17,7 @@
 //!   purely Lambertian surface the same estimate gives the luminance, `L = Le + Kd/π · E`, so
 //!   one path serves both.
 
-use super::{Integrator, IntegratorKind, Sample, Splat};
+use super::{Integrator, IntegratorKind, Sample, Splat, Want};
 use crate::geometry::Ray;
 use crate::light::luminance;
 use crate::lit_scene::LitScene;
@@ -102,15 +102,21 @@ impl Integrator for PathTracing<'_> {
         _basis: &CameraBasis,
         ray: &Ray,
         rng: &mut SampleRng,
-        sample_index: u32,
+        want: Want,
         _splats: &mut Vec<Splat>,
     ) -> Sample {
-        let rr = if sample_index == 0 { 1.0 } else { RR_THRESHOLD };
-        self.tracer(rr).trace(ray, rng)
+        let rr = if want.index == 0 { 1.0 } else { RR_THRESHOLD };
+        self.tracer(rr).trace(ray, rng, want.illuminance)
     }
 
-    fn preview_camera(&self, _basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample {
-        self.tracer(1.0).trace(ray, rng)
+    fn preview_camera(
+        &self,
+        _basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        illuminance: bool,
+    ) -> Sample {
+        self.tracer(1.0).trace(ray, rng, illuminance)
     }
 
     fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32) {
@@ -135,8 +141,10 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         }
     }
 
-    /// Luminance along the camera ray `ray` and the illuminance of the first surface it meets.
-    pub fn trace(&self, ray: &Ray, rng: &mut SampleRng) -> Sample {
+    /// Luminance along the camera ray `ray` and, when `illuminance`, the illuminance of the
+    /// first surface it meets (free on plain Lambertian surfaces, a path of its own on others,
+    /// from a stream of its own: the luminance is the same either way).
+    pub fn trace(&self, ray: &Ray, rng: &mut SampleRng, illuminance: bool) -> Sample {
         let mut sample = Sample::default();
         let mut rays = 0u32;
         let Some((v, le)) = self.arrive(ray, Came::Delta, &mut rays) else {
@@ -158,8 +166,11 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         } else {
             let reflected = self.continue_at(v, 0, rng, &mut rays);
             sample.rgb = le + reflected;
-            let e = self.irradiance_from(p, v.n, v.ng, v.origin, &mut rng.split(1), &mut rays);
-            sample.illuminance_lx = luminance(e);
+            if illuminance {
+                let mut own = rng.split(1);
+                let e = self.irradiance_from(p, v.n, v.ng, v.origin, &mut own, &mut rays);
+                sample.illuminance_lx = luminance(e);
+            }
         }
         sample.rays = rays;
         sample

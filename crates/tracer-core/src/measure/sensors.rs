@@ -98,7 +98,6 @@ fn integrator_for<'a>(
     let lit = LitScene::new(scene, setup, crate::render::DEFAULT_MAX_DEPTH);
     let integrator = IntegratorSettings {
         max_bounces: settings.max_bounces,
-        pixel_illuminance: false,
     };
     crate::integrator::build(settings.integrator, lit, integrator)
 }

@@ -28,6 +28,11 @@ pub struct Film {
     /// The denoiser's albedo and normal guides of the same samples, when asked for
     /// ([`super::RenderSettings::guides`]); None otherwise.
     pub guides: Option<GuideFilm>,
+    /// The first sample index whose illuminance the sums hold (0: every sample's; a session
+    /// starts measuring it when it is first shown, see `FrameSampler::illuminance_from`).
+    /// Every pixel's samples are indices 0, 1, …, so its illuminance mean is over its samples
+    /// past this one.
+    pub illuminance_from: u32,
 }
 
 impl Drop for Film {
@@ -43,6 +48,8 @@ pub enum FilmError {
     SizeMismatch(u32, u32, u32, u32),
     #[error("pixel ({x}, {y}): the sum exceeds the film's fixed-point range")]
     Overflow { x: u32, y: u32 },
+    #[error("the films measured the illuminance from different samples on")]
+    IlluminanceMismatch,
 }
 
 impl Film {
@@ -52,6 +59,7 @@ impl Film {
             height,
             pixels: super::film_buffers::take(width as usize * height as usize),
             guides: None,
+            illuminance_from: 0,
         }
     }
 
@@ -97,6 +105,9 @@ impl Film {
                 other.height,
             ));
         }
+        if self.illuminance_from != other.illuminance_from {
+            return Err(FilmError::IlluminanceMismatch);
+        }
         for (i, (a, b)) in self.pixels.iter_mut().zip(&other.pixels).enumerate() {
             if !a.merge(b) {
                 let w = self.width.max(1) as usize;
@@ -123,7 +134,7 @@ impl Film {
 
     /// Mean illuminance (lx) on the surface seen in pixel `i`.
     pub fn mean_illuminance(&self, i: usize) -> f32 {
-        self.pixels[i].mean_illuminance()
+        self.pixels[i].mean_illuminance_after(self.illuminance_from)
     }
 
     /// All mean colours, row-major.

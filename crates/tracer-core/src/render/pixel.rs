@@ -10,12 +10,14 @@ use super::pixel_sum::PixelSum;
 use super::sampler::{SampleJob, pixel_sample_offset};
 use crate::geometry::Ray;
 use crate::integrator::{
-    DirectBatch, Integrator, IntegratorKind, IntegratorSettings, Sample, Splat, trace_direct_batch,
+    DirectBatch, Integrator, IntegratorKind, IntegratorSettings, Sample, Splat, Want,
+    trace_direct_batch,
 };
 use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
 use crate::scene::{CameraBasis, Scene, Setup};
 use std::ops::Range;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Stream key of preview samples (never accumulated), apart from every pixel's.
 const PREVIEW_STREAM: u64 = 1 << 62;
@@ -42,7 +44,15 @@ pub struct FrameSampler<'a> {
     pub basis: CameraBasis,
     /// Whether the denoiser's guides are traced too ([`super::RenderSettings::guides`]).
     pub guides: bool,
+    /// The first sample index whose illuminance is measured: 0 with
+    /// [`super::RenderSettings::pixel_illuminance`] (and always in direct mode), else none
+    /// until a session asks for it between passes ([`FrameSampler::set_illuminance_from`]).
+    /// Earlier samples read 0 lx, so a pixel's illuminance sum holds its samples from here on.
+    illuminance_from: AtomicU32,
 }
+
+/// [`FrameSampler::illuminance_from`] when no sample measures the illuminance.
+pub const NO_ILLUMINANCE: u32 = u32::MAX;
 
 impl<'a> FrameSampler<'a> {
     pub fn new(scene: &'a Scene, setup: &Setup, settings: &RenderSettings) -> Self {
@@ -52,15 +62,42 @@ impl<'a> FrameSampler<'a> {
             lit,
             IntegratorSettings {
                 max_bounces: settings.max_bounces,
-                pixel_illuminance: settings.pixel_illuminance,
             },
         );
+        // Direct light has the illuminance at no cost: always measured.
+        let from = if settings.pixel_illuminance || settings.integrator == IntegratorKind::Direct {
+            0
+        } else {
+            NO_ILLUMINANCE
+        };
         Self {
             integrator,
             basis: setup
                 .camera
                 .basis(setup.handedness, settings.width, settings.height),
             guides: settings.guides,
+            illuminance_from: AtomicU32::new(from),
+        }
+    }
+
+    /// The first sample index whose illuminance is measured ([`NO_ILLUMINANCE`]: none).
+    pub fn illuminance_from(&self) -> u32 {
+        self.illuminance_from.load(Ordering::Relaxed)
+    }
+
+    /// Measure the illuminance of samples `from` on (and of previews). Only between passes:
+    /// no sample of index `from` or above may have been traced yet, so every pixel's samples
+    /// from there on carry it and none before.
+    pub fn set_illuminance_from(&self, from: u32) {
+        self.illuminance_from.store(from, Ordering::Relaxed);
+    }
+
+    /// What sample `s` is asked for.
+    #[inline]
+    fn want(&self, s: u32) -> Want {
+        Want {
+            index: s,
+            illuminance: s >= self.illuminance_from(),
         }
     }
 
@@ -68,8 +105,14 @@ impl<'a> FrameSampler<'a> {
     /// mode) go to `splats`.
     pub fn sample(&self, x: u32, y: u32, s: u32, splats: &mut Vec<Splat>) -> Sample {
         let (ray, mut rng) = self.camera_ray(SampleJob { x, y, s });
-        self.integrator
-            .sample_camera(&self.basis, &ray, &mut rng, s, splats)
+        let want = self.want(s);
+        let mut sample = self
+            .integrator
+            .sample_camera(&self.basis, &ray, &mut rng, want, splats);
+        if !want.illuminance {
+            sample.illuminance_lx = 0.0;
+        }
+        sample
     }
 
     /// The denoiser's guide of sample `s` of pixel (`x`, `y`): the same camera ray as the
@@ -203,7 +246,9 @@ impl<'a> FrameSampler<'a> {
     pub fn preview_sample(&self, fx: f32, fy: f32, index: u32) -> Sample {
         let key = PREVIEW_STREAM ^ (u64::from(fy.to_bits()) << 32 | u64::from(fx.to_bits()));
         let mut rng = SampleRng::new(key, index);
+        let illuminance = self.illuminance_from() != NO_ILLUMINANCE;
+        let ray = self.basis.ray(fx, fy);
         self.integrator
-            .preview_camera(&self.basis, &self.basis.ray(fx, fy), &mut rng)
+            .preview_camera(&self.basis, &ray, &mut rng, illuminance)
     }
 }

@@ -219,10 +219,17 @@ impl PixelSum {
 
     /// Mean illuminance (lx).
     pub fn mean_illuminance(&self) -> f32 {
-        if self.count == 0 {
+        self.mean_illuminance_after(0)
+    }
+
+    /// Mean illuminance (lx) of the samples past the first `skipped` (those whose illuminance
+    /// was not measured, see `Film::illuminance_from`); 0 before there is one.
+    pub fn mean_illuminance_after(&self, skipped: u32) -> f32 {
+        let n = self.count.saturating_sub(skipped);
+        if n == 0 {
             return 0.0;
         }
-        (from_fixed(self.illuminance, VALUE_SCALE) / f64::from(self.count)) as f32
+        (from_fixed(self.illuminance, VALUE_SCALE) / f64::from(n)) as f32
     }
 
     /// Mean Rec. 709 luminance (cd/m²), splats included, in f64.

@@ -76,6 +76,17 @@ impl ProgressiveFilm {
         self.preview_missed.fill(false);
         self.has_preview = false;
         self.samples_added = 0;
+        self.accum.illuminance_from = 0;
+    }
+
+    /// Whether pixel `i` shows a measured illuminance: its full samples (or its block's, as
+    /// for the colour) include one from [`Film::illuminance_from`] on, or it shows a preview
+    /// of a render that measured it from the start.
+    pub fn illuminance_measured(&self, i: usize) -> bool {
+        match self.shown_source(i) {
+            Some(j) => self.accum.pixels[j].count > self.accum.illuminance_from,
+            None => self.accum.illuminance_from == 0,
+        }
     }
 
     pub fn width(&self) -> u32 {

@@ -16,6 +16,7 @@ mod denoise;
 mod direct_wavefront;
 mod fuzz_corpus;
 mod gi_analytic;
+mod illuminance_on_demand;
 mod integra_bundle;
 mod integra_room2;
 mod luminaires;

@@ -4,7 +4,7 @@
 
 use super::{BDPT_RR_THRESHOLD, Bidirectional, Eye, LightPicker, Splat, Strategies};
 use crate::geometry::Ray;
-use crate::integrator::{Integrator, IntegratorKind, IntegratorSettings, Sample};
+use crate::integrator::{Integrator, IntegratorKind, IntegratorSettings, Sample, Want};
 use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
 use crate::scene::CameraBasis;
@@ -18,8 +18,6 @@ pub struct BidirectionalPathTracing<'a> {
     pub max_bounces: Option<u32>,
     /// Which strategies combine.
     pub strategies: Strategies,
-    /// Whether camera samples also measure the first surface's illuminance.
-    pub pixel_illuminance: bool,
     /// Lights by flux.
     lights: LightPicker,
 }
@@ -35,8 +33,6 @@ pub struct LightTracing<'a> {
     pub lit: LitScene<'a>,
     /// Non-delta bounces allowed (None: unlimited).
     pub max_bounces: Option<u32>,
-    /// Whether camera samples also measure the first surface's illuminance.
-    pub pixel_illuminance: bool,
     lights: LightPicker,
 }
 
@@ -47,7 +43,6 @@ impl<'a> BidirectionalPathTracing<'a> {
             lit,
             max_bounces: settings.max_bounces,
             strategies: Strategies::All,
-            pixel_illuminance: settings.pixel_illuminance,
         }
     }
 }
@@ -58,7 +53,6 @@ impl<'a> LightTracing<'a> {
             lights: LightPicker::new(&lit),
             lit,
             max_bounces: settings.max_bounces,
-            pixel_illuminance: settings.pixel_illuminance,
         }
     }
 }
@@ -96,7 +90,7 @@ impl Integrator for BidirectionalPathTracing<'_> {
         basis: &CameraBasis,
         ray: &Ray,
         rng: &mut SampleRng,
-        _sample_index: u32,
+        want: Want,
         splats: &mut Vec<Splat>,
     ) -> Sample {
         let camera = Bidirectional {
@@ -108,18 +102,24 @@ impl Integrator for BidirectionalPathTracing<'_> {
                 Eye::Camera(*basis),
             )
         };
-        camera_sample(&camera, self.pixel_illuminance, ray, rng, splats)
+        camera_sample(&camera, want.illuminance, ray, rng, splats)
     }
 
     /// Bidirectional transport without the t = 1 strategies (the power heuristic renormalised
     /// over the rest), so previews show what the mode converges to (a lamp's hot spot on the
     /// ceiling, the light its shades throw), not a path tracer's guess.
-    fn preview_camera(&self, basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample {
+    fn preview_camera(
+        &self,
+        basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        illuminance: bool,
+    ) -> Sample {
         preview(
             &self.lit,
             &self.lights,
             self.max_bounces,
-            self.pixel_illuminance,
+            illuminance,
             basis,
             ray,
             rng,
@@ -149,7 +149,7 @@ impl Integrator for LightTracing<'_> {
         basis: &CameraBasis,
         ray: &Ray,
         rng: &mut SampleRng,
-        _sample_index: u32,
+        want: Want,
         splats: &mut Vec<Splat>,
     ) -> Sample {
         let camera = Bidirectional {
@@ -161,17 +161,23 @@ impl Integrator for LightTracing<'_> {
                 Eye::Camera(*basis),
             )
         };
-        camera_sample(&camera, self.pixel_illuminance, ray, rng, splats)
+        camera_sample(&camera, want.illuminance, ray, rng, splats)
     }
 
     /// Substitution: bidirectional transport without splats, as for
     /// [`BidirectionalPathTracing`] (light tracing proper can only splat).
-    fn preview_camera(&self, basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample {
+    fn preview_camera(
+        &self,
+        basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        illuminance: bool,
+    ) -> Sample {
         preview(
             &self.lit,
             &self.lights,
             self.max_bounces,
-            self.pixel_illuminance,
+            illuminance,
             basis,
             ray,
             rng,
@@ -192,7 +198,7 @@ fn preview(
     lit: &LitScene<'_>,
     lights: &LightPicker,
     max_bounces: Option<u32>,
-    pixel_illuminance: bool,
+    illuminance: bool,
     basis: &CameraBasis,
     ray: &Ray,
     rng: &mut SampleRng,
@@ -202,7 +208,7 @@ fn preview(
         ..transport(lit, lights, max_bounces, Eye::Camera(*basis))
     };
     let mut none = Vec::new();
-    let sample = camera_sample(&camera, pixel_illuminance, ray, rng, &mut none);
+    let sample = camera_sample(&camera, illuminance, ray, rng, &mut none);
     debug_assert!(none.is_empty(), "a preview splatted");
     sample
 }
@@ -212,7 +218,7 @@ fn preview(
 /// per pixel.
 fn camera_sample(
     camera: &Bidirectional<'_, '_>,
-    pixel_illuminance: bool,
+    illuminance: bool,
     ray: &Ray,
     rng: &mut SampleRng,
     splats: &mut Vec<Splat>,
@@ -223,7 +229,7 @@ fn camera_sample(
         camera.light_subpath(&mut super::light_stream(rng), &mut rays, paths);
         let (estimate, first) = camera.camera_sample(ray, rng, paths, splats);
         let mut illuminance_lx = 0.0;
-        if let Some((p, n)) = first.filter(|_| pixel_illuminance) {
+        if let Some((p, n)) = first.filter(|_| illuminance) {
             let sensor = Bidirectional {
                 light_tracing: false,
                 eye: Eye::Sensor,

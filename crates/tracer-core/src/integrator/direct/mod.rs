@@ -21,7 +21,7 @@ mod walk;
 
 pub use batch::{DirectBatch, trace_batch};
 
-use super::{Integrator, IntegratorKind, PathTracer, Sample, Splat};
+use super::{Integrator, IntegratorKind, PathTracer, Sample, Splat, Want};
 use crate::geometry::Ray;
 use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
@@ -54,13 +54,19 @@ impl Integrator for DirectLighting<'_> {
         _basis: &CameraBasis,
         ray: &Ray,
         rng: &mut SampleRng,
-        _sample_index: u32,
+        _want: Want,
         _splats: &mut Vec<Splat>,
     ) -> Sample {
         trace(&self.lit, ray, rng)
     }
 
-    fn preview_camera(&self, _basis: &CameraBasis, ray: &Ray, rng: &mut SampleRng) -> Sample {
+    fn preview_camera(
+        &self,
+        _basis: &CameraBasis,
+        ray: &Ray,
+        rng: &mut SampleRng,
+        _illuminance: bool,
+    ) -> Sample {
         trace(&self.lit, ray, rng)
     }
 

@@ -3,23 +3,45 @@
 //! generation.
 
 use super::super::passes::Pass;
-use super::super::pixel::FrameSampler;
+use super::super::pixel::{FrameSampler, NO_ILLUMINANCE};
 use super::super::tiles::tiles_centre_out;
 use super::priority::lower_thread_priority;
-use super::shared::{Shared, full_frame, prepare_film};
+use super::shared::{Shared, full_frame, prepare_film, set_film_illuminance};
 use super::tile_work::{FIRST_PASS_PHASES, PassContext, Phase, Progress};
-use super::{SessionStats, Snapshot};
+use super::{ILLUMINANCE_SAMPLES, SessionStats, Snapshot};
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Instant;
+use std::time::{Duration, Instant};
+
+/// Where a generation's passes start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Start {
+    /// From the first preview, on a fresh film.
+    Fresh,
+    /// At full sample `index` of a generation that finished without measuring the
+    /// illuminance, now asked for: [`ILLUMINANCE_SAMPLES`] more samples, with it.
+    Resume { index: u32 },
+}
+
+/// How a generation's run ended.
+struct Outcome {
+    /// All its passes ran (else a newer generation or the shutdown cut it short).
+    finished: bool,
+    /// Full samples per pixel done.
+    samples: u32,
+    /// Whether it measured the illuminance.
+    illuminance: bool,
+}
 
 /// The coordinator: waits for a job, runs its passes, repeats.
 pub(super) fn coordinator(shared: &Shared) {
     let mut pool: Option<(usize, rayon::ThreadPool)> = None;
     let mut done_generation = 0u64;
+    // The last generation, when it finished without the illuminance: (its snapshot, samples).
+    let mut unmeasured: Option<(Arc<Snapshot>, u32)> = None;
     loop {
-        let (generation, snapshot, threads) = {
+        let (generation, snapshot, threads, start) = {
             let mut st = shared.lock();
             loop {
                 if st.shutdown {
@@ -27,9 +49,17 @@ pub(super) fn coordinator(shared: &Shared) {
                 }
                 match &st.job {
                     Some((g, s)) if *g != done_generation && !st.paused => {
-                        break (*g, Arc::clone(s), st.threads);
+                        break (*g, Arc::clone(s), st.threads, Start::Fresh);
                     }
                     _ => {}
+                }
+                if let Some((snap, samples)) = &unmeasured
+                    && st.illuminance_wanted
+                    && !st.paused
+                    && shared.is_current(done_generation)
+                {
+                    let resume = Start::Resume { index: *samples };
+                    break (done_generation, Arc::clone(snap), st.threads, resume);
                 }
                 st = match shared.wake.wait(st) {
                     Ok(g) => g,
@@ -50,8 +80,10 @@ pub(super) fn coordinator(shared: &Shared) {
             }
         }
         let Some((_, p)) = pool.as_ref() else { return };
-        run_generation(shared, p, generation, &snapshot, threads);
+        let outcome = run_generation(shared, p, generation, &snapshot, threads, start);
         done_generation = generation;
+        unmeasured = (outcome.finished && !outcome.illuminance)
+            .then(|| (Arc::clone(&snapshot), outcome.samples));
     }
 }
 
@@ -62,32 +94,67 @@ fn run_generation(
     generation: u64,
     snap: &Snapshot,
     threads: usize,
-) {
-    let started = Instant::now();
+    start: Start,
+) -> Outcome {
+    let mut started = Instant::now();
     let s = &snap.settings;
-    let target = s.samples_per_pixel.max(1);
+    let (target, first_pass, rays_before) = match start {
+        Start::Fresh => (s.samples_per_pixel.max(1), Pass::first(), 0),
+        Start::Resume { index } => {
+            // The generation's clock and ray count go on from where it finished.
+            let st = shared.lock();
+            let so_far = Duration::from_secs_f64(st.stats.elapsed_secs.max(0.0));
+            started = started.checked_sub(so_far).unwrap_or(started);
+            (
+                index + ILLUMINANCE_SAMPLES,
+                Pass::Full { index },
+                st.stats.rays,
+            )
+        }
+    };
+    let mut outcome = Outcome {
+        finished: false,
+        samples: 0,
+        illuminance: false,
+    };
     {
         let mut st = shared.lock();
-        st.stats = SessionStats {
-            generation,
-            target_spp: target,
-            threads,
-            paused: st.paused,
-            ..SessionStats::default()
-        };
+        match start {
+            Start::Fresh => {
+                st.stats = SessionStats {
+                    generation,
+                    target_spp: target,
+                    threads,
+                    paused: st.paused,
+                    ..SessionStats::default()
+                };
+            }
+            Start::Resume { .. } => {
+                st.stats.target_spp = target;
+                st.stats.finished = false;
+            }
+        }
     }
-    if !prepare_film(shared, pool, generation, s) {
-        return;
+    if start == Start::Fresh && !prepare_film(shared, pool, generation, s) {
+        return outcome;
     }
     let frame = FrameSampler::new(&snap.scene, &snap.setup, s);
-    let rays = AtomicU64::new(0);
+    let rays = AtomicU64::new(rays_before);
     let pixels_done = AtomicU64::new(0);
     let mut full_started = None;
-    let mut pass = Some(Pass::first());
+    let mut pass = Some(first_pass);
     while let Some(current) = pass {
         if !shared.is_current(generation) {
-            return;
+            return outcome;
         }
+        // The illuminance, once asked for, from this pass on: no sample of it is traced yet.
+        if frame.illuminance_from() == NO_ILLUMINANCE && shared.lock().illuminance_wanted {
+            frame.set_illuminance_from(match current {
+                Pass::Preview { .. } => 0,
+                Pass::Full { index } => index,
+            });
+        }
+        set_film_illuminance(shared, generation, frame.illuminance_from());
         if snap.time_limit.is_some_and(|limit| {
             started.elapsed() >= limit && matches!(current, Pass::Full { index } if index > 0)
         }) {
@@ -127,7 +194,7 @@ fn run_generation(
             };
             pool.install(|| tiles.par_iter().for_each(|tile| ctx.run_tile(tile)));
             if !shared.is_current(generation) {
-                return;
+                return outcome;
             }
         }
         let mut st = shared.lock();
@@ -146,10 +213,13 @@ fn run_generation(
                 }
             }
             Pass::Full { index } => {
+                outcome.samples = index + 1;
                 st.stats.samples_per_pixel = index + 1;
                 st.stats.pass_fraction = 0.0;
-                st.stats.secs_per_sample =
-                    full_started.map(|t| t.elapsed().as_secs_f64() / f64::from(index + 1));
+                if let Some(t) = full_started {
+                    st.stats.secs_per_sample =
+                        Some(t.elapsed().as_secs_f64() / f64::from(index + 1));
+                }
                 if s.integrator.splats() {
                     // The pass's last splats landed all over the picture.
                     st.dirty.push(full_frame(s));
@@ -177,8 +247,11 @@ fn run_generation(
         st.stats.finished = true;
         st.stats.rays = rays.load(Ordering::Relaxed);
         st.stats.elapsed_secs = started.elapsed().as_secs_f64();
+        outcome.finished = true;
+        outcome.illuminance = frame.illuminance_from() != NO_ILLUMINANCE;
     }
     drop(st);
     shared.wake.notify_all();
     (shared.notify)();
+    outcome
 }

@@ -26,6 +26,9 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
+/// Samples a generation that finished without the illuminance renders once it is asked for.
+pub const ILLUMINANCE_SAMPLES: u32 = 16;
+
 /// Everything one render generation needs; immutable once started.
 #[derive(Clone, Debug)]
 pub struct Snapshot {
@@ -133,6 +136,7 @@ impl RenderSession {
                 paused: false,
                 shutdown: false,
                 threads,
+                illuminance_wanted: false,
             }),
             wake: Condvar::new(),
             generation: AtomicU64::new(0),
@@ -158,6 +162,19 @@ impl RenderSession {
         drop(st);
         self.shared.wake.notify_all();
         generation
+    }
+
+    /// The pixels' illuminance is to be shown: measure it from the next pass on (never a
+    /// restart), and from the start in later generations. A generation that had finished
+    /// without it renders [`ILLUMINANCE_SAMPLES`] more samples, with it.
+    pub fn measure_illuminance(&self) {
+        let mut st = self.shared.lock();
+        if st.illuminance_wanted {
+            return;
+        }
+        st.illuminance_wanted = true;
+        drop(st);
+        self.shared.wake.notify_all();
     }
 
     /// The newest generation started (0 before the first).

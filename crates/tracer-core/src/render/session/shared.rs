@@ -24,6 +24,9 @@ pub(super) struct State {
     pub paused: bool,
     pub shutdown: bool,
     pub threads: usize,
+    /// The illuminance has been shown: measured from the next pass on, in this generation and
+    /// every later one (`RenderSession::measure_illuminance`).
+    pub illuminance_wanted: bool,
 }
 
 pub(super) struct Shared {
@@ -78,6 +81,20 @@ pub(super) fn prepare_film(
     }
     st.pending = Some(film);
     true
+}
+
+/// Makes `generation`'s film hold its illuminance from sample `from` on, as its sampler does.
+pub(super) fn set_film_illuminance(shared: &Shared, generation: u64, from: u32) {
+    let mut st = shared.lock();
+    let st = &mut *st;
+    for film in [st.pending.as_mut(), st.film.as_mut()]
+        .into_iter()
+        .flatten()
+    {
+        if film.generation == generation {
+            film.accum.illuminance_from = from;
+        }
+    }
 }
 
 pub(super) fn full_frame(s: &RenderSettings) -> Tile {
