@@ -124,6 +124,15 @@ pub struct RenderArgs {
     /// guides for `merge --denoise`.
     #[arg(long)]
     pub denoise: bool,
+    /// Stop once every pixel's standard error is at most PCT % of max(Y, 0.1 × the image's
+    /// mean luminance), leaving out the 0.5 % brightest pixels (a lamp's hot spot); samples go
+    /// where the error is highest. --samples caps every pixel (default 65536).
+    #[arg(long, value_name = "PCT", value_parser = parse_percent)]
+    pub target_error: Option<f64>,
+    /// With --time-limit or --target-error: give every pixel the same number of samples
+    /// instead of sending them where the error is highest.
+    #[arg(long, conflicts_with = "target_error")]
+    pub no_adaptive: bool,
     /// Light position, camera position and vertical field of view (degrees):
     /// `lx ly lz cx cy cz cf`, or any prefix of them.
     #[arg(value_name = "LX LY LZ CX CY CZ CF", num_args = 0..=7)]

@@ -43,10 +43,12 @@ pub struct SceneArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100000))]
     pub max_bounces: Option<u32>,
     /// Samples per pixel or per sensor point (default: 1, 16 with -A; 64 in the
-    /// global-illumination modes: path, bdpt, light). A cap when --time-limit is given.
+    /// global-illumination modes: path, bdpt, light). A cap when --time-limit is given
+    /// (render: of every pixel, default 65536).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1048576))]
     pub samples: Option<u32>,
-    /// Stop after this many seconds (between passes), with --samples as a cap.
+    /// Stop after this many seconds (between passes), with --samples as a cap. `render`
+    /// samples adaptively then (after 16 samples in every pixel, where the error is highest).
     #[arg(long, value_name = "SECS", value_parser = parse_seconds)]
     pub time_limit: Option<f64>,
 }

@@ -10,11 +10,15 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tracer_core::denoise::{Denoiser, Images, Quality};
 use tracer_core::integrator::IntegratorKind;
+use tracer_core::render::adaptive::{Stop, render_adaptive, worst_relative_error};
 use tracer_core::render::{RenderSettings, render_with_progress};
 
 /// Seconds between `raygine render`'s progress lines.
 const PROGRESS_LINE_SECS: f64 = 5.0;
 use tracer_core::scene::{LightKind, LoadedScene};
+
+/// The samples cap of every pixel with --time-limit or --target-error and no --samples.
+pub const ADAPTIVE_CAP: u32 = 65_536;
 
 /// Samples per pixel of `-A/--antialiased`.
 pub const ANTIALIASED_SAMPLES: u32 = 16;
@@ -87,7 +91,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     } else {
         1
     };
-    let settings = RenderSettings {
+    let adaptive = !args.no_adaptive
+        && (args.scene.time_limit.is_some() || args.target_error.is_some())
+        && args.shard.partial.is_none();
+    let mut settings = RenderSettings {
         width: args.width,
         height: args.height,
         max_depth: args.depth,
@@ -96,6 +103,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         guides: args.denoise,
         ..sampling_settings(&args.scene, direct_samples)
     };
+    let open_ended = args.scene.time_limit.is_some() || args.target_error.is_some();
+    if open_ended && args.scene.samples.is_none() && args.shard.partial.is_none() {
+        // A time or an error to reach: the cap is far away.
+        settings.samples_per_pixel = ADAPTIVE_CAP;
+    }
     if args.shard.partial.is_some() {
         return crate::shard_cmd::render_part(args, &loaded, &settings);
     }
@@ -150,26 +162,43 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         // where they are, on a terminal and in a log alike.
         if last_line.elapsed().as_secs_f64() >= PROGRESS_LINE_SECS && s.samples_per_pixel < target {
             last_line = Instant::now();
-            let per = s.elapsed_secs / f64::from(s.samples_per_pixel.max(1));
-            let left = per * f64::from(target - s.samples_per_pixel);
+            let done = s.mean_samples_per_pixel;
+            let per = s.elapsed_secs / done.max(1.0);
+            let left = per * (f64::from(target) - done).max(0.0);
             let left = match time_limit {
                 Some(limit) => left.min((limit.as_secs_f64() - s.elapsed_secs).max(0.0)),
                 None => left,
             };
-            eprintln!(
-                "rendering: {}/{target} spp, {:.1} s, about {left:.0} s left",
-                s.samples_per_pixel, s.elapsed_secs
-            );
+            if adaptive {
+                eprintln!(
+                    "rendering: {done:.1} spp on average (at least {}), {:.1} s, at most \
+                     {left:.0} s left",
+                    s.samples_per_pixel, s.elapsed_secs
+                );
+            } else {
+                eprintln!(
+                    "rendering: {}/{target} spp, {:.1} s, about {left:.0} s left",
+                    s.samples_per_pixel, s.elapsed_secs
+                );
+            }
         }
     };
     let (film, stats) = pool.install(|| {
-        render_with_progress(
-            &loaded.scene,
-            &loaded.setup,
-            &settings,
-            time_limit,
-            &mut report,
-        )
+        if adaptive {
+            let stop = Stop {
+                time_limit,
+                target_error: args.target_error.map(|pct| pct / 100.0),
+            };
+            render_adaptive(&loaded.scene, &loaded.setup, &settings, stop, &mut report)
+        } else {
+            render_with_progress(
+                &loaded.scene,
+                &loaded.setup,
+                &settings,
+                time_limit,
+                &mut report,
+            )
+        }
     });
     if film.rejected_samples() > 0 {
         bail!(
@@ -201,15 +230,24 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             }
         }
     };
+    let spp = if adaptive {
+        format!(
+            "{:.1} spp on average (adaptive: {} to {})",
+            stats.mean_samples_per_pixel,
+            stats.samples_per_pixel,
+            film.pixels.iter().map(|p| p.count).max().unwrap_or(0)
+        )
+    } else {
+        format!("{} spp", stats.samples_per_pixel)
+    };
     println!(
-        "{}: {} triangles, {} breps, BVH {:.1} ms; {}x{} px, {} spp, {transport}, {} threads",
+        "{}: {} triangles, {} breps, BVH {:.1} ms; {}x{} px, {spp}, {transport}, {} threads",
         scene.name,
         scene.triangle_count(),
         scene.breps.len(),
         scene.bvh_build_secs * 1e3,
         settings.width,
         settings.height,
-        stats.samples_per_pixel,
         threads
     );
     if let Some(noise) = film.relative_noise() {
@@ -217,6 +255,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             "remaining noise: {:.2} % (RMS standard error of pixel luminance / mean luminance)",
             noise * 100.0
         );
+    }
+    if let Some(target) = args.target_error {
+        let worst = worst_relative_error(&film) * 100.0;
+        let verdict = if worst <= target {
+            "reached"
+        } else {
+            "NOT reached (the sample cap or the time limit came first)"
+        };
+        println!("target error {target} %: {verdict}; worst pixel {worst:.2} %");
     }
     println!(
         "rendered in {:.1} ms, {:.2} Mrays/s; luminance mean {:.3} cd/m², max {:.3} cd/m²; exposure {:+.2} stops",

@@ -55,6 +55,7 @@ pub fn render_part(
             (args.render_path.is_some(), "-R/--render_path"),
             (args.exr.is_some(), "--exr"),
             (args.scene.time_limit.is_some(), "--time-limit"),
+            (args.target_error.is_some(), "--target-error"),
             (d.exposure.is_some(), "--exposure"),
             (d.auto_exposure, "--auto-exposure"),
         ],

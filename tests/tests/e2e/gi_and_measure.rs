@@ -153,14 +153,16 @@ fn render_with_gi_is_brighter_and_time_limited() {
         "{}",
         run.stdout
     );
-    let spp: u32 = run
+    // A time limit samples adaptively: "149.7 spp on average (adaptive: 16 to 1477)".
+    let spp: f64 = run
         .stdout
-        .split(" spp")
+        .split(" spp on average")
         .next()
         .and_then(|s| s.rsplit(' ').next())
         .and_then(|s| s.parse().ok())
         .expect("spp in the summary");
-    assert!((1..100_000).contains(&spp), "{}", run.stdout);
+    assert!((1.0..100_000.0).contains(&spp), "{}", run.stdout);
+    assert!(run.stdout.contains("(adaptive: "), "{}", run.stdout);
     let mean = |p: &Path| {
         let img = read_png(p);
         let c = img.mean_frac(0.0, 0.0, 1.0, 1.0);
@@ -368,11 +370,69 @@ fn a_long_render_prints_progress_lines() {
         .collect();
     assert!(!lines.is_empty(), "no progress line: {}", run.stderr);
     for l in &lines {
+        // Adaptive under a time limit: the average, the least, and the time left.
         assert!(
-            l.contains("/1000000 spp, ") && l.ends_with(" s left"),
+            l.contains(" spp on average (at least ") && l.ends_with(" s left"),
             "{l}"
         );
     }
     assert!(!run.stdout.contains("rendering: "), "{}", run.stdout);
     assert!(png.is_file());
+}
+
+/// `render --target-error PCT` samples adaptively until every pixel but the 0.5 % brightest is
+/// within it, says so with the worst pixel, and keeps --samples as the cap of every pixel;
+/// `--no-adaptive` cannot be combined with it.
+#[test]
+fn a_target_error_is_rendered_to_and_reported() {
+    let dir = temp_dir();
+    fn args<'a>(pct: &'a str, cap: &'a str) -> [&'a str; 12] {
+        [
+            "--gi",
+            "bdpt",
+            "-W",
+            "32",
+            "-H",
+            "24",
+            "--target-error",
+            pct,
+            "--samples",
+            cap,
+            "-R",
+            "t.png",
+        ]
+    }
+    let run = render_in(dir.path(), args("20", "4096"));
+    run.assert_ok();
+    assert!(run.stdout.contains("(adaptive: "), "{}", run.stdout);
+    let line = run
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("target error 20 %: reached; worst pixel "))
+        .unwrap_or_else(|| panic!("{}", run.stdout));
+    let worst: f64 = line
+        .rsplit(' ')
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{line}"));
+    assert!(worst <= 20.0, "{line}");
+    // A cap too low for the target: rendered, and said.
+    let capped = render_in(dir.path(), args("1", "20"));
+    capped.assert_ok();
+    assert!(
+        capped.stdout.contains("target error 1 %: NOT reached"),
+        "{}",
+        capped.stdout
+    );
+    assert!(
+        capped.stdout.contains("(adaptive: 16 to 20)"),
+        "{}",
+        capped.stdout
+    );
+    let both = render_in(
+        dir.path(),
+        ["--gi", "bdpt", "--target-error", "5", "--no-adaptive"],
+    );
+    assert!(!both.success());
+    assert!(both.stderr.contains("--no-adaptive"), "{}", both.stderr);
 }

@@ -57,12 +57,13 @@ impl DisplayMapper {
     pub fn map_film<const CHANNELS: usize>(&self, film: &Film) -> Vec<u8> {
         let width = (film.width as usize).max(1);
         let skipped = film.illuminance_from;
+        let paths = film.splat_paths;
         let mut out = vec![0u8; film.pixels.len() * CHANNELS];
         out.par_chunks_mut(width * CHANNELS)
             .zip(film.pixels.par_chunks(width))
             .for_each(|(row, sums)| {
                 for (o, p) in row.chunks_exact_mut(CHANNELS).zip(sums) {
-                    let code = self.map(p.mean_rgb(), p.mean_illuminance_after(skipped));
+                    let code = self.map(p.mean_rgb_over(paths), p.mean_illuminance_after(skipped));
                     o.copy_from_slice(&code[..CHANNELS]);
                 }
             });
@@ -77,6 +78,7 @@ impl DisplayMapper {
     ) -> (Vec<u8>, f64, f32) {
         let width = (film.width as usize).max(1);
         let skipped = film.illuminance_from;
+        let paths = film.splat_paths;
         let mut out = vec![0u8; film.pixels.len() * CHANNELS];
         let rows: Vec<(f64, f32)> = out
             .par_chunks_mut(width * CHANNELS)
@@ -84,7 +86,7 @@ impl DisplayMapper {
             .map(|(row, sums)| {
                 let (mut sum, mut max) = (0.0f64, 0.0f32);
                 for (o, p) in row.chunks_exact_mut(CHANNELS).zip(sums) {
-                    let rgb = p.mean_rgb();
+                    let rgb = p.mean_rgb_over(paths);
                     let y = luminance(rgb);
                     sum += f64::from(y);
                     max = max.max(y);
@@ -104,12 +106,13 @@ impl DisplayMapper {
 /// order, so the figures do not depend on threads.
 pub fn luminance_sum_max(film: &Film) -> (f64, f32) {
     let width = (film.width as usize).max(1);
+    let paths = film.splat_paths;
     let rows: Vec<(f64, f32)> = film
         .pixels
         .par_chunks(width)
         .map(|sums| {
             sums.iter().fold((0.0f64, 0.0f32), |(sum, max), p| {
-                let y = luminance(p.mean_rgb());
+                let y = luminance(p.mean_rgb_over(paths));
                 (sum + f64::from(y), max.max(y))
             })
         })

@@ -33,6 +33,11 @@ pub struct Film {
     /// Every pixel's samples are indices 0, 1, …, so its illuminance mean is over its samples
     /// past this one.
     pub illuminance_from: u32,
+    /// Light subpaths per pixel whose splats the sums hold (total samples over pixels), when
+    /// the pixels' counts differ (adaptive sampling, [`super::adaptive`]): the splats are
+    /// divided by it, never by the receiving pixel's own count. None: every pixel has the same
+    /// count, which is that number.
+    pub splat_paths: Option<f64>,
 }
 
 impl Drop for Film {
@@ -60,6 +65,7 @@ impl Film {
             pixels: super::film_buffers::take(width as usize * height as usize),
             guides: None,
             illuminance_from: 0,
+            splat_paths: None,
         }
     }
 
@@ -117,6 +123,9 @@ impl Film {
                 });
             }
         }
+        if self.splat_paths.is_some() || other.splat_paths.is_some() {
+            self.count_splat_paths();
+        }
         // Guides of only some of the samples would not describe the sum: kept only when both
         // films have them.
         match (&mut self.guides, &other.guides) {
@@ -127,9 +136,27 @@ impl Film {
         Ok(())
     }
 
+    /// Sets [`Film::splat_paths`] from the pixels' counts: None when they are all equal.
+    pub fn count_splat_paths(&mut self) {
+        let first = self.pixels.first().map_or(0, |p| p.count);
+        let total: u64 = self.pixels.iter().map(|p| u64::from(p.count)).sum();
+        let uniform = self.pixels.iter().all(|p| p.count == first);
+        self.splat_paths = (!uniform).then(|| total as f64 / self.pixels.len().max(1) as f64);
+    }
+
     /// Mean linear luminance per channel (cd/m²); black where no sample landed yet.
     pub fn mean_rgb(&self, i: usize) -> Vec3 {
-        self.pixels[i].mean_rgb()
+        self.pixels[i].mean_rgb_over(self.splat_paths)
+    }
+
+    /// Mean Rec. 709 luminance of pixel `i` (cd/m²), in f64.
+    pub fn mean_luminance(&self, i: usize) -> f64 {
+        self.pixels[i].mean_luminance_over(self.splat_paths)
+    }
+
+    /// Standard error of pixel `i`'s mean luminance (cd/m²); None before two samples.
+    pub fn luminance_std_error(&self, i: usize) -> Option<f64> {
+        self.pixels[i].luminance_std_error_over(self.splat_paths)
     }
 
     /// Mean illuminance (lx) on the surface seen in pixel `i`.
@@ -139,7 +166,8 @@ impl Film {
 
     /// All mean colours, row-major.
     pub fn mean_rgb_all(&self) -> Vec<Vec3> {
-        self.pixels.iter().map(PixelSum::mean_rgb).collect()
+        let m = self.splat_paths;
+        self.pixels.iter().map(|p| p.mean_rgb_over(m)).collect()
     }
 
     /// The fewest samples any pixel has.
@@ -160,15 +188,20 @@ impl Film {
         if self.pixels.is_empty() || self.pixels.iter().any(|p| p.count < 2) {
             return None;
         }
-        let mut means: Vec<f64> = self.pixels.iter().map(PixelSum::mean_luminance).collect();
+        let m = self.splat_paths;
+        let mut means: Vec<f64> = self
+            .pixels
+            .iter()
+            .map(|p| p.mean_luminance_over(m))
+            .collect();
         let drop = means.len() / 200;
         let keep = means.len() - drop;
         let cut = *means.select_nth_unstable_by(keep - 1, f64::total_cmp).1;
         let (mut se2, mut sum, mut n) = (0.0f64, 0.0f64, 0usize);
         for p in &self.pixels {
-            let y = p.mean_luminance();
+            let y = p.mean_luminance_over(m);
             if y <= cut && n < keep {
-                se2 += p.luminance_std_error()?.powi(2);
+                se2 += p.luminance_std_error_over(m)?.powi(2);
                 sum += y;
                 n += 1;
             }

@@ -1,6 +1,7 @@
 //! Tiles, passes and threads: turning the integrator into images. One-shot rendering lives here;
 //! the progressive session of the viewer builds on the same film, sampler and tile order.
 
+pub mod adaptive;
 mod camera_rays;
 mod film;
 mod film_buffers;
@@ -78,8 +79,11 @@ impl Default for RenderSettings {
 pub struct RenderStats {
     pub rays: u64,
     pub elapsed_secs: f64,
-    /// Samples every pixel received (fewer than asked when a time limit stopped the render).
+    /// Samples every pixel received (fewer than asked when a time limit stopped the render;
+    /// the fewest any pixel has under adaptive sampling).
     pub samples_per_pixel: u32,
+    /// Samples per pixel on average (more than `samples_per_pixel` under adaptive sampling).
+    pub mean_samples_per_pixel: f64,
 }
 
 impl RenderStats {
@@ -150,6 +154,7 @@ pub fn render_with_progress(
         rays,
         elapsed_secs: started.elapsed().as_secs_f64(),
         samples_per_pixel: done,
+        mean_samples_per_pixel: f64::from(done),
     };
     while done < target {
         let elapsed = started.elapsed().as_secs_f64();
@@ -195,6 +200,31 @@ pub fn render_samples(
         rays,
         elapsed_secs: started.elapsed().as_secs_f64(),
         samples_per_pixel: samples.len() as u32,
+        mean_samples_per_pixel: samples.len() as f64,
+    };
+    (film, stats)
+}
+
+/// Renders sample indices `samples(i)` of every pixel i (row-major index): pixels may get
+/// different samples (adaptive sampling). The film's [`Film::splat_paths`] is set from its
+/// counts. As for [`render_samples`], films of disjoint ranges add up to the film of their
+/// union, and threads do not change the result.
+pub fn render_pixels(
+    scene: &Scene,
+    setup: &Setup,
+    settings: &RenderSettings,
+    samples: &(dyn Fn(usize) -> Range<u32> + Sync),
+) -> (Film, RenderStats) {
+    let started = std::time::Instant::now();
+    let frame = FrameSampler::new(scene, setup, settings);
+    let (mut film, rays) = render_pixel_ranges(&frame, settings, samples);
+    film.count_splat_paths();
+    let total: u64 = film.pixels.iter().map(|p| u64::from(p.count)).sum();
+    let stats = RenderStats {
+        rays,
+        elapsed_secs: started.elapsed().as_secs_f64(),
+        samples_per_pixel: film.min_samples(),
+        mean_samples_per_pixel: total as f64 / film.pixels.len().max(1) as f64,
     };
     (film, stats)
 }
@@ -204,6 +234,18 @@ fn render_range(
     frame: &FrameSampler<'_>,
     settings: &RenderSettings,
     samples: Range<u32>,
+) -> (Film, u64) {
+    render_pixel_ranges(frame, settings, &|_| samples.clone())
+}
+
+/// Renders sample indices `samples(i)` of every pixel i (row-major index) into a new film;
+/// returns it and the rays traced. Each sample depends on (pixel, sample index) only, so the
+/// film does not depend on the number of threads, and adding films of disjoint ranges gives
+/// the film of their union.
+pub(crate) fn render_pixel_ranges(
+    frame: &FrameSampler<'_>,
+    settings: &RenderSettings,
+    samples: &(dyn Fn(usize) -> Range<u32> + Sync),
 ) -> (Film, u64) {
     let mut film = new_film(settings);
     let width = settings.width as usize;
@@ -222,17 +264,12 @@ fn render_range(
                 .flat_map(|x0| {
                     let x1 = (x0 + TILE_SIZE).min(settings.width);
                     (y0..y0 + rows).flat_map(move |y| (x0..x1).map(move |x| (x, y)))
-                });
-            let band_rays = frame.for_each_sample(
-                order,
-                samples.clone(),
-                &mut scratch,
-                &mut splats,
-                |x, y, run| {
-                    let row = (y - y0) as usize * width;
-                    pixels[row + x as usize].add_run(run);
-                },
-            );
+                })
+                .map(|(x, y)| (x, y, samples(y as usize * width + x as usize)));
+            let band_rays = frame.for_each_sample(order, &mut scratch, &mut splats, |x, y, run| {
+                let row = (y - y0) as usize * width;
+                pixels[row + x as usize].add_run(run);
+            });
             (band_rays, splats)
         })
         .fold(
@@ -269,12 +306,12 @@ fn new_film(settings: &RenderSettings) -> Film {
     }
 }
 
-/// Adds the guides of samples `samples` of every pixel, band by band in parallel.
+/// Adds the guides of samples `samples(i)` of every pixel i, band by band in parallel.
 fn add_guides(
     frame: &FrameSampler<'_>,
     settings: &RenderSettings,
     guides: &mut GuideFilm,
-    samples: Range<u32>,
+    samples: &(dyn Fn(usize) -> Range<u32> + Sync),
 ) {
     let width = settings.width as usize;
     guides
@@ -285,7 +322,7 @@ fn add_guides(
             let y0 = band * BAND_ROWS as usize;
             for (i, sum) in pixels.iter_mut().enumerate() {
                 let (x, y) = ((i % width) as u32, (y0 + i / width) as u32);
-                for s in samples.clone() {
+                for s in samples(y0 * width + i) {
                     sum.add(&frame.guide(x, y, s));
                 }
             }

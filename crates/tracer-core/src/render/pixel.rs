@@ -185,13 +185,12 @@ impl<'a> FrameSampler<'a> {
         rays
     }
 
-    /// Samples `samples` of each pixel of `pixels`, traced in batches of [`BATCH_SAMPLES`];
-    /// `add` receives runs of samples of one pixel (a pixel's samples may come in several
-    /// runs). Returns the rays traced.
+    /// For each (x, y, samples) of `pixels`, those samples of pixel (x, y), traced in batches
+    /// of [`BATCH_SAMPLES`]; `add` receives runs of samples of one pixel (a pixel's samples may
+    /// come in several runs). Returns the rays traced.
     pub fn for_each_sample(
         &self,
-        pixels: impl IntoIterator<Item = (u32, u32)>,
-        samples: Range<u32>,
+        pixels: impl IntoIterator<Item = (u32, u32, Range<u32>)>,
         scratch: &mut BatchScratch,
         splats: &mut Vec<Splat>,
         mut add: impl FnMut(u32, u32, &[Sample]),
@@ -215,7 +214,7 @@ impl<'a> FrameSampler<'a> {
             jobs.clear();
         };
         jobs.clear();
-        for (x, y) in pixels {
+        for (x, y, samples) in pixels {
             // A pixel's samples go in as runs, as many as the batch has room for.
             let mut s = samples.start;
             while s < samples.end {

@@ -189,32 +189,32 @@ impl PixelSum {
         }
     }
 
-    /// Mean luminance per channel (cd/m²); black without samples.
+    /// Mean luminance per channel (cd/m²); black without samples. The splats are divided by
+    /// this pixel's own count: right when every pixel of the film has the same count (see
+    /// [`PixelSum::mean_rgb_over`] for films whose counts differ).
     pub fn mean_rgb(&self) -> Vec3 {
-        if self.count == 0 {
-            return Vec3::ZERO;
-        }
-        let n = f64::from(self.count);
-        let channel = |c: usize| {
-            (from_fixed(self.rgb[c].saturating_add(self.splat_rgb[c]), VALUE_SCALE) / n) as f32
-        };
-        Vec3::new(channel(0), channel(1), channel(2))
+        self.mean_rgb_over(None)
     }
 
-    /// Mean luminance per channel (cd/m²) with the splats divided by `light_paths_per_pixel`
-    /// instead of this pixel's own count: while a progressive pass is under way, splats from
-    /// the whole picture's finished samples have arrived, whatever this pixel's own count.
-    pub fn mean_rgb_splats_over(&self, light_paths_per_pixel: f64) -> Vec3 {
+    /// Mean luminance per channel (cd/m²), the splats divided by `light_paths` (the light
+    /// subpaths traced per pixel of the whole film: total samples over pixels), or by this
+    /// pixel's own count when None. Adaptive sampling gives pixels different counts, while the
+    /// splats come from every pixel's samples, so there they must be normalised by the
+    /// film's light subpaths, never by the receiving pixel's count.
+    pub fn mean_rgb_over(&self, light_paths: Option<f64>) -> Vec3 {
         if self.count == 0 {
             return Vec3::ZERO;
         }
         let n = f64::from(self.count);
-        let m = light_paths_per_pixel.max(1e-9);
-        let channel = |c: usize| {
-            (from_fixed(self.rgb[c], VALUE_SCALE) / n
-                + from_fixed(self.splat_rgb[c], VALUE_SCALE) / m) as f32
+        let channel = |c: usize| match light_paths {
+            // One division of the whole sum, as films of equal counts always had.
+            None => from_fixed(self.rgb[c].saturating_add(self.splat_rgb[c]), VALUE_SCALE) / n,
+            Some(m) => {
+                from_fixed(self.rgb[c], VALUE_SCALE) / n
+                    + from_fixed(self.splat_rgb[c], VALUE_SCALE) / m.max(1e-9)
+            }
         };
-        Vec3::new(channel(0), channel(1), channel(2))
+        Vec3::new(channel(0) as f32, channel(1) as f32, channel(2) as f32)
     }
 
     /// Mean illuminance (lx).
@@ -232,19 +232,33 @@ impl PixelSum {
         (from_fixed(self.illuminance, VALUE_SCALE) / f64::from(n)) as f32
     }
 
-    /// Mean Rec. 709 luminance (cd/m²), splats included, in f64.
+    /// Mean Rec. 709 luminance (cd/m²), splats included, in f64 (the splats over this pixel's
+    /// count, as [`PixelSum::mean_rgb`]).
     pub fn mean_luminance(&self) -> f64 {
+        self.mean_luminance_over(None)
+    }
+
+    /// Mean Rec. 709 luminance (cd/m²), the splats over `light_paths` per pixel (see
+    /// [`PixelSum::mean_rgb_over`]), in f64.
+    pub fn mean_luminance_over(&self, light_paths: Option<f64>) -> f64 {
         if self.count == 0 {
             return 0.0;
         }
         let w = LUMINANCE_WEIGHTS.as_dvec3();
-        let total =
-            |c: usize| from_fixed(self.rgb[c].saturating_add(self.splat_rgb[c]), VALUE_SCALE);
-        (w.x * total(0) + w.y * total(1) + w.z * total(2)) / f64::from(self.count)
+        let n = f64::from(self.count);
+        let Some(m) = light_paths else {
+            let total =
+                |c: usize| from_fixed(self.rgb[c].saturating_add(self.splat_rgb[c]), VALUE_SCALE);
+            return (w.x * total(0) + w.y * total(1) + w.z * total(2)) / n;
+        };
+        let splats = w.x * from_fixed(self.splat_rgb[0], VALUE_SCALE)
+            + w.y * from_fixed(self.splat_rgb[1], VALUE_SCALE)
+            + w.z * from_fixed(self.splat_rgb[2], VALUE_SCALE);
+        self.own_mean_luminance() + splats / m.max(1e-9)
     }
 
     /// Mean Rec. 709 luminance of the pixel's own samples (without splats), in f64.
-    fn own_mean_luminance(&self) -> f64 {
+    pub fn own_mean_luminance(&self) -> f64 {
         if self.count == 0 {
             return 0.0;
         }
@@ -255,27 +269,42 @@ impl PixelSum {
         sum / f64::from(self.count)
     }
 
-    /// Standard error of the mean luminance (cd/m²), splats included; None with fewer than two
-    /// samples.
-    ///
-    /// The mean is (Σ own samples + Σ splats) / n. The n own samples are independent and alike,
-    /// so their part contributes their sample variance / n. The splats come from the light
-    /// subpaths of every pixel's samples: independent and alike too, each adding a value c_j
-    /// (zero for most), so their part of the variance of the mean is Σ_j Var(c_j) / n², which
-    /// Σ_j c_j² / n² estimates. It leaves out −Σ_j E[c_j]² / n², which is the squared mean of
-    /// the splats over the number of light subpaths (the image's samples): negligible, and it
-    /// errs on the side of a larger error. A light subpath also lights its own pixel's sample
-    /// through other connections; that correlation is ignored (a subpath rarely splats into
-    /// its own pixel).
-    pub fn luminance_std_error(&self) -> Option<f64> {
+    /// The sample variance of the pixel's own samples' luminance ((cd/m²)², one sample's, not
+    /// the mean's); None with fewer than two samples.
+    pub fn own_luminance_variance(&self) -> Option<f64> {
         if self.count < 2 {
             return None;
         }
         let n = f64::from(self.count);
         let mean = self.own_mean_luminance();
         let mean_sq = from_fixed(self.luminance_sq, SQUARE_SCALE) / n;
-        let var = (mean_sq - mean * mean).max(0.0) * n / (n - 1.0);
-        let splat_var = from_fixed(self.splat_luminance_sq, SQUARE_SCALE) / (n * n);
+        Some((mean_sq - mean * mean).max(0.0) * n / (n - 1.0))
+    }
+
+    /// Standard error of the mean luminance (cd/m²), splats included; None with fewer than two
+    /// samples (the splats over this pixel's count, as [`PixelSum::mean_rgb`]).
+    pub fn luminance_std_error(&self) -> Option<f64> {
+        self.luminance_std_error_over(None)
+    }
+
+    /// Standard error of the mean luminance (cd/m²), splats included, with the splats over
+    /// `light_paths` per pixel (see [`PixelSum::mean_rgb_over`]); None with fewer than two
+    /// samples.
+    ///
+    /// The mean is Σ own samples / n + Σ splats / m. The n own samples are independent and
+    /// alike, so their part contributes their sample variance / n. The splats come from the
+    /// light subpaths of every pixel's samples: independent and alike too, each adding a value
+    /// c_j (zero for most), so their part of the variance of the mean is Σ_j Var(c_j) / m²,
+    /// which Σ_j c_j² / m² estimates. It leaves out −Σ_j E[c_j]² / m², which is the squared
+    /// mean of the splats over the number of light subpaths (the image's samples): negligible,
+    /// and it errs on the side of a larger error. A light subpath also lights its own pixel's
+    /// sample through other connections; that correlation is ignored (a subpath rarely splats
+    /// into its own pixel).
+    pub fn luminance_std_error_over(&self, light_paths: Option<f64>) -> Option<f64> {
+        let var = self.own_luminance_variance()?;
+        let n = f64::from(self.count);
+        let m = light_paths.unwrap_or(n).max(1e-9);
+        let splat_var = from_fixed(self.splat_luminance_sq, SQUARE_SCALE) / (m * m);
         Some((var / n + splat_var).sqrt())
     }
 }

@@ -166,7 +166,7 @@ impl ProgressiveFilm {
         match self.shown_source(i) {
             Some(j) => {
                 let per_pixel = self.samples_added as f64 / self.accum.pixels.len().max(1) as f64;
-                self.accum.pixels[j].mean_rgb_splats_over(per_pixel)
+                self.accum.pixels[j].mean_rgb_over(Some(per_pixel))
             }
             None => self.preview_rgb[i],
         }

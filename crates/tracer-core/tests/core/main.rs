@@ -7,6 +7,7 @@
 mod bvh_support;
 mod gi_support;
 
+mod adaptive;
 mod bdpt_analytic;
 mod bvh_differential;
 mod bvh_speed;
