@@ -70,6 +70,7 @@ fn start_and_finish(
         setup,
         settings: settings(kind),
         time_limit: None,
+        adaptive: false,
     });
     ensure!(
         session.wait_for(TIMEOUT, |s| s.generation == generation && s.finished),
@@ -157,6 +158,7 @@ fn storm(kind: IntegratorKind, threads: usize, changes: usize) -> anyhow::Result
             setup: last.clone(),
             settings: settings(kind),
             time_limit: None,
+            adaptive: false,
         });
         start_ms.push(call.elapsed().as_secs_f64() * 1e3);
         std::thread::sleep(Duration::from_millis(1));

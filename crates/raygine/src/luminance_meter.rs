@@ -48,9 +48,11 @@ impl Meter {
         let (mut sum, mut var, mut n, mut all_se) = (0.0f64, 0.0f64, 0usize, true);
         for y in self.y0..self.y1 {
             for x in self.x0..self.x1 {
-                let p = &film.accum.pixels[film.accum.index(x, y)];
-                sum += p.mean_luminance();
-                match p.luminance_std_error() {
+                // Film-level: under adaptive sampling the splats go over the film's light
+                // subpaths, not the pixel's own count.
+                let i = film.accum.index(x, y);
+                sum += film.accum.mean_luminance(i);
+                match film.accum.luminance_std_error(i) {
                     Some(se) => var += se * se,
                     None => all_se = false,
                 }

@@ -25,6 +25,7 @@ pub struct Prefs {
     pub max_depth: u32,
     pub target_spp: u32,
     pub resolution_scale: f32,
+    pub adaptive: bool,
 }
 
 impl Default for Prefs {
@@ -40,6 +41,7 @@ impl Default for Prefs {
             max_depth: tracer_core::render::DEFAULT_MAX_DEPTH,
             target_spp: 64,
             resolution_scale: 1.0,
+            adaptive: true,
         }
     }
 }

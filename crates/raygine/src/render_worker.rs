@@ -21,6 +21,8 @@ pub struct RenderKey {
     pub setup: Setup,
     pub settings: RenderSettings,
     pub threads: usize,
+    /// Adaptive sampling after the first samples (see `Snapshot::adaptive`).
+    pub adaptive: bool,
 }
 
 impl PartialEq for RenderKey {
@@ -29,6 +31,7 @@ impl PartialEq for RenderKey {
             && self.setup == other.setup
             && self.settings == other.settings
             && self.threads == other.threads
+            && self.adaptive == other.adaptive
     }
 }
 
@@ -124,6 +127,7 @@ impl RenderWorker {
             setup: key.setup.clone(),
             settings: key.settings,
             time_limit: None,
+            adaptive: key.adaptive,
         });
         if new_scene {
             self.scene_first_generation = generation;

@@ -256,6 +256,8 @@ impl RaygineApp {
             setup: self.doc.setup.clone(),
             settings: self.render_settings(),
             time_limit: None,
+            // "Render image" gives every pixel the samples asked for.
+            adaptive: false,
         };
         let job = RenderImageJob::start(
             snapshot,

@@ -163,6 +163,7 @@ impl RaygineApp {
                     .unwrap_or_else(Self::default_integrator),
                 max_depth: prefs.max_depth.min(64),
                 target_spp: prefs.target_spp.clamp(1, 65_536),
+                adaptive: prefs.adaptive,
                 resolution_scale: prefs.resolution_scale.clamp(0.25, 1.0),
                 threads: if threads == 0 { cores } else { threads },
             },
@@ -268,6 +269,7 @@ impl RaygineApp {
             setup: self.doc.setup.clone(),
             settings: self.render_settings(),
             threads: self.render.threads,
+            adaptive: self.render.adaptive,
         };
         self.worker.sync(key);
     }
@@ -290,6 +292,7 @@ impl eframe::App for RaygineApp {
         self.prefs.target_spp = self.render.target_spp;
         self.prefs.integrator = self.render.integrator.name().to_owned();
         self.prefs.resolution_scale = self.render.resolution_scale;
+        self.prefs.adaptive = self.render.adaptive;
         eframe::set_value(storage, PREFS_KEY, &self.prefs);
     }
 }

@@ -12,6 +12,9 @@ pub struct RenderPrefs {
     pub integrator: IntegratorKind,
     pub max_depth: u32,
     pub target_spp: u32,
+    /// After 16 samples in every pixel, the rest of the target's samples go where the error is
+    /// highest.
+    pub adaptive: bool,
     /// Film pixels per screen pixel (0.25 ..= 1).
     pub resolution_scale: f32,
     pub threads: usize,
@@ -86,7 +89,16 @@ pub fn render_ui(
             .logarithmic(true)
             .text("samples target (spp)"),
     )
-    .on_hover_text("Rendering stops (and uses no CPU) once every pixel has this many samples");
+    .on_hover_text(
+        "Rendering stops (and uses no CPU) once the picture has this many samples per pixel \
+         on average",
+    );
+    ui.checkbox(&mut r.adaptive, "adaptive sampling")
+        .on_hover_text(
+            "After 16 samples in every pixel, the rest of the target goes where the relative \
+         error is highest (predicted from each pixel's neighbours, so means stay unbiased). \
+         Off: every pixel gets the target.",
+        );
     ui.add(egui::Slider::new(&mut r.resolution_scale, 0.25..=1.0).text("resolution scale"))
         .on_hover_text("Film pixels per screen pixel: lower is faster while you explore");
     ui.add(egui::Slider::new(&mut r.threads, 1..=cores.max(1)).text("render threads"));

@@ -8,6 +8,9 @@ pub enum Pass {
     Preview { block: u32 },
     /// Sample number `index` of every pixel (0: pixel centre, then jittered), accumulated.
     Full { index: u32 },
+    /// Round `round` of adaptive sampling: each pixel's next samples, as many as the round
+    /// gives it ([`super::adaptive`]), accumulated.
+    Adaptive { round: u32 },
 }
 
 /// Block sizes of the coarse previews, coarsest first. There is no 2x2 preview: the first full
@@ -26,6 +29,8 @@ impl Pass {
                 _ => Pass::Full { index: 0 },
             },
             Pass::Full { index } => Pass::Full { index: index + 1 },
+            // The session decides when rounds end (from the film).
+            Pass::Adaptive { round } => Pass::Adaptive { round: round + 1 },
         };
         match next {
             Pass::Full { index } if index >= target_spp.max(1) => None,
@@ -43,7 +48,7 @@ impl Pass {
     pub fn tile_size(self) -> u32 {
         match self {
             Pass::Preview { block } => (16 * block).min(128),
-            Pass::Full { .. } => 32,
+            Pass::Full { .. } | Pass::Adaptive { .. } => 32,
         }
     }
 
@@ -51,6 +56,7 @@ impl Pass {
         match self {
             Pass::Preview { block } => format!("preview {block}x{block}"),
             Pass::Full { index } => format!("sample {}", index + 1),
+            Pass::Adaptive { round } => format!("adaptive round {}", round + 1),
         }
     }
 }

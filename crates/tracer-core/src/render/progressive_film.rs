@@ -27,6 +27,10 @@ pub struct ProgressiveFilm {
     /// Full-resolution samples added over all pixels (each traced one light subpath in
     /// bidirectional mode): splats are divided by this over the pixel count.
     samples_added: u64,
+    /// Per pixel, its count when the illuminance was first measured, once that happened after
+    /// adaptive rounds gave pixels different counts: its samples past it carry the
+    /// illuminance. None: [`Film::illuminance_from`] says it for every pixel.
+    illuminance_starts: Option<Vec<u32>>,
 }
 
 impl ProgressiveFilm {
@@ -41,6 +45,7 @@ impl ProgressiveFilm {
             preview_missed: vec![false; n],
             has_preview: false,
             samples_added: 0,
+            illuminance_starts: None,
         }
     }
 
@@ -77,6 +82,28 @@ impl ProgressiveFilm {
         self.has_preview = false;
         self.samples_added = 0;
         self.accum.illuminance_from = 0;
+        self.accum.splat_paths = None;
+        self.illuminance_starts = None;
+    }
+
+    /// The illuminance is measured from every pixel's next sample on (after adaptive rounds:
+    /// the counts differ).
+    pub fn measure_illuminance_from_now(&mut self) {
+        self.accum.illuminance_from = 0;
+        self.illuminance_starts = Some(self.accum.pixels.iter().map(|p| p.count).collect());
+    }
+
+    /// Samples of pixel `i` whose illuminance was not measured.
+    fn illuminance_skipped(&self, i: usize) -> u32 {
+        match &self.illuminance_starts {
+            Some(starts) => starts[i],
+            None => self.accum.illuminance_from,
+        }
+    }
+
+    /// Full samples added over all pixels.
+    pub fn samples_added(&self) -> u64 {
+        self.samples_added
     }
 
     /// Whether pixel `i` shows a measured illuminance: its full samples (or its block's, as
@@ -84,8 +111,8 @@ impl ProgressiveFilm {
     /// of a render that measured it from the start.
     pub fn illuminance_measured(&self, i: usize) -> bool {
         match self.shown_source(i) {
-            Some(j) => self.accum.pixels[j].count > self.accum.illuminance_from,
-            None => self.accum.illuminance_from == 0,
+            Some(j) => self.accum.pixels[j].count > self.illuminance_skipped(j),
+            None => self.accum.illuminance_from == 0 && self.illuminance_starts.is_none(),
         }
     }
 
@@ -108,21 +135,21 @@ impl ProgressiveFilm {
         self.has_preview = true;
     }
 
-    /// Adds one run of full samples: for pixel `pixels[k]`, its sums `sums[k]`, whether its
-    /// camera ray missed `missed[k]` and its guide sums `guides[k]` (when the film keeps
-    /// guides). The pixels of a tile, or of a quarter of it (the first full pass).
+    /// Adds runs of full samples: for pixel `pixels[k]`, its sums `sums[k]`, how many of
+    /// their camera rays missed `missed[k]` and their guide sums `guides[k]` (when the film
+    /// keeps guides). The pixels of a tile, or of a quarter of it (the first full pass).
     pub fn add_pixels(
         &mut self,
         pixels: &[(u32, u32)],
         sums: &[PixelSum],
-        missed: &[bool],
+        missed: &[u32],
         guides: &[GuideSum],
     ) {
         for (k, &(x, y)) in pixels.iter().enumerate() {
             let i = self.accum.index(x, y);
             self.accum.pixels[i].merge(&sums[k]);
             self.samples_added += u64::from(sums[k].count);
-            self.misses[i] += u32::from(missed[k]);
+            self.misses[i] += missed[k];
             if let Some(g) = self.accum.guides.as_mut().zip(guides.get(k)) {
                 g.0.pixels[i].merge(g.1);
             }
@@ -175,7 +202,7 @@ impl ProgressiveFilm {
     /// Illuminance (lx) shown for pixel `i`, like [`ProgressiveFilm::shown_rgb`].
     pub fn shown_illuminance(&self, i: usize) -> f32 {
         match self.shown_source(i) {
-            Some(j) => self.accum.mean_illuminance(j),
+            Some(j) => self.accum.pixels[j].mean_illuminance_after(self.illuminance_skipped(j)),
             None => self.preview_lx[i],
         }
     }
@@ -229,7 +256,12 @@ mod tests {
                 assert!(sum.add(s));
                 sum
             });
-            film.add_pixels(&[(0, 0), (1, 0)], &sums, &[a.missed, b.missed], &[]);
+            film.add_pixels(
+                &[(0, 0), (1, 0)],
+                &sums,
+                &[u32::from(a.missed), u32::from(b.missed)],
+                &[],
+            );
         }
         assert_eq!(film.background_fraction(0), 0.5);
         assert_eq!(film.background_fraction(1), 0.0);
@@ -262,7 +294,7 @@ mod tests {
         };
         assert!(sums[0].add(&full));
         let pixels: Vec<(u32, u32)> = all.pixels().collect();
-        film.add_pixels(&pixels, &sums, &[false; 8], &[]);
+        film.add_pixels(&pixels, &sums, &[0; 8], &[]);
         // Pixels 0, 1 (x = 1, y = 0), 4 (0, 1) and 5 (1, 1) form block (0, 0).
         for i in [0, 1, 4, 5] {
             assert_eq!(film.shown_rgb(i), Vec3::splat(4.0), "pixel {i}");
@@ -281,7 +313,7 @@ mod tests {
         let own = |film: &mut ProgressiveFilm, x: u32| {
             let mut sum = PixelSum::default();
             assert!(sum.add(&Sample::default()));
-            film.add_pixels(&[(x, 0)], &[sum], &[false], &[]);
+            film.add_pixels(&[(x, 0)], &[sum], &[0], &[]);
         };
         let splat = Splat {
             x: 0,

@@ -32,6 +32,7 @@ fn a_finished_render_measures_the_illuminance_when_asked_without_a_restart() {
             setup: loaded.setup.clone(),
             settings,
             time_limit: None,
+            adaptive: false,
         });
         assert!(session.wait_for(WAIT, |st| st.generation == generation && st.finished));
         let before = session.with_film(|f| f.unwrap().accum.clone());
@@ -103,6 +104,7 @@ fn asked_before_the_first_pass_it_is_measured_from_the_start() {
         setup: loaded.setup.clone(),
         settings,
         time_limit: None,
+        adaptive: false,
     });
     assert!(session.wait_for(WAIT, |st| st.generation == generation && st.finished));
     assert_eq!(session.stats().samples_per_pixel, 2, "no extra samples");

@@ -24,6 +24,7 @@ mod luminaires;
 mod measure_grids;
 mod proptest_shp;
 mod session;
+mod session_adaptive;
 mod shading_analytic;
 mod shp_errors;
 mod shp_format;

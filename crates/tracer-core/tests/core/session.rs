@@ -26,6 +26,7 @@ fn snapshot(loaded: &LoadedScene, scene: &Arc<tracer_core::scene::Scene>, spp: u
             ..RenderSettings::default()
         },
         time_limit: None,
+        adaptive: false,
     }
 }
 

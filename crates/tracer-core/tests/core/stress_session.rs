@@ -66,6 +66,7 @@ fn base_snapshot(loaded: &LoadedScene, scene: &Arc<Scene>) -> Snapshot {
             ..RenderSettings::default()
         },
         time_limit: None,
+        adaptive: false,
     }
 }
 

@@ -4,11 +4,13 @@
 
 use super::super::passes::Pass;
 use super::super::pixel::{FrameSampler, NO_ILLUMINANCE};
+use super::super::progressive_film::ProgressiveFilm;
 use super::super::tiles::tiles_centre_out;
 use super::priority::lower_thread_priority;
 use super::shared::{Shared, full_frame, prepare_film, set_film_illuminance};
-use super::tile_work::{FIRST_PASS_PHASES, PassContext, Phase, Progress};
+use super::tile_work::{FIRST_PASS_PHASES, PassContext, Phase, Progress, Round};
 use super::{ILLUMINANCE_SAMPLES, SessionStats, Snapshot};
+use crate::render::adaptive::{self, MIN_SAMPLES};
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -98,6 +100,9 @@ fn run_generation(
 ) -> Outcome {
     let mut started = Instant::now();
     let s = &snap.settings;
+    // A resumed film whose adaptive rounds left pixels with different counts: one round of
+    // ILLUMINANCE_SAMPLES more in every pixel, from each pixel's own count.
+    let mut forced: Option<Round> = None;
     let (target, first_pass, rays_before) = match start {
         Start::Fresh => (s.samples_per_pixel.max(1), Pass::first(), 0),
         Start::Resume { index } => {
@@ -105,13 +110,23 @@ fn run_generation(
             let st = shared.lock();
             let so_far = Duration::from_secs_f64(st.stats.elapsed_secs.max(0.0));
             started = started.checked_sub(so_far).unwrap_or(started);
-            (
-                index + ILLUMINANCE_SAMPLES,
-                Pass::Full { index },
-                st.stats.rays,
-            )
+            forced = st
+                .film
+                .as_ref()
+                .filter(|f| f.generation == generation && f.accum.splat_paths.is_some())
+                .map(|f| Round {
+                    from: f.accum.pixels.iter().map(|p| p.count).collect(),
+                    extra: vec![ILLUMINANCE_SAMPLES; f.accum.pixels.len()],
+                });
+            let first = if forced.is_some() {
+                Pass::Adaptive { round: 0 }
+            } else {
+                Pass::Full { index }
+            };
+            (index + ILLUMINANCE_SAMPLES, first, st.stats.rays)
         }
     };
+    let resumed_round = forced.is_some();
     let mut outcome = Outcome {
         finished: false,
         samples: 0,
@@ -149,17 +164,36 @@ fn run_generation(
         }
         // The illuminance, once asked for, from this pass on: no sample of it is traced yet.
         if frame.illuminance_from() == NO_ILLUMINANCE && shared.lock().illuminance_wanted {
-            frame.set_illuminance_from(match current {
-                Pass::Preview { .. } => 0,
-                Pass::Full { index } => index,
-            });
+            match current {
+                Pass::Preview { .. } => frame.set_illuminance_from(0),
+                Pass::Full { index } => frame.set_illuminance_from(index),
+                Pass::Adaptive { .. } => {
+                    // Counts differ: every pixel from its next sample on.
+                    frame.set_illuminance_from(0);
+                    with_film(shared, generation, |f| f.measure_illuminance_from_now());
+                }
+            }
         }
-        set_film_illuminance(shared, generation, frame.illuminance_from());
+        if !matches!(current, Pass::Adaptive { .. }) {
+            set_film_illuminance(shared, generation, frame.illuminance_from());
+        }
         if snap.time_limit.is_some_and(|limit| {
-            started.elapsed() >= limit && matches!(current, Pass::Full { index } if index > 0)
+            started.elapsed() >= limit
+                && matches!(current, Pass::Full { index } if index > 0)
+                    | matches!(current, Pass::Adaptive { .. })
         }) {
             break;
         }
+        let round = match current {
+            Pass::Adaptive { .. } => match forced.take() {
+                Some(r) => Some(r),
+                None => match plan_round(shared, generation, target) {
+                    Some(r) => Some(r),
+                    None => break,
+                },
+            },
+            _ => None,
+        };
         {
             let mut st = shared.lock();
             st.stats.pass = current.label();
@@ -191,6 +225,7 @@ fn run_generation(
                     pixels_done: &pixels_done,
                     pass_pixels: u64::from(s.width) * u64::from(s.height),
                 },
+                round: round.as_ref(),
             };
             pool.install(|| tiles.par_iter().for_each(|tile| ctx.run_tile(tile)));
             if !shared.is_current(generation) {
@@ -235,12 +270,44 @@ fn run_generation(
                     st.stats.first_full_secs = Some(elapsed);
                 }
             }
+            Pass::Adaptive { .. } => {
+                let st = &mut *st;
+                let generation_film = st.film.as_mut().filter(|f| f.generation == generation);
+                if let Some(f) = generation_film {
+                    f.accum.count_splat_paths();
+                    let n = f.accum.pixels.len().max(1) as f64;
+                    st.stats.samples_per_pixel = f.accum.min_samples();
+                    st.stats.mean_samples_per_pixel = f.samples_added() as f64 / n;
+                    st.stats.relative_noise = f.accum.relative_noise();
+                    outcome.samples = st.stats.samples_per_pixel;
+                }
+                st.stats.pass_fraction = 0.0;
+                if let Some(t) = full_started {
+                    let done = st.stats.mean_samples_per_pixel.max(1.0);
+                    st.stats.secs_per_sample = Some(t.elapsed().as_secs_f64() / done);
+                }
+                if s.integrator.splats() {
+                    st.dirty.push(full_frame(s));
+                }
+            }
             Pass::Preview { .. } => {}
+        }
+        if let Pass::Full { index } = current {
+            st.stats.mean_samples_per_pixel = f64::from(index + 1);
         }
         drop(st);
         shared.wake.notify_all();
         (shared.notify)();
-        pass = current.next(target);
+        pass = match current {
+            // After the uniform samples, the rest of the target goes by error.
+            Pass::Full { index }
+                if snap.adaptive && index + 1 >= MIN_SAMPLES && index + 1 < target =>
+            {
+                Some(Pass::Adaptive { round: 0 })
+            }
+            Pass::Adaptive { .. } if resumed_round => None,
+            _ => current.next(target),
+        };
     }
     let mut st = shared.lock();
     if shared.is_current(generation) {
@@ -254,4 +321,41 @@ fn run_generation(
     shared.wake.notify_all();
     (shared.notify)();
     outcome
+}
+
+/// Runs `f` on `generation`'s film (shown or pending) under the lock.
+fn with_film(shared: &Shared, generation: u64, f: impl FnOnce(&mut ProgressiveFilm)) {
+    let mut st = shared.lock();
+    let st = &mut *st;
+    let film = [st.film.as_mut(), st.pending.as_mut()]
+        .into_iter()
+        .flatten()
+        .find(|film| film.generation == generation);
+    if let Some(film) = film {
+        f(film);
+    }
+}
+
+/// Cap of any pixel's count under adaptive sampling in the viewer.
+const ROUND_CAP: u32 = 65_536;
+
+/// The next adaptive round of `generation`: its share of the samples left to the target
+/// (target × pixels in all), at least one per pixel on average and an eighth of those done,
+/// given where the error is highest. None when the target is reached or no pixel gets one.
+fn plan_round(shared: &Shared, generation: u64, target: u32) -> Option<Round> {
+    let st = shared.lock();
+    let film = st.film.as_ref().filter(|f| f.generation == generation)?;
+    let pixels = film.accum.pixels.len() as u64;
+    let done = film.samples_added();
+    let left = (u64::from(target) * pixels).checked_sub(done)?;
+    let budget = left.min(pixels.max(done / 8));
+    if budget == 0 {
+        return None;
+    }
+    let extra = adaptive::allocate(&film.accum, budget, None, ROUND_CAP);
+    if extra.iter().all(|&m| m == 0) {
+        return None;
+    }
+    let from = film.accum.pixels.iter().map(|p| p.count).collect();
+    Some(Round { from, extra })
 }

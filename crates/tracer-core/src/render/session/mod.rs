@@ -38,6 +38,9 @@ pub struct Snapshot {
     pub settings: RenderSettings,
     /// Stop after this long even when the sample target is not reached.
     pub time_limit: Option<Duration>,
+    /// After [`super::adaptive::MIN_SAMPLES`] in every pixel, give the rest of the target's
+    /// samples (target × pixels in all) where the error is highest, in rounds.
+    pub adaptive: bool,
 }
 
 /// Progress of the current generation.
@@ -67,6 +70,8 @@ pub struct SessionStats {
     /// Remaining noise after the last full pass: RMS standard error of the pixels' luminance
     /// over the mean luminance (None before two samples per pixel).
     pub relative_noise: Option<f64>,
+    /// Samples per pixel on average (above `samples_per_pixel` once adaptive rounds run).
+    pub mean_samples_per_pixel: f64,
 }
 
 impl SessionStats {
@@ -74,7 +79,9 @@ impl SessionStats {
     /// everywhere and the third in 40 % of the pixels.
     pub fn samples_done(&self) -> f64 {
         let running = self.pass.starts_with("sample") && !self.finished;
-        f64::from(self.samples_per_pixel) + if running { self.pass_fraction } else { 0.0 }
+        let done =
+            f64::from(self.samples_per_pixel) + if running { self.pass_fraction } else { 0.0 };
+        done.max(self.mean_samples_per_pixel)
     }
 
     /// Estimated seconds until the target: the samples left at the rate so far (None before a

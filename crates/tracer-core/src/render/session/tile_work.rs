@@ -42,6 +42,15 @@ pub(super) struct PassContext<'a> {
     pub phase: Option<Phase>,
     pub rays: &'a AtomicU64,
     pub progress: Progress<'a>,
+    /// An adaptive round's samples: pixel i's are `from[i]..from[i] + extra[i]`.
+    pub round: Option<&'a Round>,
+}
+
+/// The samples of one adaptive round, per pixel (row-major).
+#[derive(Debug, Default)]
+pub(super) struct Round {
+    pub from: Vec<u32>,
+    pub extra: Vec<u32>,
 }
 
 impl PassContext<'_> {
@@ -66,6 +75,7 @@ impl PassContext<'_> {
         match self.pass {
             Pass::Preview { block } => self.preview_tile(tile, block),
             Pass::Full { index } => self.full_tile(tile, index),
+            Pass::Adaptive { .. } => self.round_tile(tile),
         }
     }
 
@@ -137,7 +147,7 @@ impl PassContext<'_> {
                 sum.add(sample);
                 pixels.push((job.x, job.y));
                 sums.push(sum);
-                missed.push(sample.missed);
+                missed.push(u32::from(sample.missed));
             }
             if self.frame.guides {
                 guides.extend(jobs.iter().map(|j| {
@@ -151,6 +161,63 @@ impl PassContext<'_> {
         self.progress
             .pixels_done
             .fetch_add(pixels.len() as u64, Ordering::Relaxed);
+        self.commit(tile, |film| {
+            film.add_pixels(&pixels, &sums, &missed, &guides);
+            film.add_splats(&splats);
+        });
+        if !splats.is_empty() {
+            self.refresh_everywhere_now_and_then();
+        }
+    }
+
+    /// An adaptive round's samples of the tile's pixels: runs of each pixel's samples, summed
+    /// per pixel and batch.
+    fn round_tile(&self, tile: &Tile) {
+        let Some(round) = self.round else { return };
+        let width = self.frame.basis.width as usize;
+        let mut pixels = Vec::new();
+        let mut sums = Vec::new();
+        let mut missed = Vec::new();
+        let mut guides = Vec::new();
+        let mut splats = Vec::new();
+        let mut scratch = BatchScratch::default();
+        let mut done = 0u64;
+        // The next sample index of the pixel whose runs are arriving (they come in order).
+        let mut cursor: Option<((u32, u32), u32)> = None;
+        for y in tile.y0..tile.y1 {
+            if !self.shared.is_current(self.generation) {
+                return;
+            }
+            let row = (tile.x0..tile.x1).map(|x| {
+                let i = y as usize * width + x as usize;
+                (x, y, round.from[i]..round.from[i] + round.extra[i])
+            });
+            let rays = self
+                .frame
+                .for_each_sample(row, &mut scratch, &mut splats, |x, y, run| {
+                    let mut sum = PixelSum::default();
+                    sum.add_run(run);
+                    pixels.push((x, y));
+                    sums.push(sum);
+                    missed.push(run.iter().map(|s| u32::from(s.missed)).sum());
+                    if self.frame.guides {
+                        let start = match cursor {
+                            Some((p, next)) if p == (x, y) => next,
+                            _ => round.from[y as usize * width + x as usize],
+                        };
+                        let end = start + run.len() as u32;
+                        let mut g = GuideSum::default();
+                        for s in start..end {
+                            g.add(&self.frame.guide(x, y, s));
+                        }
+                        guides.push(g);
+                        cursor = Some(((x, y), end));
+                    }
+                });
+            self.rays.fetch_add(rays, Ordering::Relaxed);
+            done += u64::from(tile.x1 - tile.x0);
+        }
+        self.progress.pixels_done.fetch_add(done, Ordering::Relaxed);
         self.commit(tile, |film| {
             film.add_pixels(&pixels, &sums, &missed, &guides);
             film.add_splats(&splats);
