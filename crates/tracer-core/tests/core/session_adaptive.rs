@@ -105,3 +105,25 @@ fn illuminance_asked_after_the_rounds_is_measured_from_each_pixels_count() {
         assert_eq!(a.illuminance, b.illuminance, "pixel {i}");
     }
 }
+
+#[test]
+fn illuminance_asked_during_the_rounds_reaches_every_pixel() {
+    let (snap, _) = snapshot(IntegratorKind::Path, 400);
+    let session = RenderSession::new(2, Arc::new(|| {})).unwrap();
+    let generation = session.start(snap);
+    assert!(session.wait_for(WAIT, |st| st.generation == generation
+        && st.pass.starts_with("adaptive round")
+        && !st.finished));
+    session.measure_illuminance();
+    assert!(session.wait_for(WAIT, |st| st.finished));
+    assert_eq!(session.generation(), generation, "no restart");
+    session.with_film(|f| {
+        let f = f.unwrap();
+        let n = f.accum.pixels.len();
+        let measured = (0..n).filter(|&i| f.illuminance_measured(i)).count();
+        let lit = (0..n).filter(|&i| f.shown_illuminance(i) > 0.0).count();
+        println!("{measured} of {n} pixels measured, {lit} lit");
+        assert_eq!(measured, n);
+        assert!(lit > n / 2);
+    });
+}

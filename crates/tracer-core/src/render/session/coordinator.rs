@@ -168,9 +168,15 @@ fn run_generation(
                 Pass::Preview { .. } => frame.set_illuminance_from(0),
                 Pass::Full { index } => frame.set_illuminance_from(index),
                 Pass::Adaptive { .. } => {
-                    // Counts differ: every pixel from its next sample on.
+                    // Counts differ: every pixel from its next sample on, and a round that
+                    // gives every pixel some (the rounds by error may pass a pixel by).
                     frame.set_illuminance_from(0);
-                    with_film(shared, generation, |f| f.measure_illuminance_from_now());
+                    with_film(shared, generation, |f| {
+                        f.measure_illuminance_from_now();
+                        let from: Vec<u32> = f.accum.pixels.iter().map(|p| p.count).collect();
+                        let extra = vec![ILLUMINANCE_ROUND; from.len()];
+                        forced.get_or_insert(Round { from, extra });
+                    });
                 }
             }
         }
@@ -335,6 +341,9 @@ fn with_film(shared: &Shared, generation: u64, f: impl FnOnce(&mut ProgressiveFi
         f(film);
     }
 }
+
+/// Samples every pixel gets when the illuminance is asked for during adaptive rounds.
+const ILLUMINANCE_ROUND: u32 = 4;
 
 /// Cap of any pixel's count under adaptive sampling in the viewer.
 const ROUND_CAP: u32 = 65_536;
