@@ -361,7 +361,13 @@ fn plan_round(shared: &Shared, generation: u64, target: u32) -> Option<Round> {
     if budget == 0 {
         return None;
     }
-    let extra = adaptive::allocate(&film.accum, budget, None, ROUND_CAP);
+    let extra = adaptive::allocate(
+        &film.accum,
+        adaptive::Scale::Picture,
+        budget,
+        None,
+        ROUND_CAP,
+    );
     if extra.iter().all(|&m| m == 0) {
         return None;
     }
