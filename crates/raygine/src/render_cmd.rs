@@ -188,6 +188,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             let stop = Stop {
                 time_limit,
                 target_error: args.target_error.map(|pct| pct / 100.0),
+                mean_samples: None,
             };
             render_adaptive(&loaded.scene, &loaded.setup, &settings, stop, &mut report)
         } else {

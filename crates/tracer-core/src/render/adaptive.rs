@@ -70,6 +70,9 @@ pub struct Stop {
     /// Stop once every pixel's standard error is within this share (0.02: 2 %) of max(Y,
     /// [`FLOOR`] × Ȳ), leaving out the 0.5 % brightest pixels (a lamp's hot spot).
     pub target_error: Option<f64>,
+    /// Stop once the picture has this many samples per pixel on average (the viewer's
+    /// target).
+    pub mean_samples: Option<f64>,
 }
 
 /// The image's mean luminance without its 0.5 % brightest pixels (G1's rule), cd/m².
@@ -292,6 +295,14 @@ pub fn render_adaptive(
         if let Some(left) = time_left() {
             fit = fit.min(left / secs_per_sample.max(1e-12));
         }
+        // Samples left to the mean asked for.
+        let left = stop
+            .mean_samples
+            .map(|m| (m * pixels as f64).ceil() as u64)
+            .map(|all| all.saturating_sub(total));
+        if left == Some(0) {
+            break;
+        }
         let extra: Vec<u32> = if uniform < MIN_SAMPLES.min(cap) {
             // Uniform passes: one, then as many as fit, up to MIN_SAMPLES.
             let passes = if total == 0 {
@@ -303,7 +314,13 @@ pub fn render_adaptive(
             };
             vec![passes; pixels]
         } else {
-            let budget = (total / 2).max(pixels as u64).min(fit.max(1.0) as u64);
+            let mut budget = (total / 2).max(pixels as u64);
+            // Rounds sized by time only under a time limit: otherwise the film depends on the
+            // samples alone, never on the machine's speed.
+            if stop.time_limit.is_some() {
+                budget = budget.min(fit.max(1.0) as u64);
+            }
+            budget = budget.min(left.unwrap_or(u64::MAX));
             let extra = match stop.target_error {
                 Some(target) => toward_target(&film, target, budget, cap),
                 None => allocate(&film, Scale::Picture, budget, None, cap),

@@ -249,13 +249,17 @@ pub(crate) fn render_pixel_ranges(
 ) -> (Film, u64) {
     let mut film = new_film(settings);
     let width = settings.width as usize;
-    let band_len = width * BAND_ROWS as usize;
+    // Uneven counts (adaptive rounds) make uneven bands: rows one by one balance the threads.
+    let first = samples(0).len();
+    let even = (0..film.pixels.len()).all(|i| samples(i).len() == first);
+    let band_rows: u32 = if even { BAND_ROWS } else { 1 };
+    let band_len = width * band_rows as usize;
     let (rays, splats): (u64, Vec<Vec<crate::integrator::Splat>>) = film
         .pixels
         .par_chunks_mut(band_len.max(1))
         .enumerate()
         .map(|(band, pixels)| {
-            let y0 = band as u32 * BAND_ROWS;
+            let y0 = band as u32 * band_rows;
             let rows = (pixels.len() / width.max(1)) as u32;
             let mut splats = Vec::new();
             let mut scratch = BatchScratch::default();
