@@ -4,6 +4,7 @@
 //! cargo run --release -p raybench -- core         # build, W1-W3, bytes/tri, L3 (raygine)
 //! cargo run --release -p raybench -- render       # the whole `raygine render` command
 //! cargo run --release -p raybench -- interactive  # L1, L2, restart storm
+//! cargo run --release -p raybench -- scene-dump -S room2.shp --out DIR  # for peer renderers
 //! cargo run --release -p raybench --features embree,obvhs -- compare   # beside obvhs, Embree
 //! ```
 //!
@@ -22,6 +23,7 @@ mod peers;
 mod render_cmd;
 mod report;
 mod rng;
+mod scene_dump;
 mod shared;
 mod stats;
 mod trace;
@@ -93,6 +95,21 @@ enum Command {
         #[arg(long, value_parser = ["F1", "F2"])]
         only: Option<String>,
     },
+    /// Writes the scene raygine loads (triangles.ply and scene.json) for other renderers.
+    SceneDump {
+        /// Scene file, loaded as `raygine render -S` loads it.
+        #[arg(short = 'S', long = "scene")]
+        scene: PathBuf,
+        /// Sidecar instead of NAME.raygine.toml beside the scene.
+        #[arg(long)]
+        sidecar: Option<PathBuf>,
+        /// Scene length unit: mm, cm or m (default: the sidecar's, else mm).
+        #[arg(long)]
+        units: Option<tracer_core::scene::LengthUnit>,
+        /// Output folder.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// L1 and L2 after a light move, and the restart storm.
     Interactive {
         #[command(flatten)]
@@ -153,6 +170,17 @@ fn main() -> anyhow::Result<()> {
             height,
             spp,
             only,
+        }),
+        Command::SceneDump {
+            scene,
+            sidecar,
+            units,
+            out,
+        } => scene_dump::run(&scene_dump::Options {
+            scene,
+            sidecar,
+            units,
+            out,
         }),
         Command::Interactive {
             common,
