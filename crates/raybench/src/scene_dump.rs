@@ -172,3 +172,35 @@ fn describe(loaded: &LoadedScene) -> Value {
         "materials": materials,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    use super::*;
+
+    /// The box's dump: 30 triangles of 24-byte vertices and 17-byte faces after the header,
+    /// the light and camera of its sidecar in the JSON.
+    #[test]
+    fn the_cornell_box_dumps_its_triangles_lights_and_camera() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let out = std::env::temp_dir().join(format!("raygine-scene-dump-{}", std::process::id()));
+        run(&Options {
+            scene: root.join("assets/scenes/cornell_box.shp"),
+            sidecar: None,
+            units: None,
+            out: out.clone(),
+        })
+        .unwrap();
+        let ply = std::fs::read(out.join("triangles.ply")).unwrap();
+        let end = b"end_header\n";
+        let body = ply.windows(end.len()).position(|w| w == end).unwrap() + end.len();
+        assert_eq!(ply.len() - body, 30 * (3 * 24 + 17));
+        let json: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("scene.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["triangle_count"], 30);
+        assert_eq!(json["lights"].as_array().unwrap().len(), 1);
+        assert!(json["camera"].is_object(), "{json}");
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+}
