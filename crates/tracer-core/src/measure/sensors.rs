@@ -235,14 +235,7 @@ fn worst_relative_error(sums: &[PixelSum], points: &Points, grids: usize) -> f64
         let avg = total[*g].0 / total[*g].1.max(1) as f64;
         let scale = s.mean_luminance().max(0.1 * avg);
         let se = s.luminance_std_error().unwrap_or(f64::INFINITY);
-        let rel = if scale > 0.0 {
-            se / scale
-        } else if se > 0.0 {
-            f64::INFINITY
-        } else {
-            0.0
-        };
-        worst = worst.max(rel);
+        worst = worst.max(crate::render::relative_error(se, scale));
     }
     worst
 }

@@ -31,6 +31,7 @@
 
 use super::film::Film;
 use super::pixel::FrameSampler;
+use super::pixel_sum::relative_error;
 use super::{RenderSettings, RenderStats, render_pixel_ranges};
 use crate::scene::{Scene, Setup};
 use std::time::{Duration, Instant};
@@ -111,14 +112,7 @@ pub fn worst_relative_error(film: &Film) -> f64 {
             return f64::INFINITY;
         };
         let scale = yi.max(floor);
-        let rel = if scale > 0.0 {
-            se / scale
-        } else if se > 0.0 {
-            f64::INFINITY
-        } else {
-            0.0
-        };
-        worst = worst.max(rel);
+        worst = worst.max(relative_error(se, scale));
     }
     worst
 }

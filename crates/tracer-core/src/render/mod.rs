@@ -22,7 +22,7 @@ pub use fixed_point::{SQUARE_SCALE, VALUE_SCALE};
 pub use guides::{GUIDE_SCALE, Guide, GuideFilm, GuideSum, trace_guide};
 pub use passes::{PREVIEW_BLOCKS, Pass};
 pub use pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler, NO_ILLUMINANCE};
-pub use pixel_sum::PixelSum;
+pub use pixel_sum::{PixelSum, relative_error};
 pub use progressive_film::ProgressiveFilm;
 pub use sampler::{SampleJob, pixel_sample_offset, sample_hash};
 pub use session::{ILLUMINANCE_SAMPLES, Notify, RenderSession, SessionStats, Snapshot};

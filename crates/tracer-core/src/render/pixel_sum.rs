@@ -309,6 +309,18 @@ impl PixelSum {
     }
 }
 
+/// A standard error relative to `scale` (a luminance or an illuminance): infinite when the
+/// scale is 0 and the error is not, 0 when both are.
+pub fn relative_error(se: f64, scale: f64) -> f64 {
+    if scale > 0.0 {
+        se / scale
+    } else if se > 0.0 {
+        f64::INFINITY
+    } else {
+        0.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
