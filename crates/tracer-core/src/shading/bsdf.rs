@@ -99,6 +99,7 @@ impl Bsdf {
     }
 
     /// The non-delta BRDF value for unit `wo`, `wi` (both on the side of unit normal `n`).
+    #[inline]
     pub fn eval(&self, n: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
         if n.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
             return Vec3::ZERO;
@@ -113,6 +114,7 @@ impl Bsdf {
     }
 
     /// Density (per steradian) with which [`Bsdf::sample`] picks `wi` through a non-delta lobe.
+    #[inline]
     pub fn pdf(&self, n: Vec3, wo: Vec3, wi: Vec3) -> f32 {
         let cos_i = n.dot(wi);
         if cos_i <= 0.0 || n.dot(wo) <= 0.0 {

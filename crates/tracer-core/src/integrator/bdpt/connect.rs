@@ -7,6 +7,25 @@ use super::{Bidirectional, Eye, Splat};
 use crate::sampling::SampleRng;
 use glam::Vec3;
 
+/// The segment of a connection, from its light-side vertex to its eye-side one.
+#[derive(Clone, Copy, Debug)]
+struct Link {
+    /// Unit direction from the light side to the eye side.
+    w: Vec3,
+    dist2: f32,
+}
+
+impl Link {
+    fn between(a: &Vertex, b: &Vertex) -> Option<Self> {
+        let d = b.p - a.p;
+        let dist2 = d.length_squared();
+        (dist2 > 0.0).then(|| Self {
+            w: d / dist2.sqrt(),
+            dist2,
+        })
+    }
+}
+
 /// Zero densities (delta vertices) count as 1 in ratios.
 fn remap0(x: f32) -> f32 {
     if x != 0.0 { x } else { 1.0 }
@@ -95,7 +114,7 @@ impl Bidirectional<'_, '_> {
             return Vec3::ZERO;
         }
         let c = pt.beta * le;
-        c * self.mis_weight(eye, &[], None, 0, t)
+        c * self.mis_weight(eye, &[], None, 0, t, None)
     }
 
     /// Whether the segment between two vertices is clear.
@@ -122,16 +141,12 @@ impl Bidirectional<'_, '_> {
         !self.lit.occluded(on_b, on_a - on_b)
     }
 
-    /// The unweighted contribution of joining light-side `a` to eye-side `b` (without
-    /// visibility): a.β f_a G f_b b.β.
-    fn join(&self, a: &Vertex, b: &Vertex) -> Vec3 {
-        let d = b.p - a.p;
-        let dist2 = d.length_squared();
-        if dist2 <= 0.0 {
-            return Vec3::ZERO;
-        }
-        let w = d / dist2.sqrt();
-        let g = a.cosine(w) * b.cosine(-w) / dist2;
+    /// The unweighted contribution of joining light-side `a` to eye-side `b` over `link`
+    /// (without visibility): a.β f_a G f_b b.β.
+    #[inline(always)]
+    fn join(&self, a: &Vertex, b: &Vertex, link: Link) -> Vec3 {
+        let w = link.w;
+        let g = a.cosine(w) * b.cosine(-w) / link.dist2;
         if g <= 0.0 {
             return Vec3::ZERO;
         }
@@ -162,14 +177,15 @@ impl Bidirectional<'_, '_> {
                 (y as u32).min(b.height.saturating_sub(1)),
             );
         }
-        let c = self.join(qs, e);
+        let link = Link::between(qs, e)?;
+        let c = self.join(qs, e, link);
         if c.max_element() <= 0.0 || !self.visible(qs, e, rays) {
             return None;
         }
         let w = if self.light_tracing {
             1.0
         } else {
-            self.mis_weight(eye, light, None, s, 1)
+            self.mis_weight(eye, light, None, s, 1, Some(link))
         };
         Some(Splat {
             x: pixel.0,
@@ -204,11 +220,14 @@ impl Bidirectional<'_, '_> {
             Vec3::splat(1.0 / start.pdf_origin),
             start.pdf_origin,
         );
-        let c = self.join(&sampled, pt);
+        let Some(link) = Link::between(&sampled, pt) else {
+            return Vec3::ZERO;
+        };
+        let c = self.join(&sampled, pt, link);
         if c.max_element() <= 0.0 || !self.visible(&sampled, pt, rays) {
             return Vec3::ZERO;
         }
-        c * self.mis_weight(eye, light, Some(&sampled), 1, t)
+        c * self.mis_weight(eye, light, Some(&sampled), 1, t, Some(link))
     }
 
     /// s, t ≥ 2: light vertex s − 1 joined to eye vertex t − 1.
@@ -224,16 +243,22 @@ impl Bidirectional<'_, '_> {
         if !qs.connectible() || !pt.connectible() {
             return Vec3::ZERO;
         }
-        let c = self.join(qs, pt);
+        let Some(link) = Link::between(qs, pt) else {
+            return Vec3::ZERO;
+        };
+        let c = self.join(qs, pt, link);
         if c.max_element() <= 0.0 || !self.visible(qs, pt, rays) {
             return Vec3::ZERO;
         }
-        c * self.mis_weight(eye, light, None, s, t)
+        c * self.mis_weight(eye, light, None, s, t, Some(link))
     }
 
     /// The power-heuristic weight of strategy (s, t) among the allowed strategies for the same
-    /// path. `sampled` stands in for light vertex 0 when s = 1. Nothing is written: the four
-    /// densities the connection changes are passed to the ratio loops as overrides.
+    /// path, joined over `link` (s ≥ 1). `sampled` stands in for light vertex 0 when s = 1.
+    /// Nothing is written: the four densities the connection changes are passed to the ratio
+    /// loops as overrides. Each is a direction density at one end of the link or next to it,
+    /// turned per area with the link's length or the stored one to the vertex's predecessor.
+    #[allow(clippy::too_many_arguments)]
     fn mis_weight(
         &self,
         eye: &[Vertex],
@@ -241,6 +266,7 @@ impl Bidirectional<'_, '_> {
         sampled: Option<&Vertex>,
         s: usize,
         t: usize,
+        link: Option<Link>,
     ) -> f32 {
         let light_at = |i: usize| -> &Vertex {
             match (i, sampled) {
@@ -253,18 +279,20 @@ impl Bidirectional<'_, '_> {
         let qs = (s >= 1).then(|| light_at(s - 1));
         let qs_minus = (s >= 2).then(|| light_at(s - 2));
         // Reverse densities of the vertices next to the connection.
-        let pt_rev = match qs {
-            Some(q) => q.pdf(self, qs_minus, pt),
-            None => pt.pdf_light_origin(self),
-        };
-        let pt_minus_rev = pt_minus.map(|pm| match qs {
-            Some(q) => pt.pdf(self, Some(q), pm),
-            None => pt.pdf_light(self, pm),
-        });
-        let qs_rev = qs.map(|q| pt.pdf(self, pt_minus, q));
-        let qs_minus_rev = match (qs, qs_minus) {
-            (Some(q), Some(qm)) => Some(q.pdf(self, Some(pt), qm)),
-            _ => None,
+        let (pt_rev, pt_minus_rev, qs_rev, qs_minus_rev) = match (qs, link) {
+            (Some(q), Some(l)) => (
+                pt.density_from(q.pdf_dir(self, q.wo, l.w), l.dist2, l.w),
+                pt_minus
+                    .map(|pm| pm.density_from(pt.pdf_dir(self, -l.w, pt.wo), pt.dist2_prev, pt.wo)),
+                Some(q.density_from(pt.pdf_dir(self, pt.wo, -l.w), l.dist2, l.w)),
+                qs_minus.map(|qm| qm.density_from(q.pdf_dir(self, l.w, q.wo), q.dist2_prev, q.wo)),
+            ),
+            _ => (
+                pt.pdf_light_origin(self),
+                pt_minus.map(|pm| pt.pdf_light_back(self, pm)),
+                None,
+                None,
+            ),
         };
         let eye_rev = |i: usize| {
             if i + 1 == t {

@@ -40,6 +40,8 @@ pub struct Vertex {
     pub wo: Vec3,
     /// Throughput of the subpath up to here (camera: 1 at the eye; light: per its start).
     pub beta: Vec3,
+    /// Squared distance to the previous vertex of the subpath (0 for the first).
+    pub dist2_prev: f32,
     pub pdf_fwd: f32,
     pub pdf_rev: f32,
     /// A delta lobe scattered the subpath here (mirror, glass): no connection can use it.
@@ -59,6 +61,7 @@ impl Vertex {
             adjoint: false,
             wo: Vec3::ZERO,
             beta,
+            dist2_prev: 0.0,
             pdf_fwd,
             pdf_rev: 0.0,
             delta: false,
@@ -71,18 +74,19 @@ impl Vertex {
         matches!(self.kind, Kind::Surface(_) | Kind::Light(LightRef::Area(_)))
     }
 
-    /// A density per sr at `self` towards `next` as a density per unit area at `next`.
-    pub fn area_density(&self, pdf_dir: f32, next: &Vertex) -> f32 {
-        let d = next.p - self.p;
-        let dist2 = d.length_squared();
+    /// A density per sr towards this vertex, from a vertex at squared distance `dist2` along
+    /// unit `w` (pointing here), as a density per unit area here.
+    #[inline]
+    pub fn density_from(&self, pdf_dir: f32, dist2: f32, w: Vec3) -> f32 {
         if dist2 <= 0.0 {
             return 0.0;
         }
-        let mut pdf = pdf_dir / dist2;
-        if next.on_surface() {
-            pdf *= next.n.dot(d / dist2.sqrt()).abs();
+        let pdf = pdf_dir / dist2;
+        if self.on_surface() {
+            pdf * self.n.dot(w).abs()
+        } else {
+            pdf
         }
-        pdf
     }
 
     /// Whether paths may be connected here (a light, the eye, or a surface with a non-delta
@@ -119,6 +123,7 @@ impl Vertex {
     /// With a shading normal the BSDF is Veach's `f(ωl → ωc) · |ns·ωl| / |ng·ωl|` for the
     /// direction ωl towards the light, so that geometric cosines in the geometry term give the
     /// shading cosine: ωl is `w` on a camera subpath and `wo` on a light subpath.
+    #[inline(always)]
     pub fn f(&self, bd: &Bidirectional<'_, '_>, w: Vec3) -> Vec3 {
         match self.kind {
             Kind::Surface(_) => match &self.bsdf {
@@ -138,6 +143,7 @@ impl Vertex {
     }
 
     /// The cosine at this vertex towards unit `w` that a connection's geometry term carries.
+    #[inline]
     pub fn cosine(&self, w: Vec3) -> f32 {
         match self.kind {
             Kind::Surface(_) => self.n.dot(w).abs(),
@@ -146,22 +152,19 @@ impl Vertex {
         }
     }
 
-    /// Density per unit area at `next` with which this vertex's subpath would continue there,
-    /// having come from `prev`.
-    pub fn pdf(&self, bd: &Bidirectional<'_, '_>, prev: Option<&Vertex>, next: &Vertex) -> f32 {
-        let to_next = (next.p - self.p).normalize_or_zero();
-        let pdf_dir = match self.kind {
-            Kind::Surface(_) => {
-                let (Some(prev), Some(bsdf)) = (prev, &self.bsdf) else {
-                    return 0.0;
-                };
-                let wp = (prev.p - self.p).normalize_or_zero();
-                bsdf.pdf(self.shading_facing(wp), wp, to_next)
-            }
-            Kind::Light(light) => direction_pdf(bd.lit, light, self.n, to_next),
-            Kind::Eye => bd.eye_direction_pdf(self, to_next),
-        };
-        self.area_density(pdf_dir, next)
+    /// Density per sr with which this vertex's subpath would leave along unit `to`, having
+    /// arrived from unit `from` (pointing back at the previous vertex; lights and the eye ignore
+    /// it). Connections know both directions, so nothing is normalised here.
+    #[inline(always)]
+    pub fn pdf_dir(&self, bd: &Bidirectional<'_, '_>, from: Vec3, to: Vec3) -> f32 {
+        match self.kind {
+            Kind::Surface(_) => match &self.bsdf {
+                Some(bsdf) => bsdf.pdf(self.shading_facing(from), from, to),
+                None => 0.0,
+            },
+            Kind::Light(light) => direction_pdf(bd.lit, light, self.n, to),
+            Kind::Eye => bd.eye_direction_pdf(self, to),
+        }
     }
 
     /// Density per unit area with which a light subpath starts at this vertex (a glowing
@@ -174,15 +177,19 @@ impl Vertex {
         }
     }
 
-    /// Density per unit area at `next` of a light subpath leaving this glowing point for it.
-    pub fn pdf_light(&self, bd: &Bidirectional<'_, '_>, next: &Vertex) -> f32 {
+    /// Density per unit area at `prev` (this vertex's predecessor, along `wo`) of a light
+    /// subpath leaving this glowing point for it.
+    pub fn pdf_light_back(&self, bd: &Bidirectional<'_, '_>, prev: &Vertex) -> f32 {
         let light = match self.kind {
             Kind::Light(light) => light,
             Kind::Surface(prim) => LightRef::Area(prim),
             Kind::Eye => return 0.0,
         };
-        let dir = (next.p - self.p).normalize_or_zero();
-        self.area_density(direction_pdf(bd.lit, light, self.n, dir), next)
+        prev.density_from(
+            direction_pdf(bd.lit, light, self.n, self.wo),
+            self.dist2_prev,
+            self.wo,
+        )
     }
 
     /// Whether this is a light with a delta position (point, spot, luminaire).

@@ -90,7 +90,8 @@ impl Bidirectional<'_, '_> {
             let Some(prev) = path.last() else {
                 break;
             };
-            v.pdf_fwd = prev.area_density(pdf_dir, &v);
+            v.dist2_prev = (p - prev.p).length_squared();
+            v.pdf_fwd = v.density_from(pdf_dir, v.dist2_prev, v.wo);
             path.push(v);
             if path.len() >= MAX_SUBPATH {
                 break;
@@ -119,7 +120,7 @@ impl Bidirectional<'_, '_> {
                 bsdf.pdf(v.shading_facing(s.wi), s.wi, v.wo)
             };
             let here = path[k];
-            path[k - 1].pdf_rev = here.area_density(pdf_rev_dir, &path[k - 1]);
+            path[k - 1].pdf_rev = path[k - 1].density_from(pdf_rev_dir, here.dist2_prev, here.wo);
             // A light subpath's adjoint BSDF with a shading normal (Veach §5.3):
             // |ns·wo| |ng·wi| / (|ng·wo| |ns·wi|), which goes to 0 as wi grazes the geometric
             // surface. (Written as the ratio of two corrections with a floor under the second,
