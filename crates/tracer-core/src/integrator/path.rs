@@ -1,8 +1,10 @@
 //! The path tracer: global illumination, unbiased.
 //!
-//! - Next-event estimation at every non-delta vertex: every point and spot light (one shadow
-//!   ray each, exact) and one sample of the emissive triangles, combined with BSDF sampling by
-//!   multiple importance sampling (power heuristic).
+//! - Next-event estimation at every non-delta vertex: one light, placed or glowing triangle,
+//!   picked by the light tree for that point (`lit_scene::light_sampler`), one shadow ray;
+//!   glowing surfaces are combined with BSDF sampling by multiple importance sampling (power
+//!   heuristic), with the tree's probability in both densities. The cost per vertex does not
+//!   grow with the number of lights.
 //! - Russian roulette instead of a bounce cap: once a path's throughput falls below
 //!   [`RR_THRESHOLD`] it survives with probability throughput / threshold and is reweighted, so
 //!   the expected value is unchanged. [`MAX_VERTICES`] only guards against lossless enclosures
@@ -20,7 +22,7 @@
 use super::{Integrator, IntegratorKind, Sample, Splat, Want};
 use crate::geometry::Ray;
 use crate::light::luminance;
-use crate::lit_scene::LitScene;
+use crate::lit_scene::{Incident, LitScene};
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
 use crate::scene::CameraBasis;
 use crate::shading::{Bsdf, Surface, bsdf_at};
@@ -54,8 +56,9 @@ struct Vertex {
 enum Came {
     /// From the camera or a mirror: light sampling could not have produced it.
     Delta,
-    /// Sampled with this solid-angle density at a vertex that also sampled the emitters.
-    Pdf(f32),
+    /// Sampled with solid-angle density `pdf` at a vertex (shading normal `n`, rays leaving
+    /// from the ray's origin) that also sampled the lights.
+    Pdf { pdf: f32, n: Vec3 },
 }
 
 /// A path tracer over a prepared scene.
@@ -67,6 +70,9 @@ pub struct PathTracer<'p, 'a> {
     /// Throughput below which Russian roulette starts ([`RR_THRESHOLD`]; 1 for the cheaper
     /// first pass, which is just as unbiased).
     pub rr_threshold: f32,
+    /// Next-event estimation sums every placed light exactly (the coursework's direct light,
+    /// for direct mode's sensors) instead of picking one with the light tree.
+    pub every_light: bool,
 }
 
 /// Path tracing as an integrator.
@@ -83,6 +89,7 @@ impl PathTracing<'_> {
             lit: &self.lit,
             max_bounces: self.max_bounces.unwrap_or(u32::MAX),
             rr_threshold,
+            every_light: false,
         }
     }
 }
@@ -132,12 +139,31 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 }
 
 impl<'p, 'a> PathTracer<'p, 'a> {
-    /// Direct light only: one bounce, the roulette as in path mode.
+    /// Direct light only, as direct mode gives it: one bounce, every placed light exactly,
+    /// the roulette as in path mode.
     pub fn direct_only(lit: &'p LitScene<'a>) -> Self {
         PathTracer {
             lit,
             max_bounces: 1,
             rr_threshold: RR_THRESHOLD,
+            every_light: true,
+        }
+    }
+
+    /// Gives `f` the light sampled at a surface point `p` (shading normal `n`, rays from
+    /// `origin`): one light from the tree, or every placed light and one glowing triangle.
+    fn incident(
+        &self,
+        p: Vec3,
+        origin: Vec3,
+        n: Vec3,
+        rng: &mut SampleRng,
+        mut f: impl FnMut(Incident),
+    ) {
+        if self.every_light {
+            self.lit.each_incident(p, origin, rng, f);
+        } else if let Some(s) = self.lit.sample_incident(p, origin, n, rng) {
+            f(s);
         }
     }
 
@@ -203,35 +229,27 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         // Lights count by the shading normal (the shadow ray from the lifted origin decides);
         // a sampled continuation must also leave above the triangle.
         let above = |wi: Vec3| ng.dot(wi) > 0.0;
-        for light in &lit.lights {
-            let Some((_, lx)) = lit.light_at(light, p, n) else {
-                continue;
-            };
-            *rays += 1;
-            if !lit.occluded(origin, light.position - origin) {
-                e += light.tint * lx;
-            }
-        }
-        if !lit.emitters.is_empty() {
-            let u_pick = rng.next_f32();
-            let (u, v) = rng.next_2d();
-            if let Some(s) = lit.emitters.sample(origin, u_pick, u, v) {
-                let cos = n.dot(s.wi);
-                if cos > 0.0 && s.radiance.max_element() > 0.0 {
-                    *rays += 1;
-                    if !lit.occluded(origin, s.point - origin) {
-                        let w = power_heuristic(s.pdf_solid_angle, cos / PI);
-                        e += s.radiance * (cos * w / s.pdf_solid_angle);
-                    }
+        self.incident(p, origin, n, rng, |s| {
+            let cos = n.dot(s.wi);
+            if cos > 0.0 && s.value.max_element() > 0.0 {
+                *rays += 1;
+                if !lit.occluded(origin, s.target - origin) {
+                    let w = if s.delta {
+                        1.0
+                    } else {
+                        power_heuristic(s.pdf, cos / PI)
+                    };
+                    e += s.value * (cos * w / s.pdf);
                 }
             }
-        }
+        });
         let (u, v) = rng.next_2d();
         let wi = to_world(cosine_hemisphere(u, v), n);
         let cos = n.dot(wi);
         if cos > 0.0 && above(wi) {
             // cos θ / pdf = π for cosine sampling.
-            let l_in = self.incoming(&Ray::new(origin, wi), Came::Pdf(cos / PI), 1, rng, rays);
+            let came = Came::Pdf { pdf: cos / PI, n };
+            let l_in = self.incoming(&Ray::new(origin, wi), came, 1, rng, rays);
             e += l_in * PI;
         }
         e
@@ -269,9 +287,14 @@ impl<'p, 'a> PathTracer<'p, 'a> {
             let radiance = lit.emitters.radiance(hit.prim, wo);
             let w = match came {
                 Came::Delta => 1.0,
-                Came::Pdf(pdf) => {
+                Came::Pdf { pdf, n } => {
                     let distance = hit.t * ray.dir.length();
-                    power_heuristic(pdf, lit.emitters.pdf(hit.prim, dir, distance))
+                    let light_pdf = if self.every_light {
+                        lit.emitters.pdf(hit.prim, dir, distance)
+                    } else {
+                        lit.emitter_pdf(ray.origin, n, hit.prim, dir, distance)
+                    };
+                    power_heuristic(pdf, light_pdf)
                 }
             };
             le = radiance * w;
@@ -332,7 +355,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
             let came = if s.delta {
                 Came::Delta
             } else {
-                Came::Pdf(s.pdf)
+                Came::Pdf { pdf: s.pdf, n: v.n }
             };
             // Refracted rays leave from behind the surface.
             let origin = if v.ng.dot(s.wi) >= 0.0 {
@@ -349,40 +372,31 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         l
     }
 
-    /// Light sampled at `v` and reflected towards `v.wo` by the smooth lobes.
+    /// Light sampled at `v` (one light, picked by the light tree) and reflected towards `v.wo`
+    /// by the smooth lobes.
     fn next_event(&self, bsdf: &Bsdf, v: &Vertex, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
         let lit = self.lit;
         let mut l = Vec3::ZERO;
-        for light in &lit.lights {
-            let Some((wi, lx)) = lit.light_at(light, v.point, v.n) else {
-                continue;
-            };
-            let f = bsdf.eval(v.n, v.wo, wi);
+        self.incident(v.point, v.origin, v.n, rng, |s| {
+            let cos = v.n.dot(s.wi);
+            if cos <= 0.0 || s.value.max_element() <= 0.0 {
+                return;
+            }
+            let f = bsdf.eval(v.n, v.wo, s.wi);
             if f.max_element() <= 0.0 {
-                continue;
+                return;
             }
             *rays += 1;
-            if !lit.occluded(v.origin, light.position - v.origin) {
-                l += f * light.tint * lx;
+            if lit.occluded(v.origin, s.target - v.origin) {
+                return;
             }
-        }
-        if !lit.emitters.is_empty() {
-            let u_pick = rng.next_f32();
-            let (a, b) = rng.next_2d();
-            if let Some(s) = lit.emitters.sample(v.origin, u_pick, a, b) {
-                let cos = v.n.dot(s.wi);
-                if cos > 0.0 && s.radiance.max_element() > 0.0 {
-                    let f = bsdf.eval(v.n, v.wo, s.wi);
-                    if f.max_element() > 0.0 {
-                        *rays += 1;
-                        if !lit.occluded(v.origin, s.point - v.origin) {
-                            let w = power_heuristic(s.pdf_solid_angle, bsdf.pdf(v.n, v.wo, s.wi));
-                            l += f * s.radiance * (cos * w / s.pdf_solid_angle);
-                        }
-                    }
-                }
-            }
-        }
+            let w = if s.delta {
+                1.0
+            } else {
+                power_heuristic(s.pdf, bsdf.pdf(v.n, v.wo, s.wi))
+            };
+            l += f * s.value * (cos * w / s.pdf);
+        });
         l
     }
 }

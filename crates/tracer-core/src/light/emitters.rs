@@ -144,16 +144,9 @@ impl EmitterTable {
     /// Total luminous flux emitted (lm), with `metres_per_unit` converting areas: Φ = π L A per
     /// emitting face.
     pub fn flux_lm(&self, metres_per_unit: f32) -> f64 {
-        let m2 = f64::from(metres_per_unit).powi(2);
         self.emitters
             .iter()
-            .map(|e| {
-                std::f64::consts::PI
-                    * f64::from(super::luminance(e.radiance))
-                    * f64::from(e.area)
-                    * m2
-                    * f64::from(e.sides.count())
-            })
+            .map(|e| flux_of(e, metres_per_unit))
             .sum()
     }
 
@@ -185,7 +178,25 @@ impl EmitterTable {
             .cdf
             .partition_point(|&c| c <= target)
             .min(self.emitters.len() - 1);
-        let e = &self.emitters[i];
+        let pick = self.pick_probability(&self.emitters[i]);
+        self.sample_from(&self.emitters[i], from, u, v, pick)
+    }
+
+    /// A uniform point on emitter `index` (in table order, see [`EmitterTable::light_bounds`])
+    /// with (`u`, `v`), as seen from `from`; its density is that of the point alone (the caller
+    /// picked the emitter).
+    pub fn sample_on(&self, index: u32, from: Vec3, u: f32, v: f32) -> Option<EmitterSample> {
+        self.sample_from(self.emitters.get(index as usize)?, from, u, v, 1.0)
+    }
+
+    fn sample_from(
+        &self,
+        e: &Emitter,
+        from: Vec3,
+        u: f32,
+        v: f32,
+        pick: f32,
+    ) -> Option<EmitterSample> {
         let (b1, b2) = uniform_triangle_barycentric(u, v);
         let point = e.v0 + e.e1 * b1 + e.e2 * b2;
         let to = point - from;
@@ -194,7 +205,7 @@ impl EmitterTable {
             return None;
         }
         let wi = to / distance;
-        let pdf = self.pdf_of(e, wi, distance)?;
+        let pdf = solid_angle_pdf(e, pick, wi, distance)?;
         let radiance = if e.sides.emits_towards(e.front, -wi) {
             e.radiance
         } else {
@@ -207,6 +218,60 @@ impl EmitterTable {
             radiance,
             pdf_solid_angle: pdf,
         })
+    }
+
+    /// Every emitter's bounds for a light tree, in table order, with its flux in lm
+    /// (`metres_per_unit` converting areas).
+    pub fn light_bounds(&self, metres_per_unit: f32) -> Vec<super::LightBounds> {
+        self.emitters
+            .iter()
+            .map(|e| {
+                let verts = [e.v0, e.v0 + e.e1, e.v0 + e.e2];
+                let (normal, two_sided) = match e.sides {
+                    EmissionSides::Front => (e.front, false),
+                    EmissionSides::Back => (-e.front, false),
+                    EmissionSides::Both => (e.front, true),
+                };
+                super::LightBounds::surface(
+                    &verts,
+                    flux_of(e, metres_per_unit) as f32,
+                    normal,
+                    two_sided,
+                )
+            })
+            .collect()
+    }
+
+    /// The table index of `triangle`'s emitter.
+    pub fn index_of(&self, triangle: u32) -> Option<u32> {
+        let i = *self.of_triangle.get(triangle as usize)?;
+        (i != u32::MAX).then_some(i)
+    }
+
+    /// The scene triangle of emitter `index`.
+    pub fn triangle_of(&self, index: u32) -> Option<u32> {
+        self.emitters.get(index as usize).map(|e| e.triangle)
+    }
+
+    /// Density per unit area of a uniform point on `triangle` (0 when it does not emit).
+    pub fn area_pdf_on(&self, triangle: u32) -> f32 {
+        self.get(triangle).map_or(0.0, |e| 1.0 / e.area)
+    }
+
+    /// Density (1/sr) with which [`EmitterTable::sample_on`] from some point picks the
+    /// direction `wi` that reaches `triangle` at `distance`.
+    pub fn pdf_on(&self, triangle: u32, wi: Vec3, distance: f32) -> f32 {
+        self.get(triangle)
+            .and_then(|e| solid_angle_pdf(e, 1.0, wi, distance))
+            .unwrap_or(0.0)
+    }
+
+    fn pick_probability(&self, e: &Emitter) -> f32 {
+        if self.total <= 0.0 {
+            return 0.0;
+        }
+        let power = f64::from(super::luminance(e.radiance) * e.area * e.sides.count());
+        (power / self.total) as f32
     }
 
     /// A point on the emitting triangles, the triangle picked in proportion to its flux and the
@@ -236,11 +301,7 @@ impl EmitterTable {
     }
 
     fn pdf_area_of(&self, e: &Emitter) -> f32 {
-        if self.total <= 0.0 {
-            return 0.0;
-        }
-        let power = f64::from(super::luminance(e.radiance) * e.area * e.sides.count());
-        (power / self.total) as f32 / e.area
+        self.pick_probability(e) / e.area
     }
 
     /// The unit front normal and the emitting sides of `triangle`.
@@ -257,19 +318,35 @@ impl EmitterTable {
     }
 
     fn pdf_of(&self, e: &Emitter, wi: Vec3, distance: f32) -> Option<f32> {
-        let cos = e.front.dot(wi).abs();
-        if cos <= 0.0 || self.total <= 0.0 {
+        if self.total <= 0.0 {
             return None;
         }
-        let power = f64::from(super::luminance(e.radiance) * e.area * e.sides.count());
-        let pick = (power / self.total) as f32;
-        Some(pick / e.area * distance * distance / cos)
+        solid_angle_pdf(e, self.pick_probability(e), wi, distance)
     }
 
     /// The triangle index of every emitter (for tests and statistics).
     pub fn triangles(&self) -> impl Iterator<Item = u32> + '_ {
         self.emitters.iter().map(|e| e.triangle)
     }
+}
+
+/// Φ = π L A per emitting face (lm), `metres_per_unit` converting the area.
+fn flux_of(e: &Emitter, metres_per_unit: f32) -> f64 {
+    std::f64::consts::PI
+        * f64::from(super::luminance(e.radiance))
+        * f64::from(e.area)
+        * f64::from(metres_per_unit).powi(2)
+        * f64::from(e.sides.count())
+}
+
+/// Density (1/sr) of a uniform point on `e`, picked with probability `pick`, seen along unit
+/// `wi` at `distance`.
+fn solid_angle_pdf(e: &Emitter, pick: f32, wi: Vec3, distance: f32) -> Option<f32> {
+    let cos = e.front.dot(wi).abs();
+    if cos <= 0.0 {
+        return None;
+    }
+    Some(pick / e.area * distance * distance / cos)
 }
 
 #[cfg(test)]

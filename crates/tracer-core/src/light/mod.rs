@@ -9,10 +9,12 @@
 mod emitters;
 mod goniometric;
 mod spot;
+mod tree;
 
 pub use emitters::{EmissionSides, EmissiveTriangle, EmitterPoint, EmitterSample, EmitterTable};
 pub use goniometric::{Photometry, PhotometryError, Plane, cosine_flux};
 pub use spot::SpotProfile;
+pub use tree::{LightBounds, LightTree, Picked};
 
 use glam::Vec3;
 use std::sync::Arc;

@@ -3,7 +3,9 @@
 
 use super::LitScene;
 use crate::light::LightKind;
-use crate::light::{EmissiveTriangle, EmitterTable, Light, Luminaire, LuminaireFrame, SpotProfile};
+use crate::light::{
+    EmissiveTriangle, EmitterTable, Light, LightBounds, Luminaire, LuminaireFrame, SpotProfile,
+};
 use crate::scene::Scene;
 use crate::shading::PreparedMaterial;
 use glam::Vec3;
@@ -47,6 +49,28 @@ impl PreparedLight {
             intensity_cd: intensity_cd.max(0.0),
             tint: l.tint(),
             profile,
+        }
+    }
+
+    /// Luminous flux (lm): the intensity over the sphere.
+    pub fn flux_lm(&self) -> f64 {
+        let solid_angle = match &self.profile {
+            Profile::Isotropic => 4.0 * std::f64::consts::PI,
+            Profile::Spot(s) => f64::from(s.solid_angle_sr()),
+            // The file's flux; `intensity_cd` is the multiplier.
+            Profile::Goniometric(table, _) => table.flux_lm,
+        };
+        f64::from(self.intensity_cd) * solid_angle
+    }
+
+    /// Its bounds for the light tree: a point emitting everywhere, or a spot's beam.
+    pub fn bounds(&self) -> LightBounds {
+        let power = self.flux_lm() as f32;
+        match &self.profile {
+            Profile::Spot(s) => LightBounds::beam(self.position, power, s.axis, s.falloff),
+            Profile::Isotropic | Profile::Goniometric(..) => {
+                LightBounds::point(self.position, power)
+            }
         }
     }
 

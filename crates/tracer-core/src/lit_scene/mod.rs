@@ -3,9 +3,11 @@
 //! luminance 1 and their profiles, material constants, the emitter table, the hidden parts, the
 //! unit factor and the front side. Integrators, sensors and guides all sample a [`LitScene`].
 
+mod light_sampler;
 mod lights;
 mod visibility;
 
+pub use light_sampler::{Incident, LightSampler, TreeLight};
 pub use lights::{PreparedLight, Profile};
 
 use crate::light::EmitterTable;
@@ -21,6 +23,8 @@ pub struct LitScene<'a> {
     pub materials: Vec<PreparedMaterial>,
     /// Emissive triangles of drawn surfaces.
     pub emitters: EmitterTable,
+    /// The light tree over `lights` and `emitters`.
+    pub light_sampler: LightSampler,
     /// +1 when the front normal is (v1 − v0) × (v2 − v0) (right-handed scenes), −1 when it is
     /// its negation (left-handed, as `.shp` files are mirror images).
     pub front_sign: f32,
@@ -40,7 +44,7 @@ impl<'a> LitScene<'a> {
             Handedness::Right => 1.0,
             Handedness::Left => -1.0,
         };
-        let lights = setup
+        let lights: Vec<PreparedLight> = setup
             .lights
             .iter()
             .filter(|l| l.is_valid())
@@ -67,11 +71,16 @@ impl<'a> LitScene<'a> {
             Handedness::Left => -1.0,
         };
         let emitters = lights::emitter_table(scene, &clamped, &materials, &hidden, front_sign);
+        let light_sampler = LightSampler::new(
+            lights.iter().map(PreparedLight::bounds).collect(),
+            emitters.light_bounds(mpu),
+        );
         LitScene {
             scene,
             lights,
             materials,
             emitters,
+            light_sampler,
             front_sign,
             metres_per_unit_sq: mpu * mpu,
             epsilon: scene.ray_epsilon(),

@@ -6,7 +6,6 @@
 use crate::gi_support::*;
 use glam::Vec3;
 use std::f64::consts::PI;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use tracer_core::formats::parse_photometry;
 use tracer_core::integrator::IntegratorKind;
@@ -14,26 +13,6 @@ use tracer_core::light::Photometry;
 use tracer_core::measure::{Grid, MeasureSettings, measure_grids};
 use tracer_core::render::{RenderSettings, render};
 use tracer_core::scene::{Handedness, Sidecar};
-
-/// An LM-63-2002 file of `f(C, γ)` at the given angles (absolute photometry).
-fn ies(vert: &[f64], horiz: &[f64], f: impl Fn(f64, f64) -> f64) -> String {
-    let mut s = String::from("IESNA:LM-63-2002\n[TEST] raygine\n[MANUFAC] tests\nTILT=NONE\n");
-    let _ = writeln!(s, "1 -1 1 {} {} 1 2 0.1 0.2 0", vert.len(), horiz.len());
-    s.push_str("1 1 50\n");
-    let join = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x}"))
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
-    let _ = writeln!(s, "{}", join(vert));
-    let _ = writeln!(s, "{}", join(horiz));
-    for &c in horiz {
-        let row: Vec<f64> = vert.iter().map(|&g| f(c, g)).collect();
-        let _ = writeln!(s, "{}", join(&row));
-    }
-    s
-}
 
 /// A EULUMDAT file with symmetry `isym` of `f(C, γ)` (cd), `mc` C planes, the given γ angles;
 /// lamp flux 2000 lm and conversion factor 1, so the file holds f / 2 (cd per 1000 lm).

@@ -21,6 +21,7 @@ mod illuminance_on_demand;
 mod integra_bundle;
 mod integra_room2;
 mod luminaires;
+mod many_lights;
 mod measure_grids;
 mod proptest_shp;
 mod session;

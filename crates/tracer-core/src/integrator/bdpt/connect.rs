@@ -207,7 +207,7 @@ impl Bidirectional<'_, '_> {
         if !pt.connectible() {
             return Vec3::ZERO;
         }
-        let Some(start) = self.lights.sample(self.lit, rng) else {
+        let Some(start) = self.sample_light_for(pt, rng) else {
             return Vec3::ZERO;
         };
         if start.pdf_origin <= 0.0 {
@@ -315,12 +315,31 @@ impl Bidirectional<'_, '_> {
             }
         };
         let light_delta = |i: usize| i + 1 != s && light_at(i).delta;
+        // Strategy s = 1 with t ≥ 2 picks its light with the tree at the vertex it joins (x1),
+        // the others start light subpaths by flux: its density is theirs times
+        // `tree_factor` = p_tree(x0 | x1) / p_flux(x0). The ratios below are written with the
+        // flux density throughout and corrected where strategy 1 appears.
+        let tree_factor = if s + t < 3 {
+            1.0
+        } else {
+            match s {
+                0 => self.tree_factor(pt, &eye[t - 2]),
+                1 => self.tree_factor(light_at(0), pt),
+                _ => self.tree_factor(light_at(0), light_at(1)),
+            }
+        };
         let mut sum = 0.0f32;
-        let mut ri = 1.0f32;
+        // With s = 1 the path's own density is the tree's: the others' are relative to it.
+        let mut ri = if s == 1 && t >= 2 {
+            1.0 / tree_factor
+        } else {
+            1.0
+        };
         for i in (1..t).rev() {
             ri *= remap0(eye_rev(i)) / remap0(eye[i].pdf_fwd);
             if !eye_delta(i) && !eye_delta(i - 1) && self.allowed(s + t - i, i) {
-                sum += ri * ri;
+                let r = if s + t - i == 1 { ri * tree_factor } else { ri };
+                sum += r * r;
             }
         }
         ri = 1.0;
@@ -332,7 +351,12 @@ impl Bidirectional<'_, '_> {
                 light_at(0).is_delta_light()
             };
             if !light_delta(i) && !before_delta && self.allowed(i, s + t - i) {
-                sum += ri * ri;
+                let r = if i == 1 && s >= 2 {
+                    ri * tree_factor
+                } else {
+                    ri
+                };
+                sum += r * r;
             }
         }
         if !sum.is_finite() {

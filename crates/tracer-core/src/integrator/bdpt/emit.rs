@@ -1,12 +1,14 @@
 //! Where light subpaths start: a light picked in proportion to its flux, a point on it and a
-//! direction, with the densities multiple importance sampling needs.
+//! direction, with the densities multiple importance sampling needs. Connections with one light
+//! vertex (s = 1) pick theirs with the light tree instead, for the eye vertex they join.
 //!
 //! Emission is expressed in the scene's own unit: a point light's intensity becomes
 //! I / (metres per unit)², so that a subpath's throughput is cd/m² × (scene unit)² everywhere and
 //! a connection's geometry term (per squared scene unit) turns it into lx or cd/m².
 
+use super::vertex::{Kind, Vertex};
 use crate::light::EmissionSides;
-use crate::lit_scene::{LitScene, PreparedLight, Profile};
+use crate::lit_scene::{LitScene, Profile, TreeLight};
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world, uniform_sphere};
 use glam::Vec3;
 use std::f32::consts::PI;
@@ -48,23 +50,13 @@ pub struct LightPicker {
     surfaces_probability: f32,
 }
 
-fn point_flux_lm(light: &PreparedLight) -> f64 {
-    let solid_angle = match &light.profile {
-        Profile::Isotropic => 4.0 * std::f64::consts::PI,
-        Profile::Spot(s) => f64::from(s.solid_angle_sr()),
-        // The file's flux; `intensity_cd` is the multiplier.
-        Profile::Goniometric(table, _) => table.flux_lm,
-    };
-    f64::from(light.intensity_cd) * solid_angle
-}
-
 impl LightPicker {
     pub fn new(lit: &LitScene<'_>) -> Self {
         let mut picker = LightPicker::default();
         let mut total = 0.0f64;
         let mut fluxes = Vec::new();
         for (i, light) in lit.lights.iter().enumerate() {
-            let flux = point_flux_lm(light);
+            let flux = light.flux_lm();
             if flux > 0.0 && flux.is_finite() {
                 picker.entries.push(Entry::Point(i as u32));
                 fluxes.push(flux);
@@ -218,5 +210,55 @@ pub fn direction_pdf(lit: &LitScene<'_>, light: LightRef, n: Vec3, dir: Vec3) ->
                 EmissionSides::Both => c.abs() / (2.0 * PI),
             }
         }
+    }
+}
+
+impl super::Bidirectional<'_, '_> {
+    /// Strategy s = 1: a light picked by the light tree for eye vertex `pt`, and a point on it
+    /// (uniform on a glowing triangle). Its `pdf_origin` is the tree's probability times the
+    /// area density.
+    pub(super) fn sample_light_for(&self, pt: &Vertex, rng: &mut SampleRng) -> Option<LightPoint> {
+        let lit = self.lit;
+        let (light, pmf) = lit.pick_light(pt.p, pt.n, rng.next_f32())?;
+        match light {
+            TreeLight::Placed(i) => Some(LightPoint {
+                light: LightRef::Point(i),
+                p: lit.lights.get(i as usize)?.position,
+                n: Vec3::ZERO,
+                pdf_origin: pmf,
+            }),
+            TreeLight::Triangle(t) => {
+                let (u, v) = rng.next_2d();
+                let index = lit.emitters.index_of(t)?;
+                let s = lit.emitters.sample_on(index, pt.p, u, v)?;
+                let (front, _) = lit.emitters.orientation(t)?;
+                Some(LightPoint {
+                    light: LightRef::Area(t),
+                    p: s.point,
+                    n: front,
+                    pdf_origin: pmf * lit.emitters.area_pdf_on(t),
+                })
+            }
+        }
+    }
+
+    /// How much likelier strategy s = 1 makes light vertex `x0` when it joins it to `x1` (the
+    /// tree's choice at `x1`) than a light subpath's start does (by flux):
+    /// p_tree(x0 | x1) / p_flux(x0).
+    pub(super) fn tree_factor(&self, x0: &Vertex, x1: &Vertex) -> f32 {
+        let light = match x0.kind {
+            Kind::Light(l) => l,
+            Kind::Surface(prim) => LightRef::Area(prim),
+            Kind::Eye => return 1.0,
+        };
+        let flux = self.lights.pdf_origin(self.lit, light);
+        if flux <= 0.0 {
+            return 1.0;
+        }
+        let (tree_light, area) = match light {
+            LightRef::Point(i) => (TreeLight::Placed(i), 1.0),
+            LightRef::Area(t) => (TreeLight::Triangle(t), self.lit.emitters.area_pdf_on(t)),
+        };
+        self.lit.light_pmf(x1.p, x1.n, tree_light) * area / flux
     }
 }

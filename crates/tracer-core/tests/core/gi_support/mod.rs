@@ -3,6 +3,7 @@
 #![allow(dead_code, clippy::unwrap_used, clippy::expect_used)]
 
 use glam::{DVec3, Vec3};
+use std::fmt::Write as _;
 use tracer_core::measure::Grid;
 use tracer_core::render::{Film, RenderSettings};
 use tracer_core::scene::{Camera, Handedness, LengthUnit, Light, Material, Scene, Setup};
@@ -243,4 +244,24 @@ pub fn render_on_threads(
         .build()
         .unwrap();
     pool.install(|| tracer_core::render::render(scene, setup, settings).0)
+}
+
+/// An LM-63-2002 file of `f(C, γ)` at the given angles (absolute photometry).
+pub fn ies(vert: &[f64], horiz: &[f64], f: impl Fn(f64, f64) -> f64) -> String {
+    let mut s = String::from("IESNA:LM-63-2002\n[TEST] raygine\n[MANUFAC] tests\nTILT=NONE\n");
+    let _ = writeln!(s, "1 -1 1 {} {} 1 2 0.1 0.2 0", vert.len(), horiz.len());
+    s.push_str("1 1 50\n");
+    let join = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let _ = writeln!(s, "{}", join(vert));
+    let _ = writeln!(s, "{}", join(horiz));
+    for &c in horiz {
+        let row: Vec<f64> = vert.iter().map(|&g| f(c, g)).collect();
+        let _ = writeln!(s, "{}", join(&row));
+    }
+    s
 }
