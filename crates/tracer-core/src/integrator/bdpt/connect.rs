@@ -324,8 +324,13 @@ impl Bidirectional<'_, '_> {
         } else {
             match s {
                 0 => self.tree_factor(pt, &eye[t - 2]),
-                1 => self.tree_factor(light_at(0), pt),
-                _ => self.tree_factor(light_at(0), light_at(1)),
+                // The tree picked the sampled light for `pt`: its density is the tree's.
+                1 => {
+                    let q = light_at(0);
+                    let flux = q.pdf_light_origin(self);
+                    if flux > 0.0 { q.pdf_fwd / flux } else { 1.0 }
+                }
+                _ => light_at(1).tree_ratio,
             }
         };
         let mut sum = 0.0f32;

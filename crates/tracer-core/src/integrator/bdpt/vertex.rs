@@ -42,6 +42,9 @@ pub struct Vertex {
     pub beta: Vec3,
     /// Squared distance to the previous vertex of the subpath (0 for the first).
     pub dist2_prev: f32,
+    /// Light subpath vertex 1 only: p_tree(x0 | here) / p_flux(x0), how much likelier strategy
+    /// s = 1 makes the light vertex when it joins it here (see `Bidirectional::tree_factor`).
+    pub tree_ratio: f32,
     pub pdf_fwd: f32,
     pub pdf_rev: f32,
     /// A delta lobe scattered the subpath here (mirror, glass): no connection can use it.
@@ -62,6 +65,7 @@ impl Vertex {
             wo: Vec3::ZERO,
             beta,
             dist2_prev: 0.0,
+            tree_ratio: 1.0,
             pdf_fwd,
             pdf_rev: 0.0,
             delta: false,

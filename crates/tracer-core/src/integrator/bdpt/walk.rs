@@ -46,6 +46,10 @@ impl Bidirectional<'_, '_> {
             start.p + start.n * (self.lit.epsilon * start.n.dot(dir).signum())
         };
         self.walk(Ray::new(origin, dir), beta, pdf_dir, true, rng, path, rays);
+        if path.len() >= 2 {
+            // Once per subpath, for every connection's MIS weight.
+            path[1].tree_ratio = self.tree_factor(&path[0], &path[1]);
+        }
     }
 
     /// Extends `path` from its last vertex along `ray` (unit direction), sampled with density
