@@ -57,10 +57,25 @@ pub fn draw_pivot(ui: &egui::Ui, basis: &CameraBasis, rect: Rect, pivot: Vec3) {
     );
 }
 
-/// Each light as a dot in its colour with its label; spots and luminaires with their aim.
-pub fn draw_light_markers(ui: &egui::Ui, doc: &Document, basis: &CameraBasis, rect: Rect) {
+/// Each light as a dot in its colour with its label; spots and luminaires with their aim. With
+/// more than the Lights panel lists in full, small unlabelled dots, and the `selected` light
+/// marked in full: a thousand labels would hide the picture and slow every frame.
+pub fn draw_light_markers(
+    ui: &egui::Ui,
+    doc: &Document,
+    basis: &CameraBasis,
+    rect: Rect,
+    selected: usize,
+) {
     let painter = ui.painter_at(rect);
+    let many = doc.setup.lights.len() > crate::panels::MANY_LIGHTS;
     for (i, light) in doc.setup.lights.iter().enumerate() {
+        if many && i != selected {
+            if let Some(pos) = to_screen(rect, basis, light.position()) {
+                painter.circle_filled(pos, 2.5, Color32::YELLOW);
+            }
+            continue;
+        }
         if let Some(pos) = to_screen(rect, basis, light.position()) {
             let c = light.color.map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8);
             painter.circle(

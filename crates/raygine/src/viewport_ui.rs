@@ -30,6 +30,8 @@ pub struct Viewport<'a> {
     /// Film pixels per screen pixel (0.25 ..= 1).
     pub resolution_scale: f32,
     pub show_grids: bool,
+    /// The light the Lights panel has selected (labelled alone when there are many).
+    pub selected_light: usize,
     pub loading: Option<&'a PendingLoad>,
     /// Why the picture is black, when it is.
     pub picture_hint: Option<&'a str>,
@@ -75,7 +77,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, mut v: Viewport<'_>, out: &mut Commands) {
     handle_mouse(ui, &mut v, &response, rect, out);
     let basis = v.worker.basis();
     if let Some(b) = &basis {
-        draw_light_markers(ui, v.doc, b, rect);
+        draw_light_markers(ui, v.doc, b, rect, v.selected_light);
         if let Some(pivot) = *v.orbit_pivot {
             crate::viewport_draw::draw_pivot(ui, b, rect, pivot);
         }

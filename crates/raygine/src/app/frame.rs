@@ -268,6 +268,7 @@ impl RaygineApp {
             measure: &self.measure,
             resolution_scale: self.render.resolution_scale,
             show_grids: self.show_grids,
+            selected_light: self.panels.selected_light,
             loading: self.loading.as_ref(),
             picture_hint: self.picture_hint.as_deref(),
             error: self.error.as_deref(),

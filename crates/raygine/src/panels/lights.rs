@@ -9,12 +9,19 @@ use crate::command::{Command, Commands, Edit};
 use crate::document::Document;
 use tracer_core::scene::{Light, LightKind};
 
+/// More lights than this are listed one line each (a virtualised list, grouped by kind and
+/// file in a summary), and only the selected one is edited: an office's 1,000 luminaires keep
+/// the panel as quick as three.
+pub const MANY_LIGHTS: usize = 12;
+
 /// The lights, edited in place. `luminaire_path` is the panel's own text field for "Add
-/// luminaire"; a luminaire file that cannot be read is reported as an error.
+/// luminaire"; a luminaire file that cannot be read is reported as an error. `selected` is the
+/// light edited when there are more than [`MANY_LIGHTS`].
 pub fn lights_ui(
     ui: &mut egui::Ui,
     doc: &mut Document,
     luminaire_path: &mut String,
+    selected: &mut usize,
     adding: bool,
     out: &mut Commands,
 ) {
@@ -29,7 +36,15 @@ pub fn lights_ui(
     let speed = length_speed(&b);
     let mut remove = None;
     let count = doc.setup.lights.len();
+    let many = count > MANY_LIGHTS;
+    if many {
+        *selected = (*selected).min(count - 1);
+        light_list(ui, &doc.setup.lights, selected, unit);
+    }
     for (i, light) in doc.setup.lights.iter_mut().enumerate() {
+        if many && i != *selected {
+            continue;
+        }
         ui.push_id(i, |ui| {
             ui.horizontal(|ui| {
                 ui.strong(format!("Light {}", i + 1));
@@ -111,7 +126,7 @@ pub fn lights_ui(
                 ui.color_edit_button_rgb(&mut light.color);
                 ui.label("colour (tint, normalised to luminance 1)");
             });
-            if i + 1 < count {
+            if i + 1 < count && !many {
                 ui.separator();
             }
         });
@@ -127,6 +142,64 @@ pub fn lights_ui(
         out.push(Command::Edit(Edit::AddLight));
     }
     add_luminaire_ui(ui, luminaire_path, adding, out);
+}
+
+/// A summary of many lights (how many of each kind, luminaires by file) and one selectable line
+/// per light, of which only the visible rows are laid out.
+fn light_list(ui: &mut egui::Ui, lights: &[Light], selected: &mut usize, unit: &str) {
+    let mut kinds = [0usize; 3];
+    let mut files: std::collections::BTreeMap<String, usize> = std::collections::BTreeMap::new();
+    let mut flux = 0.0f64;
+    for l in lights {
+        kinds[match l.kind {
+            LightKind::Point => 0,
+            LightKind::Spot => 1,
+            LightKind::Luminaire => 2,
+        }] += 1;
+        flux += f64::from(l.flux_lm());
+        if let Some(lum) = &l.luminaire {
+            *files.entry(file_name(&lum.file)).or_default() += 1;
+        }
+    }
+    ui.label(format!(
+        "{} lights: {} point, {} spot, {} luminaire; total flux {}",
+        lights.len(),
+        kinds[0],
+        kinds[1],
+        kinds[2],
+        crate::format::format_quantity(flux as f32, "lm")
+    ));
+    for (file, n) in &files {
+        ui.label(format!("  {file} × {n}"));
+    }
+    let row = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
+    egui::ScrollArea::vertical()
+        .id_salt("light list")
+        .max_height(row * 10.0)
+        .auto_shrink([false, true])
+        .show_rows(ui, row, lights.len(), |ui, rows| {
+            for i in rows {
+                let l = &lights[i];
+                let what = match (&l.luminaire, l.kind) {
+                    (Some(lum), _) => file_name(&lum.file),
+                    (None, LightKind::Spot) => format!("spot {:.4} cd", l.intensity_cd),
+                    (None, _) => format!("point {:.4} cd", l.intensity_cd),
+                };
+                let [x, y, z] = l.position;
+                let text = format!("Light {}: {what} at ({x:.3}, {y:.3}, {z:.3}) {unit}", i + 1);
+                if ui.selectable_label(*selected == i, text).clicked() {
+                    *selected = i;
+                }
+            }
+        });
+    ui.separator();
+}
+
+fn file_name(path: &std::path::Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
 }
 
 /// Intensity in candela: a drag changes it by about 0.5 % a point (a 20-point drag about 10 %),

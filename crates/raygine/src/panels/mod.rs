@@ -16,6 +16,7 @@ mod status;
 mod widgets;
 mod windows;
 
+pub use lights::MANY_LIGHTS;
 pub use measure::MeasureView;
 pub use menu::{MenuBar, menu_bar};
 pub use notes::notes_ui;
@@ -34,6 +35,8 @@ use tracer_core::display::DisplaySettings;
 pub struct PanelState {
     /// The Lights panel's luminaire file field.
     pub luminaire_path: String,
+    /// The light the Lights panel edits when there are too many to show them all.
+    pub selected_light: usize,
     /// The side panel scrolls back to its top on the next frame (a scene was opened).
     pub scroll_to_top: bool,
     /// Whether the Notes window (the scene's load warnings) is open.
@@ -90,7 +93,14 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
     egui::CollapsingHeader::new("Lights")
         .default_open(doc.setup.lights.len() <= 3)
         .show(ui, |ui| {
-            lights::lights_ui(ui, doc, &mut state.luminaire_path, adding_luminaire, out);
+            lights::lights_ui(
+                ui,
+                doc,
+                &mut state.luminaire_path,
+                &mut state.selected_light,
+                adding_luminaire,
+                out,
+            );
         });
     egui::CollapsingHeader::new("Camera")
         .default_open(true)

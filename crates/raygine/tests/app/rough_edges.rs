@@ -607,3 +607,37 @@ fn a_ground_plane_goes_under_a_lone_object() {
     assert!(!h.state().document().scene.has_ground());
     assert_eq!(h.state().document().setup.materials.len(), slots);
 }
+
+/// Many lights are listed one line each under a summary, and only the selected one is edited:
+/// clicking a line moves the editor to that light.
+#[test]
+fn many_lights_are_listed_and_one_is_edited() {
+    let mut h = viewer();
+    h.run_steps(2);
+    for _ in 0..19 {
+        h.state_mut().apply(raygine::command::Command::Edit(
+            raygine::command::Edit::AddLight,
+        ));
+    }
+    step_until(&mut h, "20 lights", |app| {
+        app.document().setup.lights.len() == 20
+    });
+    h.run_steps(2);
+    assert!(
+        h.query_by_label_contains("20 lights: 20 point, 0 spot, 0 luminaire")
+            .is_some(),
+        "no summary of the lights"
+    );
+    // The editor shows one light (its "Remove" button), not twenty.
+    assert_eq!(
+        h.query_all_by_label("Remove").count(),
+        1,
+        "more than one light edited"
+    );
+    h.get_by_label_contains("Light 3: point").click();
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("Light 3").is_some(),
+        "the editor did not move to light 3"
+    );
+}
