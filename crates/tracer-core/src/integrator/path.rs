@@ -152,6 +152,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
 
     /// Gives `f` the light sampled at a surface point `p` (shading normal `n`, rays from
     /// `origin`): one light from the tree, or every placed light and one glowing triangle.
+    #[inline]
     fn incident(
         &self,
         p: Vec3,

@@ -288,6 +288,11 @@ impl LightTree {
         self.nodes.is_empty()
     }
 
+    /// Whether the tree holds one light, which every pick returns (no random number needed).
+    pub fn is_single(&self) -> bool {
+        self.nodes.len() == 1
+    }
+
     /// Builds the subtree of `items` at route `route`, depth `depth`; returns its bounds.
     fn build(
         &mut self,
@@ -338,6 +343,7 @@ impl LightTree {
 
     /// Picks a light for point `p` with unit normal `n` (zero: no surface) with `u` in [0, 1).
     /// None when no light can reach `p`.
+    #[inline]
     pub fn sample(&self, p: Vec3, n: Vec3, u: f32) -> Option<Picked> {
         let mut node = 0usize;
         let mut pmf = 1.0f32;

@@ -75,8 +75,20 @@ impl LightSampler {
 }
 
 impl LitScene<'_> {
+    /// The number [`LitScene::pick_light`] needs, drawn from `rng` (none when there is one
+    /// light to pick: a scene with one lamp pays nothing for the tree).
+    #[inline]
+    pub fn pick_number(&self, rng: &mut SampleRng) -> f32 {
+        if self.light_sampler.tree.is_single() {
+            0.5
+        } else {
+            rng.next_f32()
+        }
+    }
+
     /// Picks a light for point `p` (unit normal `n`, or zero) with `u`: the light and the
     /// probability of the pick. None when no light can reach `p`.
+    #[inline]
     pub fn pick_light(&self, p: Vec3, n: Vec3, u: f32) -> Option<(TreeLight, f32)> {
         let sampler = &self.light_sampler;
         let picked = sampler.tree.sample(p, n, u)?;
@@ -93,7 +105,9 @@ impl LitScene<'_> {
 
     /// One light sampled for a surface point `p` with unit normal `n` whose rays leave from
     /// `origin` (the tree and glowing triangles see the point from there, placed lights from
-    /// `p`). Draws one number for the pick, and two for the point on a glowing triangle.
+    /// `p`). Draws one number for the pick (none with one light), and two for the point on a
+    /// glowing triangle.
+    #[inline]
     pub fn sample_incident(
         &self,
         p: Vec3,
@@ -101,7 +115,7 @@ impl LitScene<'_> {
         n: Vec3,
         rng: &mut SampleRng,
     ) -> Option<Incident> {
-        let (light, pmf) = self.pick_light(origin, n, rng.next_f32())?;
+        let (light, pmf) = self.pick_light(origin, n, self.pick_number(rng))?;
         match light {
             TreeLight::Placed(i) => self.placed_incident(i, p, pmf),
             TreeLight::Triangle(t) => {
@@ -120,6 +134,7 @@ impl LitScene<'_> {
     }
 
     /// The light of placed light `index` at `p`, as picked with probability `pmf`.
+    #[inline]
     fn placed_incident(&self, index: u32, p: Vec3, pmf: f32) -> Option<Incident> {
         let light = self.lights.get(index as usize)?;
         let to_light = light.position - p;

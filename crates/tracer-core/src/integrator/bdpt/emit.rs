@@ -219,7 +219,7 @@ impl super::Bidirectional<'_, '_> {
     /// area density.
     pub(super) fn sample_light_for(&self, pt: &Vertex, rng: &mut SampleRng) -> Option<LightPoint> {
         let lit = self.lit;
-        let (light, pmf) = lit.pick_light(pt.p, pt.n, rng.next_f32())?;
+        let (light, pmf) = lit.pick_light(pt.p, pt.n, lit.pick_number(rng))?;
         match light {
             TreeLight::Placed(i) => Some(LightPoint {
                 light: LightRef::Point(i),
