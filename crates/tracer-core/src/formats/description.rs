@@ -148,8 +148,8 @@ pub struct LightDescription {
 /// How a light's intensity varies with direction.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LightDistribution {
-    /// The same intensity everywhere: `flux_lm / 4π` candela.
-    Isotropic { flux_lm: f32 },
+    /// The same intensity (cd) everywhere.
+    Isotropic { intensity_cd: f32 },
     /// A spot: `intensity_cd` on the axis, full out to `cone_deg`, zero from `falloff_deg`.
     Spot {
         intensity_cd: f32,

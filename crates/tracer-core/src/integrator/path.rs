@@ -21,8 +21,9 @@
 
 use super::{Integrator, IntegratorKind, Sample, Splat, Want};
 use crate::geometry::Ray;
+use crate::light::Incident;
 use crate::light::luminance;
-use crate::lit_scene::{Incident, LitScene};
+use crate::lit_scene::LitScene;
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
 use crate::scene::CameraBasis;
 use crate::shading::{Bsdf, Surface, bsdf_at};
@@ -232,7 +233,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         let above = |wi: Vec3| ng.dot(wi) > 0.0;
         self.incident(p, origin, n, rng, |s| {
             let cos = n.dot(s.wi);
-            if cos > 0.0 && s.value.max_element() > 0.0 {
+            if cos > 0.0 && s.tint.max_element() > 0.0 && s.level > 0.0 {
                 *rays += 1;
                 if !lit.occluded(origin, s.target - origin) {
                     let w = if s.delta {
@@ -240,7 +241,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
                     } else {
                         power_heuristic(s.pdf, cos / PI)
                     };
-                    e += s.value * (cos * w / s.pdf);
+                    e += s.tint * (s.level * cos * w / s.pdf);
                 }
             }
         });
@@ -285,13 +286,13 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         let mat = lit.material_of(hit.prim);
         let mut le = Vec3::ZERO;
         if mat.emission.max_element() > 0.0 {
-            let radiance = lit.emitters.radiance(hit.prim, wo);
+            let radiance = lit.glow(hit.prim, wo);
             let w = match came {
                 Came::Delta => 1.0,
                 Came::Pdf { pdf, n } => {
                     let distance = hit.t * ray.dir.length();
                     let light_pdf = if self.every_light {
-                        lit.emitters.pdf(hit.prim, dir, distance)
+                        lit.each_incident_pdf(hit.prim, dir, distance)
                     } else {
                         lit.emitter_pdf(ray.origin, n, hit.prim, dir, distance)
                     };
@@ -380,7 +381,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         let mut l = Vec3::ZERO;
         self.incident(v.point, v.origin, v.n, rng, |s| {
             let cos = v.n.dot(s.wi);
-            if cos <= 0.0 || s.value.max_element() <= 0.0 {
+            if cos <= 0.0 || s.value().max_element() <= 0.0 {
                 return;
             }
             let f = bsdf.eval(v.n, v.wo, s.wi);
@@ -396,7 +397,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
             } else {
                 power_heuristic(s.pdf, bsdf.pdf(v.n, v.wo, s.wi))
             };
-            l += f * s.value * (cos * w / s.pdf);
+            l += f * s.tint * (s.level * cos * w / s.pdf);
         });
         l
     }

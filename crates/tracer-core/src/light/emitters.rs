@@ -36,17 +36,17 @@ impl EmissionSides {
 
 /// One emissive triangle.
 #[derive(Clone, Copy, Debug)]
-struct Emitter {
-    triangle: u32,
-    v0: Vec3,
-    e1: Vec3,
-    e2: Vec3,
-    front: Vec3,
+pub(super) struct Emitter {
+    pub(super) triangle: u32,
+    pub(super) v0: Vec3,
+    pub(super) e1: Vec3,
+    pub(super) e2: Vec3,
+    pub(super) front: Vec3,
     /// Area in scene units².
-    area: f32,
+    pub(super) area: f32,
     /// Emitted luminance per channel (cd/m²): L × tint.
-    radiance: Vec3,
-    sides: EmissionSides,
+    pub(super) radiance: Vec3,
+    pub(super) sides: EmissionSides,
 }
 
 /// A point sampled on an emitter, seen from a shading point.
@@ -61,18 +61,6 @@ pub struct EmitterSample {
     pub radiance: Vec3,
     /// Density of this sample in solid angle at the shading point (1/sr).
     pub pdf_solid_angle: f32,
-}
-
-/// A point on an emitter, from [`EmitterTable::sample_point`].
-#[derive(Clone, Copy, Debug)]
-pub struct EmitterPoint {
-    pub triangle: u32,
-    pub point: Vec3,
-    /// Unit front normal.
-    pub front: Vec3,
-    pub sides: EmissionSides,
-    /// Density per unit area (scene units) of picking this point.
-    pub pdf_area: f32,
 }
 
 /// Every emissive triangle with a flux-proportional selection table.
@@ -150,15 +138,6 @@ impl EmitterTable {
             .sum()
     }
 
-    /// Luminance per channel that triangle `triangle` sends along unit direction `dir_out`
-    /// (zero when it does not emit, or not on that side).
-    pub fn radiance(&self, triangle: u32, dir_out: Vec3) -> Vec3 {
-        match self.get(triangle) {
-            Some(e) if e.sides.emits_towards(e.front, dir_out) => e.radiance,
-            _ => Vec3::ZERO,
-        }
-    }
-
     /// Whether triangle `triangle` emits at all.
     pub fn emits(&self, triangle: u32) -> bool {
         self.get(triangle).is_some()
@@ -179,67 +158,26 @@ impl EmitterTable {
             .partition_point(|&c| c <= target)
             .min(self.emitters.len() - 1);
         let pick = self.pick_probability(&self.emitters[i]);
-        self.sample_from(&self.emitters[i], from, u, v, pick)
-    }
-
-    /// A uniform point on emitter `index` (in table order, see [`EmitterTable::light_bounds`])
-    /// with (`u`, `v`), as seen from `from`; its density is that of the point alone (the caller
-    /// picked the emitter).
-    pub fn sample_on(&self, index: u32, from: Vec3, u: f32, v: f32) -> Option<EmitterSample> {
-        self.sample_from(self.emitters.get(index as usize)?, from, u, v, 1.0)
-    }
-
-    fn sample_from(
-        &self,
-        e: &Emitter,
-        from: Vec3,
-        u: f32,
-        v: f32,
-        pick: f32,
-    ) -> Option<EmitterSample> {
-        let (b1, b2) = uniform_triangle_barycentric(u, v);
-        let point = e.v0 + e.e1 * b1 + e.e2 * b2;
-        let to = point - from;
-        let distance = to.length();
-        if distance.is_nan() || distance <= 0.0 {
-            return None;
-        }
-        let wi = to / distance;
-        let pdf = solid_angle_pdf(e, pick, wi, distance)?;
-        let radiance = if e.sides.emits_towards(e.front, -wi) {
-            e.radiance
-        } else {
-            Vec3::ZERO
-        };
-        Some(EmitterSample {
-            point,
-            wi,
-            distance,
-            radiance,
-            pdf_solid_angle: pdf,
-        })
+        sample_from(&self.emitters[i], from, u, v, pick)
     }
 
     /// Every emitter's bounds for a light tree, in table order, with its flux in lm
     /// (`metres_per_unit` converting areas).
     pub fn light_bounds(&self, metres_per_unit: f32) -> Vec<super::LightBounds> {
-        self.emitters
-            .iter()
-            .map(|e| {
-                let verts = [e.v0, e.v0 + e.e1, e.v0 + e.e2];
-                let (normal, two_sided) = match e.sides {
-                    EmissionSides::Front => (e.front, false),
-                    EmissionSides::Back => (-e.front, false),
-                    EmissionSides::Both => (e.front, true),
-                };
-                super::LightBounds::surface(
-                    &verts,
-                    flux_of(e, metres_per_unit) as f32,
-                    normal,
-                    two_sided,
-                )
-            })
+        use super::LightSource;
+        (0..self.emitters.len() as u32)
+            .filter_map(|i| self.light(i, metres_per_unit))
+            .map(|l| l.bounds())
             .collect()
+    }
+
+    /// Emitter `index` (in table order) as a light, in a scene of `metres_per_unit`.
+    #[inline]
+    pub fn light(&self, index: u32, metres_per_unit: f32) -> Option<super::TriangleLight<'_>> {
+        Some(super::TriangleLight {
+            emitter: self.emitters.get(index as usize)?,
+            metres_per_unit,
+        })
     }
 
     /// The table index of `triangle`'s emitter.
@@ -253,60 +191,12 @@ impl EmitterTable {
         self.emitters.get(index as usize).map(|e| e.triangle)
     }
 
-    /// Density per unit area of a uniform point on `triangle` (0 when it does not emit).
-    pub fn area_pdf_on(&self, triangle: u32) -> f32 {
-        self.get(triangle).map_or(0.0, |e| 1.0 / e.area)
-    }
-
-    /// Density (1/sr) with which [`EmitterTable::sample_on`] from some point picks the
-    /// direction `wi` that reaches `triangle` at `distance`.
-    pub fn pdf_on(&self, triangle: u32, wi: Vec3, distance: f32) -> f32 {
-        self.get(triangle)
-            .and_then(|e| solid_angle_pdf(e, 1.0, wi, distance))
-            .unwrap_or(0.0)
-    }
-
     fn pick_probability(&self, e: &Emitter) -> f32 {
         if self.total <= 0.0 {
             return 0.0;
         }
         let power = f64::from(super::luminance(e.radiance) * e.area * e.sides.count());
         (power / self.total) as f32
-    }
-
-    /// A point on the emitting triangles, the triangle picked in proportion to its flux and the
-    /// point uniform on it (for light paths).
-    pub fn sample_point(&self, u_pick: f32, u: f32, v: f32) -> Option<EmitterPoint> {
-        let last = *self.cdf.last()?;
-        let target = f64::from(u_pick) * last;
-        let i = self
-            .cdf
-            .partition_point(|&c| c <= target)
-            .min(self.emitters.len() - 1);
-        let e = &self.emitters[i];
-        let (b1, b2) = uniform_triangle_barycentric(u, v);
-        Some(EmitterPoint {
-            triangle: e.triangle,
-            point: e.v0 + e.e1 * b1 + e.e2 * b2,
-            front: e.front,
-            sides: e.sides,
-            pdf_area: self.pdf_area_of(e),
-        })
-    }
-
-    /// Density per unit area (scene units) with which [`EmitterTable::sample_point`] picks a
-    /// point of `triangle` (0 for triangles that do not emit).
-    pub fn pdf_area(&self, triangle: u32) -> f32 {
-        self.get(triangle).map_or(0.0, |e| self.pdf_area_of(e))
-    }
-
-    fn pdf_area_of(&self, e: &Emitter) -> f32 {
-        self.pick_probability(e) / e.area
-    }
-
-    /// The unit front normal and the emitting sides of `triangle`.
-    pub fn orientation(&self, triangle: u32) -> Option<(Vec3, EmissionSides)> {
-        self.get(triangle).map(|e| (e.front, e.sides))
     }
 
     /// Density (1/sr) with which [`EmitterTable::sample`] from some point picks the direction
@@ -331,7 +221,7 @@ impl EmitterTable {
 }
 
 /// Φ = π L A per emitting face (lm), `metres_per_unit` converting the area.
-fn flux_of(e: &Emitter, metres_per_unit: f32) -> f64 {
+pub(super) fn flux_of(e: &Emitter, metres_per_unit: f32) -> f64 {
     std::f64::consts::PI
         * f64::from(super::luminance(e.radiance))
         * f64::from(e.area)
@@ -339,9 +229,40 @@ fn flux_of(e: &Emitter, metres_per_unit: f32) -> f64 {
         * f64::from(e.sides.count())
 }
 
+/// A uniform point on `e`, picked with probability `pick`, seen from `from`.
+pub(super) fn sample_from(
+    e: &Emitter,
+    from: Vec3,
+    u: f32,
+    v: f32,
+    pick: f32,
+) -> Option<EmitterSample> {
+    let (b1, b2) = uniform_triangle_barycentric(u, v);
+    let point = e.v0 + e.e1 * b1 + e.e2 * b2;
+    let to = point - from;
+    let distance = to.length();
+    if distance.is_nan() || distance <= 0.0 {
+        return None;
+    }
+    let wi = to / distance;
+    let pdf = solid_angle_pdf(e, pick, wi, distance)?;
+    let radiance = if e.sides.emits_towards(e.front, -wi) {
+        e.radiance
+    } else {
+        Vec3::ZERO
+    };
+    Some(EmitterSample {
+        point,
+        wi,
+        distance,
+        radiance,
+        pdf_solid_angle: pdf,
+    })
+}
+
 /// Density (1/sr) of a uniform point on `e`, picked with probability `pick`, seen along unit
 /// `wi` at `distance`.
-fn solid_angle_pdf(e: &Emitter, pick: f32, wi: Vec3, distance: f32) -> Option<f32> {
+pub(super) fn solid_angle_pdf(e: &Emitter, pick: f32, wi: Vec3, distance: f32) -> Option<f32> {
     let cos = e.front.dot(wi).abs();
     if cos <= 0.0 {
         return None;

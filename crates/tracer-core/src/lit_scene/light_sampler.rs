@@ -8,7 +8,7 @@
 //! has no receiving point.
 
 use super::LitScene;
-use crate::light::{LightBounds, LightTree};
+use crate::light::{Incident, LightBounds, LightSource, LightTree, Receiver};
 use crate::sampling::SampleRng;
 use glam::Vec3;
 
@@ -26,23 +26,6 @@ pub enum TreeLight {
 pub struct LightSampler {
     tree: LightTree,
     placed: u32,
-}
-
-/// Light arriving at a receiving point from one sampled light.
-#[derive(Clone, Copy, Debug)]
-pub struct Incident {
-    /// Unit direction from the receiving point towards the light.
-    pub wi: Vec3,
-    /// The point on the light: shadow rays end there.
-    pub target: Vec3,
-    /// A placed light: the illuminance at normal incidence per channel, I / R² (lx). A glowing
-    /// triangle: its luminance towards the point per channel (cd/m²).
-    pub value: Vec3,
-    /// The probability of the pick, times the solid-angle density (1/sr) of the point for a
-    /// glowing triangle. The estimate is f · value · cos θ / pdf.
-    pub pdf: f32,
-    /// A placed light is a point: no direction sampled at a surface can find it (no MIS).
-    pub delta: bool,
 }
 
 impl LightSampler {
@@ -75,6 +58,23 @@ impl LightSampler {
 }
 
 impl LitScene<'_> {
+    /// The number of lights: placed lights, then glowing triangles in emitter-table order.
+    pub fn light_count(&self) -> u32 {
+        self.lights.len() as u32 + self.emitters.len() as u32
+    }
+
+    /// Light `index` of [`LitScene::light_count`]'s order.
+    #[inline]
+    pub fn light_id(&self, index: u32) -> Option<TreeLight> {
+        self.light_sampler.light_of(self, index)
+    }
+
+    /// The index of `light` in [`LitScene::light_count`]'s order.
+    #[inline]
+    pub fn light_index(&self, light: TreeLight) -> Option<u32> {
+        self.light_sampler.item_of(self, light)
+    }
+
     /// The number [`LitScene::pick_light`] needs, drawn from `rng` (none when there is one
     /// light to pick: a scene with one lamp pays nothing for the tree).
     #[inline]
@@ -106,7 +106,7 @@ impl LitScene<'_> {
     /// One light sampled for a surface point `p` with unit normal `n` whose rays leave from
     /// `origin` (the tree and glowing triangles see the point from there, placed lights from
     /// `p`). Draws one number for the pick (none with one light), and two for the point on a
-    /// glowing triangle.
+    /// glowing triangle. The incident's `pdf` includes the pick's probability.
     #[inline]
     pub fn sample_incident(
         &self,
@@ -115,47 +115,22 @@ impl LitScene<'_> {
         n: Vec3,
         rng: &mut SampleRng,
     ) -> Option<Incident> {
-        let (light, pmf) = self.pick_light(origin, n, self.pick_number(rng))?;
-        match light {
-            TreeLight::Placed(i) => self.placed_incident(i, p, pmf),
-            TreeLight::Triangle(t) => {
-                let (u, v) = rng.next_2d();
-                let index = self.emitters.index_of(t)?;
-                let s = self.emitters.sample_on(index, origin, u, v)?;
-                Some(Incident {
-                    wi: s.wi,
-                    target: s.point,
-                    value: s.radiance,
-                    pdf: pmf * s.pdf_solid_angle,
-                    delta: false,
-                })
-            }
-        }
-    }
-
-    /// The light of placed light `index` at `p`, as picked with probability `pmf`.
-    #[inline]
-    fn placed_incident(&self, index: u32, p: Vec3, pmf: f32) -> Option<Incident> {
-        let light = self.lights.get(index as usize)?;
-        let to_light = light.position - p;
-        let dist2 = to_light.length_squared();
-        if dist2 <= 0.0 {
-            return None;
-        }
-        let wi = to_light / dist2.sqrt();
-        let intensity = light.intensity_towards(-wi);
-        Some(Incident {
-            wi,
-            target: light.position,
-            value: light.tint * (intensity / (dist2 * self.metres_per_unit_sq)),
-            pdf: pmf,
-            delta: true,
-        })
+        let (id, pmf) = self.pick_light(origin, n, self.pick_number(rng))?;
+        let light = self.light(id)?;
+        let u = if light.is_delta() {
+            [0.5; 2]
+        } else {
+            let (u, v) = rng.next_2d();
+            [u, v]
+        };
+        let mut s = light.sample_incident(Receiver { p, origin }, u)?;
+        s.pdf *= pmf;
+        Some(s)
     }
 
     /// The coursework's exact sum instead of one pick: every placed light at `p` (probability
     /// 1 each), then one glowing triangle picked by flux (no tree), each given to `f`. Its MIS
-    /// density for glowing surfaces is `emitters.pdf`, not [`LitScene::emitter_pdf`].
+    /// density for glowing surfaces is [`LitScene::each_incident_pdf`].
     pub fn each_incident(
         &self,
         p: Vec3,
@@ -163,8 +138,9 @@ impl LitScene<'_> {
         rng: &mut SampleRng,
         mut f: impl FnMut(Incident),
     ) {
-        for i in 0..self.lights.len() as u32 {
-            if let Some(s) = self.placed_incident(i, p, 1.0) {
+        let at = Receiver { p, origin };
+        for light in &self.lights {
+            if let Some(s) = light.sample_incident(at, [0.5; 2]) {
                 f(s);
             }
         }
@@ -175,12 +151,26 @@ impl LitScene<'_> {
                 f(Incident {
                     wi: s.wi,
                     target: s.point,
-                    value: s.radiance,
+                    tint: s.radiance,
+                    level: 1.0,
                     pdf: s.pdf_solid_angle,
                     delta: false,
                 });
             }
         }
+    }
+
+    /// Luminance glowing triangle `prim` sends along unit `dir` (0 when it does not glow).
+    #[inline]
+    pub fn glow(&self, prim: u32, dir: Vec3) -> Vec3 {
+        self.light(TreeLight::Triangle(prim))
+            .map_or(Vec3::ZERO, |l| l.emitted(dir))
+    }
+
+    /// Density (1/sr) with which [`LitScene::each_incident`] from `origin` reaches glowing
+    /// triangle `triangle` along unit `wi` at `distance`.
+    pub fn each_incident_pdf(&self, triangle: u32, wi: Vec3, distance: f32) -> f32 {
+        self.emitters.pdf(triangle, wi, distance)
     }
 
     /// Density (1/sr) with which [`LitScene::sample_incident`] from `origin` (normal `n`)
@@ -193,10 +183,12 @@ impl LitScene<'_> {
         wi: Vec3,
         distance: f32,
     ) -> f32 {
-        let pmf = self.light_pmf(origin, n, TreeLight::Triangle(triangle));
+        let id = TreeLight::Triangle(triangle);
+        let pmf = self.light_pmf(origin, n, id);
         if pmf <= 0.0 {
             return 0.0;
         }
-        pmf * self.emitters.pdf_on(triangle, wi, distance)
+        self.light(id)
+            .map_or(0.0, |l| pmf * l.incident_pdf(origin, wi, distance))
     }
 }

@@ -7,10 +7,9 @@ mod light_sampler;
 mod lights;
 mod visibility;
 
-pub use light_sampler::{Incident, LightSampler, TreeLight};
-pub use lights::{PreparedLight, Profile};
+pub use light_sampler::{LightSampler, TreeLight};
 
-use crate::light::EmitterTable;
+use crate::light::{EmitterTable, LightHandle, LightSource, PlacedLight};
 use crate::scene::{Handedness, Scene, Setup};
 use crate::shading::PreparedMaterial;
 use glam::Vec3;
@@ -19,7 +18,7 @@ use glam::Vec3;
 #[derive(Debug)]
 pub struct LitScene<'a> {
     pub scene: &'a Scene,
-    pub lights: Vec<PreparedLight>,
+    pub lights: Vec<PlacedLight>,
     pub materials: Vec<PreparedMaterial>,
     /// Emissive triangles of drawn surfaces.
     pub emitters: EmitterTable,
@@ -28,6 +27,8 @@ pub struct LitScene<'a> {
     /// +1 when the front normal is (v1 − v0) × (v2 − v0) (right-handed scenes), −1 when it is
     /// its negation (left-handed, as `.shp` files are mirror images).
     pub front_sign: f32,
+    /// Metres per scene unit.
+    pub metres_per_unit: f32,
     /// (metres per scene unit)², to turn squared scene distances into m².
     pub metres_per_unit_sq: f32,
     /// Offset of secondary ray origins along the normal, scene units.
@@ -44,11 +45,12 @@ impl<'a> LitScene<'a> {
             Handedness::Right => 1.0,
             Handedness::Left => -1.0,
         };
-        let lights: Vec<PreparedLight> = setup
+        let mpu = setup.unit.metres_per_unit();
+        let lights: Vec<PlacedLight> = setup
             .lights
             .iter()
             .filter(|l| l.is_valid())
-            .map(|l| PreparedLight::new(l, handedness_sign))
+            .map(|l| PlacedLight::new(l, handedness_sign, mpu * mpu))
             .collect();
         let clamped: Vec<_> = (0..scene.slots.len())
             .map(|slot| {
@@ -62,7 +64,6 @@ impl<'a> LitScene<'a> {
             })
             .collect();
         let materials: Vec<PreparedMaterial> = clamped.iter().map(PreparedMaterial::new).collect();
-        let mpu = setup.unit.metres_per_unit();
         let hidden: Vec<bool> = (0..scene.slots.len())
             .map(|s| setup.is_hidden(s as u32))
             .collect();
@@ -72,7 +73,7 @@ impl<'a> LitScene<'a> {
         };
         let emitters = lights::emitter_table(scene, &clamped, &materials, &hidden, front_sign);
         let light_sampler = LightSampler::new(
-            lights.iter().map(PreparedLight::bounds).collect(),
+            lights.iter().map(PlacedLight::bounds).collect(),
             emitters.light_bounds(mpu),
         );
         LitScene {
@@ -82,6 +83,7 @@ impl<'a> LitScene<'a> {
             emitters,
             light_sampler,
             front_sign,
+            metres_per_unit: mpu,
             metres_per_unit_sq: mpu * mpu,
             epsilon: scene.ray_epsilon(),
             max_depth,
@@ -93,6 +95,20 @@ impl<'a> LitScene<'a> {
     /// The unit front normal of triangle `prim` (see `front_sign`).
     pub fn front_normal(&self, prim: u32) -> Vec3 {
         self.scene.normals[prim as usize] * self.front_sign
+    }
+
+    /// The light `light` names (None for a glowing triangle that is not in the table).
+    #[inline]
+    pub fn light(&self, light: TreeLight) -> Option<LightHandle<'_>> {
+        match light {
+            TreeLight::Placed(i) => self.lights.get(i as usize).map(LightHandle::Placed),
+            TreeLight::Triangle(t) => {
+                let index = self.emitters.index_of(t)?;
+                self.emitters
+                    .light(index, self.metres_per_unit)
+                    .map(LightHandle::Triangle)
+            }
+        }
     }
 
     /// The material of triangle `prim`.

@@ -146,8 +146,7 @@ pub fn material_from_description(m: &MaterialDescription, notes: &mut Vec<String
     clamped
 }
 
-/// A described light as a model light: isotropic sources become point lights of
-/// `flux / 4π` cd, spots spots, tabulated ones luminaires (multiplier 1: the table is already in candela).
+/// A described light as a model light: isotropic sources become point lights, spots spots, tabulated ones luminaires (multiplier 1: the table is already in candela).
 pub fn light_from_description(l: &LightDescription) -> Light {
     let base = Light {
         position: l.position,
@@ -157,8 +156,8 @@ pub fn light_from_description(l: &LightDescription) -> Light {
         ..Light::default()
     };
     match &l.distribution {
-        LightDistribution::Isotropic { flux_lm } => Light {
-            intensity_cd: flux_lm / (4.0 * std::f32::consts::PI),
+        LightDistribution::Isotropic { intensity_cd } => Light {
+            intensity_cd: *intensity_cd,
             ..base
         },
         LightDistribution::Spot {

@@ -377,9 +377,7 @@ impl Reader<'_> {
                 self.directional += 1;
                 return;
             }
-            Kind::Point => LightDistribution::Isotropic {
-                flux_lm: 4.0 * std::f32::consts::PI * intensity_cd,
-            },
+            Kind::Point => LightDistribution::Isotropic { intensity_cd },
             Kind::Spot {
                 inner_cone_angle,
                 outer_cone_angle,
@@ -442,5 +440,35 @@ mod tests {
     fn a_file_without_triangles_says_so() {
         let e = parse_text(r#"{"asset":{"version":"2.0"}}"#).expect_err("refused");
         assert_eq!(e.to_string(), "t.gltf: no triangles: nothing to draw");
+    }
+
+    /// A point light's intensity reaches the model in candela unchanged (no trip through lumen
+    /// and back, which rounded it).
+    #[test]
+    fn point_light_candela_is_kept_exactly() {
+        let d = parse_text(
+            r#"{"asset":{"version":"2.0"},"extensionsUsed":["KHR_lights_punctual"],
+               "extensions":{"KHR_lights_punctual":{"lights":[
+                 {"type":"point","intensity":123.456,"color":[1,1,1]}]}},
+               "buffers":[{"byteLength":36,
+                 "uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+               "bufferViews":[{"buffer":0,"byteLength":36}],
+               "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
+                 "min":[0,0,0],"max":[1,1,0]}],
+               "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+               "nodes":[{"mesh":0},{"extensions":{"KHR_lights_punctual":{"light":0}},
+                 "translation":[0,2,0]}],
+               "scenes":[{"nodes":[0,1]}],"scene":0}"#,
+        )
+        .expect("reads");
+        let lights = d.lights.expect("lights");
+        assert_eq!(
+            lights[0].distribution,
+            LightDistribution::Isotropic {
+                intensity_cd: 123.456
+            }
+        );
+        let model = crate::scene::light_from_description(&lights[0]);
+        assert_eq!(model.intensity_cd, 123.456);
     }
 }

@@ -60,7 +60,7 @@ pub fn lights_from_lgt(
                 diagram_distribution(lgt, light, path, flux_lm, notes)?
             }
             None => LightDistribution::Isotropic {
-                flux_lm: flux_lm as f32,
+                intensity_cd: isotropic_cd(flux_lm),
             },
         };
         note_unsupported(light, path, notes);
@@ -165,7 +165,7 @@ fn diagram_distribution(
 ) -> Result<LightDistribution, IntegraError> {
     let Some(reference) = &light.diagram else {
         return Ok(LightDistribution::Isotropic {
-            flux_lm: flux_lm as f32,
+            intensity_cd: isotropic_cd(flux_lm),
         });
     };
     let Some(diagram) = lgt.diagrams.iter().find(|d| d.name == reference.name) else {
@@ -195,7 +195,7 @@ fn diagram_distribution(
                 ),
             );
             Ok(LightDistribution::Isotropic {
-                flux_lm: flux_lm as f32,
+                intensity_cd: isotropic_cd(flux_lm),
             })
         }
     }
@@ -203,6 +203,11 @@ fn diagram_distribution(
 
 /// An axially symmetric diagram as a distribution in candela: `theta N` angles from 0 to 180°,
 /// values scaled by `flux_lm / NormalFlux`.
+/// The intensity (cd) of an isotropic source of `flux_lm`: Φ / 4π.
+fn isotropic_cd(flux_lm: f64) -> f32 {
+    flux_lm as f32 / (4.0 * std::f32::consts::PI)
+}
+
 pub fn diagram_photometry(d: &Diagram, flux_lm: f64) -> Result<Photometry, String> {
     if d.composed.is_some() {
         return Err("composed diagrams (tables by angle) are not supported".into());

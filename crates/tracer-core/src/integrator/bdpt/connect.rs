@@ -1,9 +1,9 @@
 //! Connecting eye and light subpaths, and the multiple importance sampling weight of each
 //! strategy (s light vertices, t eye vertices).
 
-use super::emit::LightRef;
 use super::vertex::{Kind, Vertex};
 use super::{Bidirectional, Eye, Splat};
+use crate::lit_scene::TreeLight;
 use crate::sampling::SampleRng;
 use glam::Vec3;
 
@@ -124,7 +124,7 @@ impl Bidirectional<'_, '_> {
             // Towards the side the subpath arrived on, by the shading normal (as next-event
             // estimation decides): from the lifted origin.
             Kind::Surface(_) if v.ns.dot(towards) * v.ns.dot(v.wo) > 0.0 => v.origin,
-            Kind::Surface(_) | Kind::Light(LightRef::Area(_)) => {
+            Kind::Surface(_) | Kind::Light(TreeLight::Triangle(_)) => {
                 v.p + v.facing(towards) * self.lit.epsilon
             }
             Kind::Eye if v.n != Vec3::ZERO && matches!(self.eye, Eye::Sensor) => {

@@ -1,216 +1,132 @@
-//! Where light subpaths start: a light picked in proportion to its flux, a point on it and a
-//! direction, with the densities multiple importance sampling needs. Connections with one light
-//! vertex (s = 1) pick theirs with the light tree instead, for the eye vertex they join.
+//! Where light subpaths start: a light picked in proportion to its flux, then a point on it and
+//! a direction from the light itself ([`LightSource::sample_emission`]). Connections with one
+//! light vertex (s = 1) pick theirs with the light tree instead, for the eye vertex they join.
 //!
 //! Emission is expressed in the scene's own unit: a point light's intensity becomes
 //! I / (metres per unit)², so that a subpath's throughput is cd/m² × (scene unit)² everywhere and
 //! a connection's geometry term (per squared scene unit) turns it into lx or cd/m².
 
 use super::vertex::{Kind, Vertex};
-use crate::light::EmissionSides;
-use crate::lit_scene::{LitScene, Profile, TreeLight};
-use crate::sampling::{SampleRng, cosine_hemisphere, to_world, uniform_sphere};
+use crate::light::{Emission, LightSource, Receiver};
+use crate::lit_scene::{LitScene, TreeLight};
+use crate::sampling::SampleRng;
 use glam::Vec3;
-use std::f32::consts::PI;
 
-/// One light to pick: a point-like light (point, spot, luminaire) or all glowing surfaces.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Entry {
-    Point(u32),
-    Surfaces,
-}
-
-/// The start of a light subpath or a light sample for next-event estimation.
+/// A point on a light: the start of a light subpath, or the light vertex of a connection.
 #[derive(Clone, Copy, Debug)]
 pub struct LightPoint {
-    /// Point light index, or the emitting triangle (`Light::Area`).
-    pub light: LightRef,
+    pub light: TreeLight,
     pub p: Vec3,
-    /// Unit front normal of an emitting triangle (zero for point lights).
+    /// Unit front normal of an area light (zero for point-like lights).
     pub n: Vec3,
     /// Density of having picked this point: light choice × area density (1 for a point's
     /// position).
     pub pdf_origin: f32,
 }
 
-/// Which light a light vertex is.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LightRef {
-    Point(u32),
-    Area(u32),
-}
-
-/// Lights in proportion to their flux.
+/// Lights in proportion to their flux, in [`LitScene::light_count`]'s order.
 #[derive(Clone, Debug, Default)]
 pub struct LightPicker {
-    entries: Vec<Entry>,
-    /// Cumulative flux (lm).
+    /// Cumulative flux (lm), one entry per light.
     cdf: Vec<f64>,
+    /// Probability of each light.
     probability: Vec<f32>,
-    surfaces_probability: f32,
 }
 
 impl LightPicker {
     pub fn new(lit: &LitScene<'_>) -> Self {
-        let mut picker = LightPicker::default();
+        let fluxes: Vec<f64> = (0..lit.light_count())
+            .map(|i| {
+                let flux = lit
+                    .light_id(i)
+                    .and_then(|id| lit.light(id))
+                    .map_or(0.0, |l| l.power_lm());
+                if flux > 0.0 && flux.is_finite() {
+                    flux
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         let mut total = 0.0f64;
-        let mut fluxes = Vec::new();
-        for (i, light) in lit.lights.iter().enumerate() {
-            let flux = light.flux_lm();
-            if flux > 0.0 && flux.is_finite() {
-                picker.entries.push(Entry::Point(i as u32));
-                fluxes.push(flux);
-            }
-        }
-        let mpu = lit.metres_per_unit_sq.sqrt();
-        let surfaces = lit.emitters.flux_lm(mpu);
-        if surfaces > 0.0 && surfaces.is_finite() {
-            picker.entries.push(Entry::Surfaces);
-            fluxes.push(surfaces);
-        }
-        for f in &fluxes {
-            total += f;
-            picker.cdf.push(total);
-        }
-        picker.probability = fluxes.iter().map(|f| (f / total) as f32).collect();
-        picker.surfaces_probability = picker
-            .entries
+        let cdf: Vec<f64> = fluxes
             .iter()
-            .zip(&picker.probability)
-            .find(|(e, _)| **e == Entry::Surfaces)
-            .map_or(0.0, |(_, p)| *p);
-        picker
+            .map(|f| {
+                total += f;
+                total
+            })
+            .collect();
+        if total <= 0.0 {
+            return LightPicker::default();
+        }
+        LightPicker {
+            cdf,
+            probability: fluxes.iter().map(|f| (f / total) as f32).collect(),
+        }
     }
 
     pub fn is_empty(&self) -> bool {
-        self.entries.is_empty()
+        self.cdf.is_empty()
     }
 
-    /// Picks a light and a point on it.
-    pub fn sample(&self, lit: &LitScene<'_>, rng: &mut SampleRng) -> Option<LightPoint> {
+    /// Picks a light by flux, then a point on it and a direction: the start and the direction
+    /// with its density per sr.
+    pub fn sample(
+        &self,
+        lit: &LitScene<'_>,
+        rng: &mut SampleRng,
+    ) -> Option<(LightPoint, Emission)> {
         let last = *self.cdf.last()?;
         let u_pick = rng.next_f32();
         let (u, v) = rng.next_2d();
+        let (du, dv) = rng.next_2d();
         let target = f64::from(u_pick) * last;
         let i = self
             .cdf
             .partition_point(|&c| c <= target)
-            .min(self.entries.len() - 1);
-        match self.entries[i] {
-            Entry::Point(index) => Some(LightPoint {
-                light: LightRef::Point(index),
-                p: lit.lights[index as usize].position,
-                n: Vec3::ZERO,
-                pdf_origin: self.probability[i],
-            }),
-            Entry::Surfaces => {
-                // Reuse u_pick's position inside this entry's interval for the triangle choice.
-                let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] };
-                let inner = ((target - lo) / (self.cdf[i] - lo)).clamp(0.0, 1.0) as f32;
-                let e = lit.emitters.sample_point(inner.min(0.999_999_9), u, v)?;
-                Some(LightPoint {
-                    light: LightRef::Area(e.triangle),
-                    p: e.point,
-                    n: e.front,
-                    pdf_origin: self.surfaces_probability * e.pdf_area,
-                })
-            }
-        }
+            .min(self.cdf.len() - 1);
+        let id = lit.light_id(i as u32)?;
+        let e = lit.light(id)?.sample_emission([u, v], [du, dv])?;
+        let start = LightPoint {
+            light: id,
+            p: e.p,
+            n: e.n,
+            pdf_origin: self.probability[i] * e.pdf_point,
+        };
+        Some((start, e))
     }
 
     /// Density of picking this light's position (see [`LightPoint::pdf_origin`]).
-    pub fn pdf_origin(&self, lit: &LitScene<'_>, light: LightRef) -> f32 {
-        match light {
-            LightRef::Point(index) => self
-                .entries
-                .iter()
-                .position(|e| *e == Entry::Point(index))
-                .map_or(0.0, |i| self.probability[i]),
-            LightRef::Area(t) => self.surfaces_probability * lit.emitters.pdf_area(t),
-        }
+    pub fn pdf_origin(&self, lit: &LitScene<'_>, light: TreeLight) -> f32 {
+        let Some(p) = lit
+            .light_index(light)
+            .and_then(|i| self.probability.get(i as usize))
+        else {
+            return 0.0;
+        };
+        lit.light(light).map_or(0.0, |l| p * l.emission_point_pdf())
     }
 }
 
-/// What a light vertex sends along unit `dir`: for a point light its intensity in the scene's
-/// unit (cd / (m per unit)²) per channel, for a glowing triangle its luminance (cd/m²).
-pub fn emitted(lit: &LitScene<'_>, light: LightRef, dir: Vec3) -> Vec3 {
+/// What light `light` sends along unit `dir` (see [`LightSource::emitted`]).
+#[inline]
+pub fn emitted(lit: &LitScene<'_>, light: TreeLight, dir: Vec3) -> Vec3 {
+    lit.light(light).map_or(Vec3::ZERO, |l| l.emitted(dir))
+}
+
+/// The cosine a light vertex's emission carries along `dir` (1 for point-like lights).
+#[inline]
+pub fn emission_cosine(light: TreeLight, n: Vec3, dir: Vec3) -> f32 {
     match light {
-        LightRef::Point(i) => {
-            let l = &lit.lights[i as usize];
-            l.tint * (l.intensity_towards(dir) / lit.metres_per_unit_sq)
-        }
-        LightRef::Area(t) => lit.emitters.radiance(t, dir),
+        TreeLight::Placed(_) => 1.0,
+        TreeLight::Triangle(_) => n.dot(dir).abs(),
     }
 }
 
-/// The cosine a glowing triangle's emission carries along `dir` (1 for point lights).
-pub fn emission_cosine(light: LightRef, n: Vec3, dir: Vec3) -> f32 {
-    match light {
-        LightRef::Point(_) => 1.0,
-        LightRef::Area(_) => n.dot(dir).abs(),
-    }
-}
-
-/// Samples the direction a light subpath leaves in; returns it with its density per sr.
-pub fn sample_direction(
-    lit: &LitScene<'_>,
-    start: &LightPoint,
-    rng: &mut SampleRng,
-) -> Option<(Vec3, f32)> {
-    let (u, v) = rng.next_2d();
-    match start.light {
-        LightRef::Point(i) => match &lit.lights[i as usize].profile {
-            Profile::Spot(s) => {
-                let cos_max = s.falloff.cos();
-                let z = 1.0 - u * (1.0 - cos_max);
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let phi = 2.0 * PI * v;
-                let local = Vec3::new(r * phi.cos(), r * phi.sin(), z);
-                let dir = to_world(local, s.axis);
-                Some((dir, direction_pdf(lit, start.light, start.n, dir)))
-            }
-            _ => Some((uniform_sphere(u, v), 1.0 / (4.0 * PI))),
-        },
-        LightRef::Area(t) => {
-            let (_, sides) = lit.emitters.orientation(t)?;
-            let (side, u) = match sides {
-                EmissionSides::Front => (1.0, u),
-                EmissionSides::Back => (-1.0, u),
-                EmissionSides::Both if u < 0.5 => (1.0, u * 2.0),
-                EmissionSides::Both => (-1.0, (u - 0.5) * 2.0),
-            };
-            let dir = to_world(cosine_hemisphere(u.min(0.999_999_9), v), start.n * side);
-            Some((dir, direction_pdf(lit, start.light, start.n, dir)))
-        }
-    }
-}
-
-/// Density per sr of [`sample_direction`] leaving along unit `dir`.
-pub fn direction_pdf(lit: &LitScene<'_>, light: LightRef, n: Vec3, dir: Vec3) -> f32 {
-    match light {
-        LightRef::Point(i) => match &lit.lights[i as usize].profile {
-            Profile::Spot(s) => {
-                let cos_max = s.falloff.cos();
-                if s.axis.dot(dir) < cos_max || cos_max >= 1.0 {
-                    0.0
-                } else {
-                    1.0 / (2.0 * PI * (1.0 - cos_max))
-                }
-            }
-            _ => 1.0 / (4.0 * PI),
-        },
-        LightRef::Area(t) => {
-            let Some((_, sides)) = lit.emitters.orientation(t) else {
-                return 0.0;
-            };
-            let c = n.dot(dir);
-            match sides {
-                EmissionSides::Front => c.max(0.0) / PI,
-                EmissionSides::Back => (-c).max(0.0) / PI,
-                EmissionSides::Both => c.abs() / (2.0 * PI),
-            }
-        }
-    }
+/// Density per sr of a light subpath leaving `light` along unit `dir`.
+#[inline]
+pub fn direction_pdf(lit: &LitScene<'_>, light: TreeLight, dir: Vec3) -> f32 {
+    lit.light(light).map_or(0.0, |l| l.emission_dir_pdf(dir))
 }
 
 impl super::Bidirectional<'_, '_> {
@@ -219,27 +135,25 @@ impl super::Bidirectional<'_, '_> {
     /// area density.
     pub(super) fn sample_light_for(&self, pt: &Vertex, rng: &mut SampleRng) -> Option<LightPoint> {
         let lit = self.lit;
-        let (light, pmf) = lit.pick_light(pt.p, pt.n, lit.pick_number(rng))?;
-        match light {
-            TreeLight::Placed(i) => Some(LightPoint {
-                light: LightRef::Point(i),
-                p: lit.lights.get(i as usize)?.position,
-                n: Vec3::ZERO,
-                pdf_origin: pmf,
-            }),
-            TreeLight::Triangle(t) => {
-                let (u, v) = rng.next_2d();
-                let index = lit.emitters.index_of(t)?;
-                let s = lit.emitters.sample_on(index, pt.p, u, v)?;
-                let (front, _) = lit.emitters.orientation(t)?;
-                Some(LightPoint {
-                    light: LightRef::Area(t),
-                    p: s.point,
-                    n: front,
-                    pdf_origin: pmf * lit.emitters.area_pdf_on(t),
-                })
-            }
-        }
+        let (id, pmf) = lit.pick_light(pt.p, pt.n, lit.pick_number(rng))?;
+        let light = lit.light(id)?;
+        let u = if light.is_delta() {
+            [0.5; 2]
+        } else {
+            let (u, v) = rng.next_2d();
+            [u, v]
+        };
+        let at = Receiver {
+            p: pt.p,
+            origin: pt.p,
+        };
+        let s = light.sample_incident(at, u)?;
+        Some(LightPoint {
+            light: id,
+            p: s.target,
+            n: light.normal(),
+            pdf_origin: pmf * light.emission_point_pdf(),
+        })
     }
 
     /// How much likelier strategy s = 1 makes light vertex `x0` when it joins it to `x1` (the
@@ -248,17 +162,17 @@ impl super::Bidirectional<'_, '_> {
     pub(super) fn tree_factor(&self, x0: &Vertex, x1: &Vertex) -> f32 {
         let light = match x0.kind {
             Kind::Light(l) => l,
-            Kind::Surface(prim) => LightRef::Area(prim),
+            Kind::Surface(prim) => TreeLight::Triangle(prim),
             Kind::Eye => return 1.0,
         };
         let flux = self.lights.pdf_origin(self.lit, light);
         if flux <= 0.0 {
             return 1.0;
         }
-        let (tree_light, area) = match light {
-            LightRef::Point(i) => (TreeLight::Placed(i), 1.0),
-            LightRef::Area(t) => (TreeLight::Triangle(t), self.lit.emitters.area_pdf_on(t)),
-        };
-        self.lit.light_pmf(x1.p, x1.n, tree_light) * area / flux
+        let area = self
+            .lit
+            .light(light)
+            .map_or(0.0, |l| l.emission_point_pdf());
+        self.lit.light_pmf(x1.p, x1.n, light) * area / flux
     }
 }

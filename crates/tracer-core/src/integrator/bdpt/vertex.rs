@@ -5,7 +5,8 @@
 //! `pdf_rev` the density with which the other direction would have.
 
 use super::Bidirectional;
-use super::emit::{LightRef, direction_pdf, emission_cosine, emitted};
+use super::emit::{direction_pdf, emission_cosine, emitted};
+use crate::lit_scene::TreeLight;
 use crate::shading::Bsdf;
 use glam::Vec3;
 use std::f32::consts::PI;
@@ -16,7 +17,7 @@ pub enum Kind {
     /// The first vertex of a camera or sensor subpath.
     Eye,
     /// The first vertex of a light subpath (or a light sampled for a connection).
-    Light(LightRef),
+    Light(TreeLight),
     /// A surface point a subpath reached.
     Surface(u32),
 }
@@ -75,7 +76,10 @@ impl Vertex {
 
     /// Whether a density arriving here is measured per area of a surface (with its cosine).
     fn on_surface(&self) -> bool {
-        matches!(self.kind, Kind::Surface(_) | Kind::Light(LightRef::Area(_)))
+        matches!(
+            self.kind,
+            Kind::Surface(_) | Kind::Light(TreeLight::Triangle(_))
+        )
     }
 
     /// A density per sr towards this vertex, from a vertex at squared distance `dist2` along
@@ -166,7 +170,7 @@ impl Vertex {
                 Some(bsdf) => bsdf.pdf(self.shading_facing(from), from, to),
                 None => 0.0,
             },
-            Kind::Light(light) => direction_pdf(bd.lit, light, self.n, to),
+            Kind::Light(light) => direction_pdf(bd.lit, light, to),
             Kind::Eye => bd.eye_direction_pdf(self, to),
         }
     }
@@ -176,7 +180,7 @@ impl Vertex {
     pub fn pdf_light_origin(&self, bd: &Bidirectional<'_, '_>) -> f32 {
         match self.kind {
             Kind::Light(light) => bd.lights.pdf_origin(bd.lit, light),
-            Kind::Surface(prim) => bd.lights.pdf_origin(bd.lit, LightRef::Area(prim)),
+            Kind::Surface(prim) => bd.lights.pdf_origin(bd.lit, TreeLight::Triangle(prim)),
             Kind::Eye => 0.0,
         }
     }
@@ -186,11 +190,11 @@ impl Vertex {
     pub fn pdf_light_back(&self, bd: &Bidirectional<'_, '_>, prev: &Vertex) -> f32 {
         let light = match self.kind {
             Kind::Light(light) => light,
-            Kind::Surface(prim) => LightRef::Area(prim),
+            Kind::Surface(prim) => TreeLight::Triangle(prim),
             Kind::Eye => return 0.0,
         };
         prev.density_from(
-            direction_pdf(bd.lit, light, self.n, self.wo),
+            direction_pdf(bd.lit, light, self.wo),
             self.dist2_prev,
             self.wo,
         )
@@ -198,13 +202,13 @@ impl Vertex {
 
     /// Whether this is a light with a delta position (point, spot, luminaire).
     pub fn is_delta_light(&self) -> bool {
-        matches!(self.kind, Kind::Light(LightRef::Point(_)))
+        matches!(self.kind, Kind::Light(TreeLight::Placed(_)))
     }
 
     /// Luminance this surface vertex emits towards the previous vertex (0 for non-emitters).
     pub fn emission(&self, bd: &Bidirectional<'_, '_>) -> Vec3 {
         match self.kind {
-            Kind::Surface(prim) => bd.lit.emitters.radiance(prim, self.wo),
+            Kind::Surface(prim) => bd.lit.glow(prim, self.wo),
             _ => Vec3::ZERO,
         }
     }

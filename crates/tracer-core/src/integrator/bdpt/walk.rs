@@ -1,6 +1,6 @@
 //! Random walks: the eye and light subpaths.
 
-use super::emit::{emission_cosine, emitted, sample_direction};
+use super::emit::{emission_cosine, emitted};
 use super::vertex::{Kind, Vertex};
 use super::{Bidirectional, MAX_SUBPATH, Subpaths};
 use crate::geometry::Ray;
@@ -14,7 +14,7 @@ impl Bidirectional<'_, '_> {
     pub fn light_subpath(&self, rng: &mut SampleRng, rays: &mut u32, paths: &mut Subpaths) {
         let path = &mut paths.light;
         path.clear();
-        let Some(start) = self.lights.sample(self.lit, rng) else {
+        let Some((start, emission)) = self.lights.sample(self.lit, rng) else {
             return;
         };
         if start.pdf_origin <= 0.0 {
@@ -28,9 +28,7 @@ impl Bidirectional<'_, '_> {
             beta0,
             start.pdf_origin,
         ));
-        let Some((dir, pdf_dir)) = sample_direction(self.lit, &start, rng) else {
-            return;
-        };
+        let (dir, pdf_dir) = (emission.dir, emission.pdf_dir);
         if pdf_dir <= 0.0 {
             return;
         }

@@ -21,7 +21,7 @@ use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;
 use crate::lanes8::{Lanes8, Mask8, Scalar8, ray_columns};
-use crate::lit_scene::{LitScene, Profile};
+use crate::lit_scene::LitScene;
 use crate::shading::PreparedMaterial;
 use glam::Vec3;
 
@@ -300,7 +300,7 @@ fn shade<L: Lanes8>(
         let kd: V3<L> = gather(|j| lit.materials[c.slot[j]].kd_over_pi);
         for light in &lit.lights {
             // LitScene::light_at: E = I cos θ / R², R in metres.
-            let pos = splat::<L>(light.position);
+            let pos = splat::<L>(light.position());
             let to_light = sub(&pos, &frame.p);
             let dist2 = dot(&to_light, &to_light);
             let length = dist2.sqrt();
@@ -315,9 +315,9 @@ fn shade<L: Lanes8>(
             if facing == 0 {
                 continue;
             }
-            let intensity = match light.profile {
-                Profile::Isotropic => L::splat(light.intensity_cd),
-                _ => {
+            let intensity = match light.uniform_intensity() {
+                Some(i) => L::splat(i),
+                None => {
                     let w = to_arrays(&wi);
                     let mut towards = [0.0f32; 8];
                     for j in 0..8 {
@@ -334,7 +334,7 @@ fn shade<L: Lanes8>(
                 continue;
             }
             let e = intensity.mul(cos).div(dist2.mul(metres_sq));
-            let tint = splat::<L>(light.tint);
+            let tint = splat::<L>(light.tint());
             let to = sub(&pos, &frame.origin);
             // One shadow ray and one contribution per lane, written whole.
             let rays = L::transpose([

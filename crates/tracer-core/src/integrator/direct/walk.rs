@@ -94,7 +94,7 @@ impl Walk {
         // division per hit saved on matte surfaces).
         let view = || -ray.dir.normalize();
         if mat.emission.max_element() > 0.0 {
-            self.sample.rgb += self.weight * lit.emitters.radiance(hit.prim, view());
+            self.sample.rgb += self.weight * lit.glow(hit.prim, view());
         }
         let before = shadows.len();
         direct_light(
@@ -179,34 +179,28 @@ fn direct_light(
         }
         f
     };
-    for light in &lit.lights {
-        // E = I cos θ / R², R converted to metres.
-        let Some((wi, e)) = lit.light_at(light, p, n) else {
-            continue;
-        };
-        if !surface.lit_from(wi) {
-            continue;
-        }
-        shadows.push(LitScene::shadow_ray(origin, light.position - origin));
-        contributions.push(Contribution {
-            illuminance_lx: e,
-            rgb: light.tint * e * brdf(wi),
-        });
-    }
-    if !lit.emitters.is_empty() {
-        let u_pick = rng.next_f32();
-        let (u, v) = rng.next_2d();
-        if let Some(s) = lit.emitters.sample(p, u_pick, u, v) {
-            let cos_theta = n.dot(s.wi);
-            if surface.lit_from(s.wi) && s.radiance.max_element() > 0.0 {
-                // dE = L cos θ dω: the sample estimates ∫ L cos θ dω over the emitters.
-                let e_rgb = s.radiance * (cos_theta / s.pdf_solid_angle);
-                shadows.push(LitScene::shadow_ray(origin, s.point - origin));
-                contributions.push(Contribution {
-                    illuminance_lx: crate::light::luminance(e_rgb),
-                    rgb: e_rgb * brdf(s.wi),
-                });
+    // Every placed light, then one glowing triangle, all seen from `p`.
+    lit.each_incident(p, p, rng, |s| {
+        let cos_theta = n.dot(s.wi);
+        if s.delta {
+            // E = I cos θ / R², R in metres (the incident's pdf is R²).
+            if cos_theta <= 0.0 || s.level <= 0.0 || !surface.lit_from(s.wi) {
+                return;
             }
+            let e = s.level * cos_theta / s.pdf;
+            shadows.push(LitScene::shadow_ray(origin, s.target - origin));
+            contributions.push(Contribution {
+                illuminance_lx: e,
+                rgb: s.tint * e * brdf(s.wi),
+            });
+        } else if surface.lit_from(s.wi) && s.tint.max_element() > 0.0 {
+            // dE = L cos θ dω: the sample estimates ∫ L cos θ dω over the emitters.
+            let e_rgb = s.tint * (cos_theta / s.pdf);
+            shadows.push(LitScene::shadow_ray(origin, s.target - origin));
+            contributions.push(Contribution {
+                illuminance_lx: crate::light::luminance(e_rgb),
+                rgb: e_rgb * brdf(s.wi),
+            });
         }
-    }
+    });
 }
