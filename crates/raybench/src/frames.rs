@@ -71,11 +71,7 @@ fn workload(name: &str) -> anyhow::Result<(Scene, Setup)> {
         up: [0.0, 1.0, 0.0],
         fov_deg: 45.0,
     };
-    setup.lights = vec![Light {
-        position: frame.light().to_array(),
-        intensity_cd: 1.0,
-        ..Light::default()
-    }];
+    setup.lights = vec![Light::point(frame.light().to_array(), 1.0)];
     let grey = Material {
         kd: [0.7; 3],
         ..Material::default()
@@ -133,7 +129,7 @@ pub fn export(scene: &Scene, setup: &Setup, dir: &Path) -> anyhow::Result<()> {
         .iter()
         .map(|l| {
             // Mitsuba's point light takes radiant intensity per its length unit: cd / mpu².
-            let rgb = l.tint() * (l.intensity_cd / (mpu * mpu));
+            let rgb = l.tint() * (l.peak_cd() / (mpu * mpu));
             serde_json::json!({"position": l.position, "intensity": rgb.to_array()})
         })
         .collect();

@@ -132,24 +132,29 @@ fn describe(loaded: &LoadedScene) -> Value {
         .lights
         .iter()
         .map(|l| {
-            let kind = match l.kind {
-                LightKind::Point => "point",
-                LightKind::Spot => "spot",
-                LightKind::Luminaire => "luminaire",
-            };
-            json!({
-                "kind": kind,
+            // Every kind's own fields; `intensity_cd` is the peak for a luminaire.
+            let mut v = json!({
+                "kind": l.tag().name(),
                 "position": l.position,
-                "intensity_cd": l.intensity_cd,
+                "intensity_cd": l.peak_cd(),
                 "color": l.color,
-                "aim": l.aim,
-                "cone_deg": l.cone_deg,
-                "falloff_deg": l.falloff_deg,
-                "rotation_deg": l.rotation_deg,
-                "multiplier": l.multiplier,
-                "luminaire_file": l.luminaire.as_ref().map(|f| f.file.display().to_string()),
                 "flux_lm": l.flux_lm(),
-            })
+            });
+            match &l.kind {
+                LightKind::Point { .. } => {}
+                LightKind::Spot(s) => {
+                    v["aim"] = json!(s.aim);
+                    v["cone_deg"] = json!(s.cone_deg);
+                    v["falloff_deg"] = json!(s.falloff_deg);
+                }
+                LightKind::Luminaire(lum) => {
+                    v["aim"] = json!(lum.aim);
+                    v["rotation_deg"] = json!(lum.rotation_deg);
+                    v["multiplier"] = json!(lum.multiplier);
+                    v["luminaire_file"] = json!(lum.luminaire.file.display().to_string());
+                }
+            }
+            v
         })
         .collect();
     let camera = &setup.camera;

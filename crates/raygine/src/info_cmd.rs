@@ -52,31 +52,25 @@ pub fn describe(loaded: &LoadedScene) -> Value {
         .iter()
         .map(|l| {
             let mut v = json!({
-                "kind": match l.kind {
-                    LightKind::Point => "point",
-                    LightKind::Spot => "spot",
-                    LightKind::Luminaire => "luminaire",
-                },
+                "kind": l.tag().name(),
                 "position": l.position,
                 "flux_lm": l.flux_lm(),
                 "color": l.color,
             });
-            match l.kind {
-                LightKind::Point => v["intensity_cd"] = json!(l.intensity_cd),
-                LightKind::Spot => {
-                    v["intensity_cd"] = json!(l.intensity_cd);
-                    v["aim"] = json!(l.aim);
-                    v["cone_deg"] = json!(l.cone_deg);
-                    v["falloff_deg"] = json!(l.falloff_deg);
+            match &l.kind {
+                LightKind::Point { intensity_cd } => v["intensity_cd"] = json!(intensity_cd),
+                LightKind::Spot(s) => {
+                    v["intensity_cd"] = json!(s.intensity_cd);
+                    v["aim"] = json!(s.aim);
+                    v["cone_deg"] = json!(s.cone_deg);
+                    v["falloff_deg"] = json!(s.falloff_deg);
                 }
-                LightKind::Luminaire => {
-                    v["aim"] = json!(l.aim);
-                    v["rotation_deg"] = json!(l.rotation_deg);
-                    v["multiplier"] = json!(l.multiplier);
-                    if let Some(lum) = &l.luminaire {
-                        v["file"] = json!(lum.file.display().to_string());
-                        v["intensity_cd"] = json!(lum.photometry.max_cd() * l.multiplier);
-                    }
+                LightKind::Luminaire(lum) => {
+                    v["aim"] = json!(lum.aim);
+                    v["rotation_deg"] = json!(lum.rotation_deg);
+                    v["multiplier"] = json!(lum.multiplier);
+                    v["file"] = json!(lum.luminaire.file.display().to_string());
+                    v["intensity_cd"] = json!(lum.max_cd());
                 }
             }
             v

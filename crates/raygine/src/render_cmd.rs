@@ -15,7 +15,7 @@ use tracer_core::render::{RenderSettings, render_with_progress};
 
 /// Seconds between `raygine render`'s progress lines.
 const PROGRESS_LINE_SECS: f64 = 5.0;
-use tracer_core::scene::{LightKind, LoadedScene};
+use tracer_core::scene::{KindTag, LoadedScene};
 
 /// The samples cap of every pixel with --time-limit or --target-error and no --samples.
 pub const ADAPTIVE_CAP: u32 = 65_536;
@@ -34,7 +34,7 @@ pub fn apply_overrides(loaded: &mut LoadedScene, args: &RenderArgs) -> Result<()
         bail!("at most 7 positional values: lx ly lz cx cy cz cf");
     }
     if !p.is_empty() || args.intensity.is_some() {
-        let Some(light) = setup.lights.iter_mut().find(|l| l.kind == LightKind::Point) else {
+        let Some(light) = setup.lights.iter_mut().find(|l| l.tag() == KindTag::Point) else {
             bail!(
                 "-I and the positional light position address the first point light, \
                  and the scene has none"
@@ -47,7 +47,9 @@ pub fn apply_overrides(loaded: &mut LoadedScene, args: &RenderArgs) -> Result<()
             if !(intensity.is_finite() && intensity >= 0.0) {
                 bail!("intensity must be a finite number of candela >= 0, got {intensity}");
             }
-            light.intensity_cd = intensity;
+            if let Some(cd) = light.intensity_cd_mut() {
+                *cd = intensity;
+            }
         }
     }
     if p.len() > 3 {

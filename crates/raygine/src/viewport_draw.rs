@@ -9,7 +9,7 @@ use crate::format::format_value;
 use crate::measure_worker::Readings;
 use egui::{Align2, Color32, FontId, Pos2, Rect, Stroke, Vec2};
 use glam::Vec3;
-use tracer_core::scene::{CameraBasis, LightKind, Setup};
+use tracer_core::scene::{CameraBasis, Setup};
 
 /// What the mouse points at in the viewport.
 #[derive(Clone, Debug, Default)]
@@ -85,19 +85,16 @@ pub fn draw_light_markers(
                 Stroke::new(2.0, Color32::BLACK),
             );
             // One quantity for every kind: the (peak) intensity in cd; flux is in the panel.
-            let cd = match (&light.kind, &light.luminaire) {
-                (LightKind::Luminaire, Some(l)) => l.photometry.max_cd() * light.multiplier,
-                _ => light.intensity_cd,
-            };
+            let cd = light.peak_cd();
             let label = format!("L{} {}", i + 1, crate::format::format_quantity(cd, "cd"));
             // On a dark plate, so the label reads over bright pixels.
             let galley = painter.layout_no_wrap(label, FontId::proportional(12.0), Color32::YELLOW);
             let at = pos + Vec2::new(9.0, -9.0 - galley.size().y);
             text_on_plate(&painter, at, galley, Color32::YELLOW);
             // Spots and luminaires: their aim, a tenth of the scene's size long.
-            if light.kind != LightKind::Point {
+            if let Some(aim) = light.aim() {
                 let reach = doc.scene.bounds.radius() * 0.2;
-                let tip = light.position() + Vec3::from(light.aim).normalize_or_zero() * reach;
+                let tip = light.position() + Vec3::from(aim).normalize_or_zero() * reach;
                 if let Some(end) = to_screen(rect, basis, tip) {
                     painter.arrow(pos, end - pos, Stroke::new(2.0, Color32::YELLOW));
                 }

@@ -9,7 +9,7 @@ use crate::file_ops::Job;
 use std::path::PathBuf;
 use tracer_core::light::{Luminaire, Photometry};
 use tracer_core::measure::placement::{grid_on_surface, work_plane};
-use tracer_core::scene::{Light, LightKind, default_light, luminaire_near_surface};
+use tracer_core::scene::{Light, LuminairePlacement, default_light, luminaire_near_surface};
 
 /// A luminaire file being read on a background job.
 #[derive(Debug)]
@@ -102,14 +102,10 @@ impl RaygineApp {
                 let setup = &mut self.doc.setup;
                 let base = default_light(&self.doc.scene, setup.unit, setup.camera.position);
                 let position = beside_lights(base.position, &setup.lights, &self.doc.scene.bounds);
+                let luminaire = std::sync::Arc::new(Luminaire::new(photometry, pending.path));
                 setup.lights.push(Light {
-                    kind: LightKind::Luminaire,
-                    position,
-                    luminaire: Some(std::sync::Arc::new(Luminaire::new(
-                        photometry,
-                        pending.path,
-                    ))),
-                    ..base
+                    color: base.color,
+                    ..Light::luminaire(position, LuminairePlacement::new(luminaire))
                 });
                 self.error = None;
                 let index = setup.lights.len() - 1;

@@ -7,7 +7,7 @@
 use super::widgets::{drag_hint, fine_drag, length_speed};
 use crate::command::{Command, Commands, Edit};
 use crate::document::Document;
-use tracer_core::scene::{Light, LightKind};
+use tracer_core::scene::{KindTag, Light, LightKind, LuminairePlacement, Spot};
 
 /// More lights than this are listed one line each (a virtualised list, grouped by kind and
 /// file in a summary), and only the selected one is edited: an office's 1,000 luminaires keep
@@ -48,22 +48,24 @@ pub fn lights_ui(
         ui.push_id(i, |ui| {
             ui.horizontal(|ui| {
                 ui.strong(format!("Light {}", i + 1));
-                if light.kind == LightKind::Luminaire {
+                let tag = light.tag();
+                if tag == KindTag::Luminaire {
                     ui.label("luminaire");
                 } else {
+                    let mut chosen = tag;
                     egui::ComboBox::from_label("kind")
-                        .selected_text(match light.kind {
-                            LightKind::Spot => "spot",
-                            _ => "point",
-                        })
+                        .selected_text(tag.name())
                         .show_ui(ui, |ui| {
-                            ui.selectable_value(&mut light.kind, LightKind::Point, "point");
-                            ui.selectable_value(&mut light.kind, LightKind::Spot, "spot");
+                            ui.selectable_value(&mut chosen, KindTag::Point, "point");
+                            ui.selectable_value(&mut chosen, KindTag::Spot, "spot");
                         })
                         .response
                         .on_hover_text(
                             "Point: the same intensity in every direction. Spot: a cone",
                         );
+                    if chosen != tag {
+                        *light = light.with_kind(chosen);
+                    }
                 }
                 if ui
                     .small_button("Remove")
@@ -110,13 +112,14 @@ pub fn lights_ui(
                      scene is large: it may light nothing the camera sees",
                 );
             }
-            if light.kind == LightKind::Luminaire {
-                luminaire_ui(ui, light);
-            } else {
-                intensity_ui(ui, light);
+            let is_spot = light.tag() == KindTag::Spot;
+            if let Some(cd) = light.intensity_cd_mut() {
+                intensity_ui(ui, cd, is_spot);
             }
-            if light.kind == LightKind::Spot {
-                spot_ui(ui, light);
+            match &mut light.kind {
+                LightKind::Luminaire(l) => luminaire_ui(ui, l),
+                LightKind::Spot(s) => spot_ui(ui, s),
+                LightKind::Point { .. } => {}
             }
             ui.label(format!(
                 "flux {}",
@@ -151,14 +154,14 @@ fn light_list(ui: &mut egui::Ui, lights: &[Light], selected: &mut usize, unit: &
     let mut files: std::collections::BTreeMap<String, usize> = std::collections::BTreeMap::new();
     let mut flux = 0.0f64;
     for l in lights {
-        kinds[match l.kind {
-            LightKind::Point => 0,
-            LightKind::Spot => 1,
-            LightKind::Luminaire => 2,
+        kinds[match l.tag() {
+            KindTag::Point => 0,
+            KindTag::Spot => 1,
+            KindTag::Luminaire => 2,
         }] += 1;
         flux += f64::from(l.flux_lm());
-        if let Some(lum) = &l.luminaire {
-            *files.entry(file_name(&lum.file)).or_default() += 1;
+        if let LightKind::Luminaire(lum) = &l.kind {
+            *files.entry(file_name(&lum.luminaire.file)).or_default() += 1;
         }
     }
     ui.label(format!(
@@ -180,10 +183,10 @@ fn light_list(ui: &mut egui::Ui, lights: &[Light], selected: &mut usize, unit: &
         .show_rows(ui, row, lights.len(), |ui, rows| {
             for i in rows {
                 let l = &lights[i];
-                let what = match (&l.luminaire, l.kind) {
-                    (Some(lum), _) => file_name(&lum.file),
-                    (None, LightKind::Spot) => format!("spot {:.4} cd", l.intensity_cd),
-                    (None, _) => format!("point {:.4} cd", l.intensity_cd),
+                let what = match &l.kind {
+                    LightKind::Luminaire(lum) => file_name(&lum.luminaire.file),
+                    LightKind::Spot(s) => format!("spot {:.4} cd", s.intensity_cd),
+                    LightKind::Point { intensity_cd } => format!("point {intensity_cd:.4} cd"),
                 };
                 let [x, y, z] = l.position;
                 let text = format!("Light {}: {what} at ({x:.3}, {y:.3}, {z:.3}) {unit}", i + 1);
@@ -204,21 +207,21 @@ fn file_name(path: &std::path::Path) -> String {
 
 /// Intensity in candela: a drag changes it by about 0.5 % a point (a 20-point drag about 10 %),
 /// ÷2 and ×2 take coarse steps, and a typed value applies when committed.
-fn intensity_ui(ui: &mut egui::Ui, light: &mut Light) {
+fn intensity_ui(ui: &mut egui::Ui, intensity_cd: &mut f32, is_spot: bool) {
     ui.horizontal(|ui| {
         let label = ui.label("intensity (cd)");
-        let speed = f64::from(light.intensity_cd.abs().max(1e-9)) * 0.005;
+        let speed = f64::from(intensity_cd.abs().max(1e-9)) * 0.005;
         // Three significant digits at least: 0.00670 cd, not 0.01.
-        let decimals = (2 - light.intensity_cd.abs().max(1e-9).log10().floor() as i32).clamp(2, 9);
+        let decimals = (2 - intensity_cd.abs().max(1e-9).log10().floor() as i32).clamp(2, 9);
         ui.add(
-            egui::DragValue::new(&mut light.intensity_cd)
+            egui::DragValue::new(intensity_cd)
                 .speed(speed)
                 .range(0.0..=1.0e9)
                 .max_decimals(decimals as usize)
                 .update_while_editing(false),
         )
         .labelled_by(label.id)
-        .on_hover_text(if light.kind == LightKind::Spot {
+        .on_hover_text(if is_spot {
             "Luminous intensity in candela on the spot's axis. Drag for fine changes, or type"
         } else {
             "Luminous intensity in candela, the same in every direction. Drag for fine \
@@ -229,14 +232,14 @@ fn intensity_ui(ui: &mut egui::Ui, light: &mut Light) {
             .on_hover_text("Halve the intensity")
             .clicked()
         {
-            light.intensity_cd *= 0.5;
+            *intensity_cd *= 0.5;
         }
         if ui
             .small_button("×2")
             .on_hover_text("Double the intensity")
             .clicked()
         {
-            light.intensity_cd *= 2.0;
+            *intensity_cd *= 2.0;
         }
     });
 }
@@ -274,10 +277,8 @@ fn add_luminaire_ui(ui: &mut egui::Ui, text: &mut String, adding: bool, out: &mu
 }
 
 /// A luminaire's multiplier, aim, rotation and polar intensity diagram.
-fn luminaire_ui(ui: &mut egui::Ui, light: &mut Light) {
-    if let Some(l) = &light.luminaire {
-        ui.label(format!("file {}", l.file.display()));
-    }
+fn luminaire_ui(ui: &mut egui::Ui, light: &mut LuminairePlacement) {
+    ui.label(format!("file {}", light.luminaire.file.display()));
     ui.add(
         egui::Slider::new(&mut light.multiplier, 0.001..=1000.0)
             .logarithmic(true)
@@ -298,13 +299,11 @@ fn luminaire_ui(ui: &mut egui::Ui, light: &mut Light) {
             .update_while_editing(false),
     )
     .on_hover_text("Turn of the C planes about the aim");
-    if let Some(l) = &light.luminaire {
-        super::polar::polar_diagram(ui, &l.photometry, light.multiplier, 240.0);
-    }
+    super::polar::polar_diagram(ui, &light.luminaire.photometry, light.multiplier, 240.0);
 }
 
 /// The spot's axis and angles (degrees at this edge).
-fn spot_ui(ui: &mut egui::Ui, light: &mut Light) {
+fn spot_ui(ui: &mut egui::Ui, light: &mut Spot) {
     aim_ui(
         ui,
         &mut light.aim,

@@ -418,7 +418,10 @@ fn the_saved_sidecar_is_tidy_and_its_luminaire_path_relative() {
     let loaded = tracer_core::scene::load(&scene, &tracer_core::scene::LoadOptions::default())
         .expect("the saved sidecar reads back");
     assert_eq!(loaded.setup.lights.len(), 2);
-    assert!(loaded.setup.lights[1].luminaire.is_some());
+    assert_eq!(
+        loaded.setup.lights[1].tag(),
+        tracer_core::scene::KindTag::Luminaire
+    );
 }
 
 /// The built-in box's saved settings open again from File > Open (or a drop): the box with its
@@ -429,14 +432,19 @@ fn a_saved_box_sidecar_opens_in_the_viewer() {
     let dir = scratch_dir("box-sidecar");
     let path = dir.join("my_box.raygine.toml");
     h.state_mut().setup_mut().camera.fov_deg = 25.0;
-    h.state_mut().setup_mut().lights[0].intensity_cd = 321.0;
+    *h.state_mut().setup_mut().lights[0]
+        .intensity_cd_mut()
+        .expect("a point light") = 321.0;
     let ctx = h.state().context().clone();
     h.state_mut().save_sidecar(&ctx, path.clone());
     step_until(&mut h, "the sidecar write", |app| !app.writing());
     // Back to the plain box, then open the saved settings.
     h.state_mut().request(raygine::unsaved::Switch::Builtin);
     h.run_steps(2);
-    assert_eq!(h.state().document().setup.lights[0].intensity_cd, 100.0);
+    assert_eq!(
+        h.state().document().setup.lights[0].intensity_cd(),
+        Some(100.0)
+    );
     h.state_mut().open_path(&path);
     h.state_mut().finish_loading_blocking(TIMEOUT);
     h.run_steps(2);
@@ -444,7 +452,7 @@ fn a_saved_box_sidecar_opens_in_the_viewer() {
     assert!(app.error().is_none(), "{:?}", app.error());
     assert_eq!(app.document().path, None, "the box has no scene file");
     assert_eq!(app.document().setup.camera.fov_deg, 25.0);
-    assert_eq!(app.document().setup.lights[0].intensity_cd, 321.0);
+    assert_eq!(app.document().setup.lights[0].intensity_cd(), Some(321.0));
 }
 
 /// A tent 6 units across in an OBJ (millimetres unless told): the panel says it is tiny in mm
@@ -640,4 +648,36 @@ fn many_lights_are_listed_and_one_is_edited() {
         h.query_by_label("Light 3").is_some(),
         "the editor did not move to light 3"
     );
+}
+
+/// The kind menu turns the box's point light into a spot and back: the intensity stays, the
+/// spot gets its cone sliders, and the model holds a spot's data only while it is a spot.
+#[test]
+fn a_point_light_becomes_a_spot_and_back() {
+    use tracer_core::scene::{KindTag, LightKind};
+    let mut h = viewer();
+    h.run_steps(2);
+    let before = h.state().document().setup.lights[0].intensity_cd();
+    h.get_by_label("kind").click();
+    h.run_steps(2);
+    h.get_by_label("spot").click();
+    h.run_steps(3);
+    let light = h.state().document().setup.lights[0].clone();
+    let LightKind::Spot(spot) = light.kind else {
+        panic!("not a spot: {light:?}");
+    };
+    assert_eq!(Some(spot.intensity_cd), before);
+    assert!(spot.cone_deg > 0.0 && spot.falloff_deg >= spot.cone_deg);
+    assert!(
+        h.query_all_by_label_contains("cone (°)").count() > 0,
+        "no cone slider for the spot"
+    );
+    h.get_by_label("kind").click();
+    h.run_steps(2);
+    h.get_by_label("point").click();
+    h.run_steps(3);
+    let light = &h.state().document().setup.lights[0];
+    assert_eq!(light.tag(), KindTag::Point);
+    assert_eq!(light.intensity_cd(), before);
+    assert_eq!(h.query_all_by_label_contains("cone (°)").count(), 0);
 }

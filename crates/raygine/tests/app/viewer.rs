@@ -809,7 +809,7 @@ fn adding_a_luminaire_from_a_typed_path() {
         .setup
         .lights
         .iter()
-        .find(|l| l.kind == tracer_core::scene::LightKind::Luminaire)
+        .find(|l| l.tag() == tracer_core::scene::KindTag::Luminaire)
         .expect("a luminaire");
     assert!((lum.flux_lm() - 628.3).abs() < 1.0, "{}", lum.flux_lm());
     assert!(
@@ -1199,24 +1199,35 @@ fn a_picture_black_at_this_exposure_says_so() {
 #[test]
 fn intensity_drag_is_fine() {
     let (mut h, _mirror) = viewer();
-    let i0 = h.state().document().setup.lights[0].intensity_cd;
+    let i0 = h.state().document().setup.lights[0]
+        .intensity_cd()
+        .unwrap_or(0.0);
     let field = h
         .get_by_role_and_label(Role::SpinButton, "intensity (cd)")
         .rect();
     drag(&mut h, field.center(), Vec2::new(20.0, 0.0));
-    let i1 = h.state().document().setup.lights[0].intensity_cd;
+    let i1 = h.state().document().setup.lights[0]
+        .intensity_cd()
+        .unwrap_or(0.0);
     let ratio = i1 / i0;
     assert!(ratio > 1.02 && ratio < 1.3, "{i0} -> {i1}");
     h.get_by_role_and_label(Role::Button, "×2").click();
     h.step();
-    assert_eq!(h.state().document().setup.lights[0].intensity_cd, 2.0 * i1);
+    assert_eq!(
+        h.state().document().setup.lights[0]
+            .intensity_cd()
+            .unwrap_or(0.0),
+        2.0 * i1
+    );
 }
 
 /// A typed value applies when committed (Enter), not at each keystroke, and undoes in one step.
 #[test]
 fn a_typed_value_is_one_undo_step() {
     let (mut h, _mirror) = viewer();
-    let i0 = h.state().document().setup.lights[0].intensity_cd;
+    let i0 = h.state().document().setup.lights[0]
+        .intensity_cd()
+        .unwrap_or(0.0);
     let field = h
         .get_by_role_and_label(Role::SpinButton, "intensity (cd)")
         .rect();
@@ -1227,17 +1238,26 @@ fn a_typed_value_is_one_undo_step() {
     type_keys(&mut h, "150");
     type_keys(&mut h, "");
     assert_eq!(
-        h.state().document().setup.lights[0].intensity_cd,
+        h.state().document().setup.lights[0]
+            .intensity_cd()
+            .unwrap_or(0.0),
         i0,
         "the value applied before it was committed"
     );
     h.key_press(Key::Enter);
     h.run_steps(2);
-    assert_eq!(h.state().document().setup.lights[0].intensity_cd, 150.0);
+    assert_eq!(
+        h.state().document().setup.lights[0]
+            .intensity_cd()
+            .unwrap_or(0.0),
+        150.0
+    );
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.step();
     assert_eq!(
-        h.state().document().setup.lights[0].intensity_cd,
+        h.state().document().setup.lights[0]
+            .intensity_cd()
+            .unwrap_or(0.0),
         i0,
         "one undo did not return to the value before typing"
     );

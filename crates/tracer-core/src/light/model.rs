@@ -1,74 +1,143 @@
 //! The lights a user places and edits: the model type the viewer, the sidecar and the readers
-//! share. The sidecar has its own serde type (`scene::LightSpec`); a render turns each into a
-//! [`super::PlacedLight`].
+//! share, with data per kind. The sidecar has its own serde type (`scene::LightSpec`); a render
+//! turns each into a [`super::PlacedLight`].
 
 use super::{Luminaire, LuminaireFrame, SpotProfile, unit_luminance_tint};
 use glam::Vec3;
 use std::sync::Arc;
 
-/// The kinds of placed light.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum LightKind {
-    /// Isotropic: `intensity_cd` in every direction.
-    #[default]
-    Point,
-    /// `intensity_cd` on the axis `aim`, full out to `cone_deg`, falling smoothly to zero at
-    /// `falloff_deg` (see [`SpotProfile`]).
-    Spot,
-    /// A measured distribution (IES or EULUMDAT file) times `multiplier`, its nadir along `aim`,
-    /// turned by `rotation_deg` about it (see [`LuminaireFrame`]).
-    Luminaire,
-}
-
-/// A light the user places and edits (the model type; the sidecar has its own serde type).
+/// A light the user places and edits: where it is, its colour and what kind it is.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
-    pub kind: LightKind,
     /// Position in scene coordinates (the file's numbers, scene unit).
     pub position: [f32; 3],
-    /// Luminous intensity in candela (cd): in every direction for a point light, on the axis for
-    /// a spot.
-    pub intensity_cd: f32,
-    /// RGB tint; normalised to Rec. 709 luminance 1 when shading, so the intensity stays in cd.
+    /// RGB tint; normalised to Rec. 709 luminance 1 when shading, so intensities stay in cd.
     pub color: [f32; 3],
-    /// Spot axis (any length; normalised when rendering). Unused by point lights.
-    pub aim: [f32; 3],
-    /// Spot: half-angle of full intensity, degrees.
-    pub cone_deg: f32,
-    /// Spot: half-angle where the intensity reaches zero, degrees (>= `cone_deg`).
-    pub falloff_deg: f32,
-    /// Luminaire: turn of the C planes about the aim, degrees.
-    pub rotation_deg: f32,
-    /// Luminaire: factor applied to the file's intensities (1: as measured).
-    pub multiplier: f32,
-    /// Luminaire: the distribution (None for points and spots).
-    pub luminaire: Option<Arc<Luminaire>>,
+    pub kind: LightKind,
 }
 
-impl Default for Light {
+/// What a placed light is, with the data of that kind.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightKind {
+    /// Isotropic: the same luminous intensity (cd) in every direction.
+    Point {
+        intensity_cd: f32,
+    },
+    Spot(Spot),
+    Luminaire(LuminairePlacement),
+}
+
+/// `intensity_cd` on the axis `aim`, full out to `cone_deg`, falling smoothly to zero at
+/// `falloff_deg` (see [`SpotProfile`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spot {
+    pub intensity_cd: f32,
+    /// The axis (any length; normalised when rendering).
+    pub aim: [f32; 3],
+    /// Half-angle of full intensity, degrees.
+    pub cone_deg: f32,
+    /// Half-angle where the intensity reaches zero, degrees (>= `cone_deg`).
+    pub falloff_deg: f32,
+}
+
+impl Default for Spot {
     fn default() -> Self {
         Self {
-            kind: LightKind::Point,
-            position: [0.0; 3],
             intensity_cd: 100.0,
-            color: [1.0; 3],
             aim: [0.0, -1.0, 0.0],
             cone_deg: 30.0,
             falloff_deg: 45.0,
-            rotation_deg: 0.0,
-            multiplier: 1.0,
-            luminaire: None,
         }
     }
 }
 
+/// A measured distribution (IES or EULUMDAT file) times `multiplier`, its nadir along `aim`,
+/// turned by `rotation_deg` about it (see [`LuminaireFrame`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LuminairePlacement {
+    pub luminaire: Arc<Luminaire>,
+    /// The photometric nadir (any length).
+    pub aim: [f32; 3],
+    /// Turn of the C planes about the aim, degrees.
+    pub rotation_deg: f32,
+    /// Factor applied to the file's intensities (1: as measured).
+    pub multiplier: f32,
+}
+
+impl LuminairePlacement {
+    /// `luminaire` as measured, aimed down −Y.
+    pub fn new(luminaire: Arc<Luminaire>) -> Self {
+        Self {
+            luminaire,
+            aim: [0.0, -1.0, 0.0],
+            rotation_deg: 0.0,
+            multiplier: 1.0,
+        }
+    }
+
+    /// The largest intensity it emits (cd), for labels.
+    pub fn max_cd(&self) -> f32 {
+        self.luminaire.photometry.max_cd() * self.multiplier
+    }
+}
+
+/// The kind of a light without its data, for menus and counts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum KindTag {
+    Point,
+    Spot,
+    Luminaire,
+}
+
+impl KindTag {
+    pub fn name(self) -> &'static str {
+        match self {
+            KindTag::Point => "point",
+            KindTag::Spot => "spot",
+            KindTag::Luminaire => "luminaire",
+        }
+    }
+}
+
+impl Default for Light {
+    fn default() -> Self {
+        Light::point([0.0; 3], 100.0)
+    }
+}
+
 impl Light {
-    /// An isotropic point light.
+    /// An isotropic point light, white.
     pub fn point(position: [f32; 3], intensity_cd: f32) -> Self {
         Self {
             position,
-            intensity_cd,
-            ..Self::default()
+            color: [1.0; 3],
+            kind: LightKind::Point { intensity_cd },
+        }
+    }
+
+    /// A white spot.
+    pub fn spot(position: [f32; 3], spot: Spot) -> Self {
+        Self {
+            position,
+            color: [1.0; 3],
+            kind: LightKind::Spot(spot),
+        }
+    }
+
+    /// A white luminaire.
+    pub fn luminaire(position: [f32; 3], placement: LuminairePlacement) -> Self {
+        Self {
+            position,
+            color: [1.0; 3],
+            kind: LightKind::Luminaire(placement),
+        }
+    }
+
+    pub fn tag(&self) -> KindTag {
+        match self.kind {
+            LightKind::Point { .. } => KindTag::Point,
+            LightKind::Spot(_) => KindTag::Spot,
+            LightKind::Luminaire(_) => KindTag::Luminaire,
         }
     }
 
@@ -81,63 +150,121 @@ impl Light {
         unit_luminance_tint(self.color)
     }
 
+    /// The intensity a point or spot is given in (cd; on the axis for a spot), or `None` for a
+    /// luminaire, whose intensities come from its file.
+    pub fn intensity_cd(&self) -> Option<f32> {
+        match &self.kind {
+            LightKind::Point { intensity_cd } => Some(*intensity_cd),
+            LightKind::Spot(s) => Some(s.intensity_cd),
+            LightKind::Luminaire(_) => None,
+        }
+    }
+
+    /// The intensity of a point or spot, to edit (`None` for a luminaire).
+    pub fn intensity_cd_mut(&mut self) -> Option<&mut f32> {
+        match &mut self.kind {
+            LightKind::Point { intensity_cd } => Some(intensity_cd),
+            LightKind::Spot(s) => Some(&mut s.intensity_cd),
+            LightKind::Luminaire(_) => None,
+        }
+    }
+
+    /// The largest intensity it emits (cd), for labels and sizes on screen.
+    pub fn peak_cd(&self) -> f32 {
+        match &self.kind {
+            LightKind::Luminaire(l) => l.max_cd(),
+            _ => self.intensity_cd().unwrap_or(0.0),
+        }
+    }
+
+    /// The axis of a spot or luminaire (`None` for a point light).
+    pub fn aim(&self) -> Option<[f32; 3]> {
+        match &self.kind {
+            LightKind::Point { .. } => None,
+            LightKind::Spot(s) => Some(s.aim),
+            LightKind::Luminaire(l) => Some(l.aim),
+        }
+    }
+
+    /// The same light turned into a point or a spot (`tag` Luminaire leaves it as it is): the
+    /// intensity is kept, a new spot gets the default cone, aimed down −Y.
+    pub fn with_kind(&self, tag: KindTag) -> Light {
+        let intensity_cd = self.intensity_cd().unwrap_or_else(|| self.peak_cd());
+        let kind = match (tag, &self.kind) {
+            (KindTag::Point, _) => LightKind::Point { intensity_cd },
+            (KindTag::Spot, LightKind::Spot(s)) => LightKind::Spot(*s),
+            (KindTag::Spot, other) => LightKind::Spot(Spot {
+                intensity_cd,
+                aim: match other {
+                    LightKind::Luminaire(l) => l.aim,
+                    _ => Spot::default().aim,
+                },
+                ..Spot::default()
+            }),
+            (KindTag::Luminaire, _) => self.kind.clone(),
+        };
+        Light {
+            kind,
+            ..self.clone()
+        }
+    }
+
     /// Whether every number is finite and in range (intensity >= 0, spot angles ordered).
     pub fn is_valid(&self) -> bool {
-        let finite = self.intensity_cd.is_finite()
-            && self.intensity_cd >= 0.0
-            && self.position.iter().all(|x| x.is_finite());
-        match self.kind {
-            LightKind::Point => finite,
-            LightKind::Luminaire => {
-                finite
-                    && self.luminaire.is_some()
-                    && self.multiplier.is_finite()
-                    && self.multiplier >= 0.0
-                    && self.rotation_deg.is_finite()
-                    && Vec3::from(self.aim).try_normalize().is_some()
+        let aimed = |aim: [f32; 3]| Vec3::from(aim).try_normalize().is_some();
+        let cd_ok = |cd: f32| cd.is_finite() && cd >= 0.0;
+        self.position.iter().all(|x| x.is_finite())
+            && match &self.kind {
+                LightKind::Point { intensity_cd } => cd_ok(*intensity_cd),
+                LightKind::Spot(s) => {
+                    cd_ok(s.intensity_cd)
+                        && aimed(s.aim)
+                        && s.cone_deg.is_finite()
+                        && s.falloff_deg.is_finite()
+                        && (0.0..=180.0).contains(&s.cone_deg)
+                        && (s.cone_deg..=180.0).contains(&s.falloff_deg)
+                }
+                LightKind::Luminaire(l) => {
+                    cd_ok(l.multiplier) && l.rotation_deg.is_finite() && aimed(l.aim)
+                }
             }
-            LightKind::Spot => {
-                finite
-                    && Vec3::from(self.aim).try_normalize().is_some()
-                    && self.cone_deg.is_finite()
-                    && self.falloff_deg.is_finite()
-                    && (0.0..=180.0).contains(&self.cone_deg)
-                    && (self.cone_deg..=180.0).contains(&self.falloff_deg)
-            }
-        }
     }
 
     /// The angular profile of a spot, or `None` for other kinds.
     pub fn spot_profile(&self) -> Option<SpotProfile> {
-        match self.kind {
-            LightKind::Point | LightKind::Luminaire => None,
-            LightKind::Spot => Some(SpotProfile::new(
-                Vec3::from(self.aim),
-                self.cone_deg.to_radians(),
-                self.falloff_deg.to_radians(),
+        match &self.kind {
+            LightKind::Spot(s) => Some(SpotProfile::new(
+                Vec3::from(s.aim),
+                s.cone_deg.to_radians(),
+                s.falloff_deg.to_radians(),
             )),
+            _ => None,
         }
     }
 
     /// Luminous flux (lm) the light emits: 4π I for a point light, the integral of the profile
     /// for a spot, of the distribution as rendered (times the multiplier) for a luminaire.
     pub fn flux_lm(&self) -> f32 {
-        if self.kind == LightKind::Luminaire {
-            return self
-                .luminaire
-                .as_ref()
-                .map_or(0.0, |l| (l.flux_lm * f64::from(self.multiplier)) as f32);
+        match &self.kind {
+            LightKind::Point { intensity_cd } => intensity_cd * (4.0 * std::f32::consts::PI),
+            LightKind::Spot(s) => {
+                s.intensity_cd * self.spot_profile().map_or(0.0, |p| p.solid_angle_sr())
+            }
+            LightKind::Luminaire(l) => (l.luminaire.flux_lm * f64::from(l.multiplier)) as f32,
         }
-        let solid_angle = self
-            .spot_profile()
-            .map_or(4.0 * std::f32::consts::PI, |p| p.solid_angle_sr());
-        self.intensity_cd * solid_angle
     }
 
-    /// The luminaire's photometric frame, for a scene of `handedness_sign` (+1 right-handed,
-    /// −1 left-handed).
-    pub fn luminaire_frame(&self, handedness_sign: f32) -> LuminaireFrame {
-        LuminaireFrame::new(Vec3::from(self.aim), self.rotation_deg, handedness_sign)
+    /// A luminaire's photometric frame, for a scene of `handedness_sign` (+1 right-handed,
+    /// −1 left-handed); `None` for other kinds.
+    pub fn luminaire_frame(&self, handedness_sign: f32) -> Option<LuminaireFrame> {
+        match &self.kind {
+            LightKind::Luminaire(l) => Some(LuminaireFrame::new(
+                Vec3::from(l.aim),
+                l.rotation_deg,
+                handedness_sign,
+            )),
+            _ => None,
+        }
     }
 }
 

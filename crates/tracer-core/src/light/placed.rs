@@ -2,8 +2,8 @@
 //! for the scene's unit and handedness.
 
 use super::{
-    Emission, GoniometricLight, Incident, Light, LightBounds, LightKind, LightSource, PointLight,
-    Receiver, SpotLight,
+    Emission, GoniometricLight, Incident, Light, LightBounds, LightKind, LightSource,
+    LuminaireFrame, PointLight, Receiver, SpotLight, SpotProfile,
 };
 use glam::Vec3;
 use std::sync::Arc;
@@ -21,26 +21,29 @@ impl PlacedLight {
     pub fn new(l: &Light, handedness_sign: f32, metres_per_unit_sq: f32) -> Self {
         let position = l.position();
         let tint = l.tint();
-        let intensity_cd = l.intensity_cd.max(0.0);
-        match (l.kind, &l.luminaire, l.spot_profile()) {
-            (LightKind::Luminaire, Some(lum), _) => PlacedLight::Goniometric(GoniometricLight {
+        match &l.kind {
+            LightKind::Luminaire(lum) => PlacedLight::Goniometric(GoniometricLight {
                 position,
-                multiplier: l.multiplier.max(0.0),
+                multiplier: lum.multiplier.max(0.0),
                 tint,
-                luminaire: Arc::clone(lum),
-                frame: l.luminaire_frame(handedness_sign),
+                luminaire: Arc::clone(&lum.luminaire),
+                frame: LuminaireFrame::new(Vec3::from(lum.aim), lum.rotation_deg, handedness_sign),
                 metres_per_unit_sq,
             }),
-            (LightKind::Spot, _, Some(profile)) => PlacedLight::Spot(SpotLight {
+            LightKind::Spot(s) => PlacedLight::Spot(SpotLight {
                 position,
-                intensity_cd,
+                intensity_cd: s.intensity_cd.max(0.0),
                 tint,
-                profile,
+                profile: SpotProfile::new(
+                    Vec3::from(s.aim),
+                    s.cone_deg.to_radians(),
+                    s.falloff_deg.to_radians(),
+                ),
                 metres_per_unit_sq,
             }),
-            _ => PlacedLight::Point(PointLight {
+            LightKind::Point { intensity_cd } => PlacedLight::Point(PointLight {
                 position,
-                intensity_cd,
+                intensity_cd: intensity_cd.max(0.0),
                 tint,
                 metres_per_unit_sq,
             }),

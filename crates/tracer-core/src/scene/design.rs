@@ -6,7 +6,7 @@ use super::camera::Camera;
 use super::material::Material;
 use super::units::{Handedness, LengthUnit};
 use crate::formats::{LightDescription, LightDistribution, MaterialDescription, SceneDescription};
-use crate::light::{Light, LightKind, Luminaire};
+use crate::light::{Light, LightKind, Luminaire, LuminairePlacement, Spot};
 use std::sync::Arc;
 
 /// What the file says, per slot where it applies.
@@ -148,35 +148,34 @@ pub fn material_from_description(m: &MaterialDescription, notes: &mut Vec<String
 
 /// A described light as a model light: isotropic sources become point lights, spots spots, tabulated ones luminaires (multiplier 1: the table is already in candela).
 pub fn light_from_description(l: &LightDescription) -> Light {
-    let base = Light {
-        position: l.position,
-        color: l.color,
-        aim: l.aim,
-        rotation_deg: l.rotation_deg,
-        ..Light::default()
-    };
-    match &l.distribution {
-        LightDistribution::Isotropic { intensity_cd } => Light {
+    let kind = match &l.distribution {
+        LightDistribution::Isotropic { intensity_cd } => LightKind::Point {
             intensity_cd: *intensity_cd,
-            ..base
         },
         LightDistribution::Spot {
             intensity_cd,
             cone_deg,
             falloff_deg,
-        } => Light {
-            kind: LightKind::Spot,
+        } => LightKind::Spot(Spot {
             intensity_cd: *intensity_cd,
+            aim: l.aim,
             cone_deg: *cone_deg,
             falloff_deg: falloff_deg.max(*cone_deg),
-            ..base
-        },
-        LightDistribution::Goniometric { photometry, label } => Light {
-            kind: LightKind::Luminaire,
-            intensity_cd: photometry.max_cd(),
-            multiplier: 1.0,
-            luminaire: Some(Arc::new(Luminaire::new(photometry.clone(), label.into()))),
-            ..base
-        },
+        }),
+        LightDistribution::Goniometric { photometry, label } => {
+            LightKind::Luminaire(LuminairePlacement {
+                aim: l.aim,
+                rotation_deg: l.rotation_deg,
+                ..LuminairePlacement::new(Arc::new(Luminaire::new(
+                    photometry.clone(),
+                    label.into(),
+                )))
+            })
+        }
+    };
+    Light {
+        position: l.position,
+        color: l.color,
+        kind,
     }
 }

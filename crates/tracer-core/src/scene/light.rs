@@ -1,3 +1,5 @@
 //! Lights as the scene's setup sees them: the model types live in [`crate::light`].
 
-pub use crate::light::{LUMINANCE_WEIGHTS, Light, LightKind, luminance};
+pub use crate::light::{
+    KindTag, LUMINANCE_WEIGHTS, Light, LightKind, LuminairePlacement, Spot, luminance,
+};

@@ -24,7 +24,7 @@
 //! normal = [0.0, 1.0, 0.0]   # default: u × v normalised
 //! ```
 
-use crate::light::{Light, LightKind, Luminaire};
+use crate::light::{Light, LightKind, Luminaire, LuminairePlacement, Spot};
 use crate::measure::Grid;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -74,63 +74,32 @@ impl LightSpec {
     /// files are read relative to `base_dir` (the sidecar's folder).
     pub fn to_light(&self, index: usize, base_dir: Option<&Path>) -> Result<Light, String> {
         let at = format!("lights[{index}]");
-        let kind = match self.kind.unwrap_or_default() {
-            LightKindSpec::Point => LightKind::Point,
-            LightKindSpec::Spot => LightKind::Spot,
-            LightKindSpec::Luminaire => return self.to_luminaire(&at, base_dir),
-        };
+        let kind = self.kind.unwrap_or_default();
+        if kind == LightKindSpec::Luminaire {
+            return self.to_luminaire(&at, base_dir);
+        }
         if self.file.is_some() || self.rotation_deg.is_some() || self.multiplier.is_some() {
             return Err(format!(
                 "{at}: file, rotation_deg and multiplier belong to kind = \"luminaire\""
             ));
         }
-        let mut light = Light {
-            kind,
-            position: self.position,
-            color: self.color.unwrap_or([1.0; 3]),
-            ..Light::default()
-        };
         if !self.position.iter().all(|x| x.is_finite()) {
             return Err(format!("{at}: position must be finite numbers"));
         }
-        match kind {
-            LightKind::Luminaire => {}
-            LightKind::Point => {
-                if self.aim.is_some() || self.cone_deg.is_some() || self.falloff_deg.is_some() {
-                    return Err(format!(
-                        "{at}: aim, cone_deg and falloff_deg belong to kind = \"spot\""
-                    ));
-                }
-            }
-            LightKind::Spot => {
-                let aim = self
-                    .aim
-                    .ok_or_else(|| format!("{at}: a spot needs aim = [x, y, z]"))?;
-                let cone = self
-                    .cone_deg
-                    .ok_or_else(|| format!("{at}: a spot needs cone_deg (degrees)"))?;
-                let falloff = self.falloff_deg.unwrap_or(cone);
-                light.aim = aim;
-                light.cone_deg = cone;
-                light.falloff_deg = falloff;
-                if !aim.iter().all(|x| x.is_finite())
-                    || glam::Vec3::from(aim).length_squared() <= 0.0
-                {
-                    return Err(format!("{at}: aim must be a finite, non-zero direction"));
-                }
-                if !(cone.is_finite() && (0.0..=180.0).contains(&cone)) {
-                    return Err(format!(
-                        "{at}: cone_deg must be between 0 and 180, got {cone}"
-                    ));
-                }
-                if !(falloff.is_finite() && (cone..=180.0).contains(&falloff)) {
-                    return Err(format!(
-                        "{at}: falloff_deg must be between cone_deg ({cone}) and 180, got {falloff}"
-                    ));
-                }
-            }
+        // Intensity 1 cd first; the flux or intensity given scales it below.
+        let mut light = Light {
+            position: self.position,
+            color: self.color.unwrap_or([1.0; 3]),
+            kind: LightKind::Point { intensity_cd: 1.0 },
+        };
+        if kind == LightKindSpec::Spot {
+            light.kind = LightKind::Spot(self.spot(&at)?);
+        } else if self.aim.is_some() || self.cone_deg.is_some() || self.falloff_deg.is_some() {
+            return Err(format!(
+                "{at}: aim, cone_deg and falloff_deg belong to kind = \"spot\""
+            ));
         }
-        light.intensity_cd = match (self.intensity_cd, self.flux_lm) {
+        let intensity_cd = match (self.intensity_cd, self.flux_lm) {
             (Some(_), Some(_)) => {
                 return Err(format!("{at}: give intensity_cd or flux_lm, not both"));
             }
@@ -140,18 +109,47 @@ impl LightSpec {
                 if !(flux.is_finite() && flux >= 0.0) {
                     return Err(format!("{at}: flux_lm must be a finite number >= 0"));
                 }
-                let per_cd = Light {
-                    intensity_cd: 1.0,
-                    ..light.clone()
-                }
-                .flux_lm();
+                let per_cd = light.flux_lm();
                 if per_cd > 0.0 { flux / per_cd } else { 0.0 }
             }
         };
-        if !(light.intensity_cd.is_finite() && light.intensity_cd >= 0.0) {
+        if !(intensity_cd.is_finite() && intensity_cd >= 0.0) {
             return Err(format!("{at}: intensity_cd must be a finite number >= 0"));
         }
+        if let Some(cd) = light.intensity_cd_mut() {
+            *cd = intensity_cd;
+        }
         Ok(light)
+    }
+
+    /// The spot's shape (intensity 1 cd), checked.
+    fn spot(&self, at: &str) -> Result<Spot, String> {
+        let aim = self
+            .aim
+            .ok_or_else(|| format!("{at}: a spot needs aim = [x, y, z]"))?;
+        let cone = self
+            .cone_deg
+            .ok_or_else(|| format!("{at}: a spot needs cone_deg (degrees)"))?;
+        let falloff = self.falloff_deg.unwrap_or(cone);
+        if !aim.iter().all(|x| x.is_finite()) || glam::Vec3::from(aim).length_squared() <= 0.0 {
+            return Err(format!("{at}: aim must be a finite, non-zero direction"));
+        }
+        if !(cone.is_finite() && (0.0..=180.0).contains(&cone)) {
+            return Err(format!(
+                "{at}: cone_deg must be between 0 and 180, got {cone}"
+            ));
+        }
+        if !(falloff.is_finite() && (cone..=180.0).contains(&falloff)) {
+            return Err(format!(
+                "{at}: falloff_deg must be between cone_deg ({cone}) and 180, got {falloff}"
+            ));
+        }
+        Ok(Spot {
+            intensity_cd: 1.0,
+            aim,
+            cone_deg: cone,
+            falloff_deg: falloff,
+        })
     }
 
     fn to_luminaire(&self, at: &str, base_dir: Option<&Path>) -> Result<Light, String> {
@@ -201,42 +199,45 @@ impl LightSpec {
             ));
         }
         Ok(Light {
-            kind: LightKind::Luminaire,
             position: self.position,
             color: self.color.unwrap_or([1.0; 3]),
-            aim,
-            rotation_deg,
-            multiplier,
-            luminaire: Some(Arc::new(luminaire)),
-            ..Light::default()
+            kind: LightKind::Luminaire(LuminairePlacement {
+                luminaire: Arc::new(luminaire),
+                aim,
+                rotation_deg,
+                multiplier,
+            }),
         })
     }
 
     /// The table that reproduces `light` (intensity in candela).
     pub fn from_light(light: &Light) -> LightSpec {
-        let spot = light.kind == LightKind::Spot;
-        if light.kind == LightKind::Luminaire {
-            return LightSpec {
-                kind: Some(LightKindSpec::Luminaire),
-                position: light.position,
-                color: Some(light.color),
-                aim: Some(light.aim),
-                file: light.luminaire.as_ref().map(|l| l.file.clone()),
-                rotation_deg: Some(light.rotation_deg),
-                multiplier: Some(light.multiplier),
-                ..LightSpec::default()
-            };
-        }
-        LightSpec {
-            kind: spot.then_some(LightKindSpec::Spot),
+        let base = LightSpec {
             position: light.position,
-            intensity_cd: Some(light.intensity_cd),
-            flux_lm: None,
             color: Some(light.color),
-            aim: spot.then_some(light.aim),
-            cone_deg: spot.then_some(light.cone_deg),
-            falloff_deg: spot.then_some(light.falloff_deg),
             ..LightSpec::default()
+        };
+        match &light.kind {
+            LightKind::Point { intensity_cd } => LightSpec {
+                intensity_cd: Some(*intensity_cd),
+                ..base
+            },
+            LightKind::Spot(s) => LightSpec {
+                kind: Some(LightKindSpec::Spot),
+                intensity_cd: Some(s.intensity_cd),
+                aim: Some(s.aim),
+                cone_deg: Some(s.cone_deg),
+                falloff_deg: Some(s.falloff_deg),
+                ..base
+            },
+            LightKind::Luminaire(l) => LightSpec {
+                kind: Some(LightKindSpec::Luminaire),
+                aim: Some(l.aim),
+                file: Some(l.luminaire.file.clone()),
+                rotation_deg: Some(l.rotation_deg),
+                multiplier: Some(l.multiplier),
+                ..base
+            },
         }
     }
 }
@@ -391,7 +392,9 @@ mod tests {
         );
         let flux = spec("position = [0.0, 0.0, 0.0]\nflux_lm = 1000.0");
         let l = flux.to_light(0, None).unwrap_or_default();
-        assert!((l.intensity_cd - 1000.0 / (4.0 * std::f32::consts::PI)).abs() < 1e-3);
+        assert!(
+            (l.intensity_cd().unwrap_or(0.0) - 1000.0 / (4.0 * std::f32::consts::PI)).abs() < 1e-3
+        );
         let spot = spec(
             "kind = \"spot\"\nposition = [0.0, 0.0, 0.0]\naim = [0.0, -1.0, 0.0]\n\
              intensity_cd = 10.0\ncone_deg = 10.0\nfalloff_deg = 5.0",

@@ -28,7 +28,9 @@ pub use error::SceneError;
 pub use framing::{framing_camera, framing_side, outline_areas};
 pub use geometry::{Brep, Scene, SlotOwner};
 pub use ground::{GROUND_NAME, GROUND_REFLECTANCE, ground_material};
-pub use light::{LUMINANCE_WEIGHTS, Light, LightKind, luminance};
+pub use light::{
+    KindTag, LUMINANCE_WEIGHTS, Light, LightKind, LuminairePlacement, Spot, luminance,
+};
 pub use light_spec::{GridContext, GridSpec, LightKindSpec, LightSpec, en12464_spacing_m};
 pub use material::Material;
 pub use notes::{SourceText, luminaire_near_surface, relative_below};

@@ -79,7 +79,10 @@ pub(crate) fn nearest_surface(scene: &Scene, p: glam::Vec3) -> Option<f32> {
 /// viewer does ("Light 2").
 pub fn luminaire_near_surface(scene: &Scene, setup: &Setup, index: usize) -> Option<String> {
     let light = setup.lights.get(index)?;
-    let lum = light.luminaire.as_ref()?;
+    let crate::light::LightKind::Luminaire(placement) = &light.kind else {
+        return None;
+    };
+    let lum = &placement.luminaire;
     let opening = lum.photometry.opening_m / setup.unit.metres_per_unit();
     let d = nearest_surface(scene, light.position())?;
     (opening > 0.0 && d < 5.0 * opening).then(|| {

@@ -4,7 +4,7 @@
 //! slot, and rays that miss.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use tracer_core::light::{Light, LightKind};
+use tracer_core::light::{Light, Spot};
 use tracer_core::render::{
     BATCH_SAMPLES, BatchScratch, Film, FrameSampler, RenderSettings, SampleJob, render,
 };
@@ -25,15 +25,15 @@ fn busy_cornell() -> LoadedScene {
     m[slot("ceiling")].emission_cd_m2 = 50.0;
     loaded.setup.hidden = vec![false; names.len()];
     loaded.setup.hidden[slot("green_wall")] = true;
-    loaded.setup.lights.push(Light {
-        kind: LightKind::Spot,
-        position: [100.0, 400.0, -100.0],
-        intensity_cd: 300.0,
-        aim: [0.3, -1.0, -0.2],
-        cone_deg: 20.0,
-        falloff_deg: 35.0,
-        ..Light::default()
-    });
+    loaded.setup.lights.push(Light::spot(
+        [100.0, 400.0, -100.0],
+        Spot {
+            intensity_cd: 300.0,
+            aim: [0.3, -1.0, -0.2],
+            cone_deg: 20.0,
+            falloff_deg: 35.0,
+        },
+    ));
     loaded
 }
 

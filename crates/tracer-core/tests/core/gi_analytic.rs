@@ -403,13 +403,15 @@ fn path_mode_is_bit_identical_across_threads_and_ranges() {
 #[test]
 fn spot_light_illuminance_follows_its_profile() {
     let sc = box_scene(8.0, 3.0, 8.0, vec![]);
-    let spot = Light {
-        kind: tracer_core::scene::LightKind::Spot,
-        aim: [0.0, -1.0, 0.0],
-        cone_deg: 20.0,
-        falloff_deg: 40.0,
-        ..Light::point([4.0, 2.0, 4.0], 500.0)
-    };
+    let spot = Light::spot(
+        [4.0, 2.0, 4.0],
+        tracer_core::scene::Spot {
+            intensity_cd: 500.0,
+            aim: [0.0, -1.0, 0.0],
+            cone_deg: 20.0,
+            falloff_deg: 40.0,
+        },
+    );
     let cam = camera([4.0, 1.5, 7.9], [4.0, 1.5, 0.0], 60.0);
     let mut st = setup(&sc, cam, vec![spot], vec![diffuse(0.0); 6]);
     st.grids = vec![

@@ -70,8 +70,10 @@ fn a_referenced_diagram_is_scaled_by_total_over_normal_flux() {
     );
     let loaded = load(&bundle("diagram", &lgt, None));
     let light = &loaded.setup.lights[0];
-    assert_eq!(light.kind, LightKind::Luminaire);
-    assert_eq!(light.rotation_deg, 15.0);
+    let LightKind::Luminaire(placement) = &light.kind else {
+        panic!("not a luminaire: {light:?}");
+    };
+    assert_eq!(placement.rotation_deg, 15.0);
     assert!(
         (light.flux_lm() - 4.0 * PI * 50.0).abs() < 0.01 * 4.0 * PI * 50.0,
         "{}",

@@ -81,7 +81,11 @@ fn change(rng: &mut Rng, snap: &mut Snapshot) {
                 rng.range(-540.0, -20.0),
             ];
         }
-        1 => setup.lights[0].intensity_cd = rng.range(0.0, 500.0),
+        1 => {
+            if let Some(cd) = setup.lights[0].intensity_cd_mut() {
+                *cd = rng.range(0.0, 500.0);
+            }
+        }
         2 => {
             setup.camera.position = [
                 rng.range(100.0, 450.0),

@@ -469,6 +469,6 @@ mod tests {
             }
         );
         let model = crate::scene::light_from_description(&lights[0]);
-        assert_eq!(model.intensity_cd, 123.456);
+        assert_eq!(model.intensity_cd(), Some(123.456));
     }
 }

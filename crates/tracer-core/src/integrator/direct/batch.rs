@@ -134,7 +134,7 @@ pub(super) fn trace_batch_with(
 #[allow(clippy::unwrap_used, clippy::expect_used)]
 mod tests {
     use super::*;
-    use crate::light::{Light, LightKind};
+    use crate::light::{Light, Spot};
     use crate::sampling::uniform_sphere;
     use crate::scene::{LengthUnit, Scene, Setup, builtin_cornell_box};
     use glam::Vec3;
@@ -196,20 +196,18 @@ mod tests {
         loaded.setup.hidden = vec![false; names.len()];
         loaded.setup.hidden[slot("green_wall")] = true;
         let first = loaded.setup.lights[0].position;
+        loaded.setup.lights.push(Light::spot(
+            [first[0] - 150.0, first[1] - 20.0, first[2] + 60.0],
+            Spot {
+                intensity_cd: 300.0,
+                aim: [0.3, -1.0, -0.2],
+                cone_deg: 20.0,
+                falloff_deg: 35.0,
+            },
+        ));
         loaded.setup.lights.push(Light {
-            kind: LightKind::Spot,
-            position: [first[0] - 150.0, first[1] - 20.0, first[2] + 60.0],
-            intensity_cd: 300.0,
-            aim: [0.3, -1.0, -0.2],
-            cone_deg: 20.0,
-            falloff_deg: 35.0,
-            ..Light::default()
-        });
-        loaded.setup.lights.push(Light {
-            position: [first[0] + 120.0, first[1] - 200.0, first[2] - 90.0],
-            intensity_cd: 40.0,
             color: [1.0, 0.5, 0.2],
-            ..Light::default()
+            ..Light::point([first[0] + 120.0, first[1] - 200.0, first[2] - 90.0], 40.0)
         });
         let basis = loaded.setup.camera.basis(loaded.setup.handedness, 97, 61);
         let mut rng = SampleRng::new(5, 0);
@@ -251,16 +249,8 @@ mod tests {
         }
         let mut setup = Setup::defaults(&scene, LengthUnit::M);
         setup.lights = vec![
-            Light {
-                position: [1.5, 0.4, 0.3],
-                intensity_cd: 10.0,
-                ..Light::default()
-            },
-            Light {
-                position: [-0.2, -2.0, 0.9],
-                intensity_cd: 3.0,
-                ..Light::default()
-            },
+            Light::point([1.5, 0.4, 0.3], 10.0),
+            Light::point([-0.2, -2.0, 0.9], 3.0),
         ];
         let lit = LitScene::new(&scene, &setup, 5);
         let mut rng = SampleRng::new(9, 0);
