@@ -139,6 +139,22 @@ impl Lanes8 for Avx8 {
             _mm_cvtss_f32(_mm_max_ss(m, _mm_shuffle_ps::<1>(m, m)))
         })
     }
+    #[inline(always)]
+    fn prefix_sum(self) -> Self {
+        avx!({
+            let zero = _mm256_setzero_ps();
+            // Each half's lanes moved up by one, then by two, zeros shifted in.
+            let by1 =
+                _mm256_blend_ps::<0b0001_0001>(_mm256_permute_ps::<0b10_01_00_00>(self.0), zero);
+            let s1 = _mm256_add_ps(self.0, by1);
+            let by2 = _mm256_blend_ps::<0b0011_0011>(_mm256_permute_ps::<0b01_00_00_00>(s1), zero);
+            let s2 = _mm256_add_ps(s1, by2);
+            // The low half's last lane into every lane of the high half.
+            let last = _mm256_permute_ps::<0b11_11_11_11>(s2);
+            let carry = _mm256_permute2f128_ps::<0x08>(last, last);
+            Self(_mm256_add_ps(s2, carry))
+        })
+    }
 }
 
 /// Four lanes of [`Lanes8::fract_steps`] in `f64` (`n` exact below 2^32), as

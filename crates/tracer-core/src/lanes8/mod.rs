@@ -43,6 +43,9 @@ pub(crate) trait Lanes8: Copy {
     fn transpose(rows: [Self; 8]) -> [Self; 8];
     /// The greatest lane (no lane may be NaN).
     fn max_lane(self) -> f32;
+    /// Running sums: lane `i` holds lanes 0..=i added, in three steps (neighbours, pairs, then
+    /// the low half's total into the high half), every kind in the same order.
+    fn prefix_sum(self) -> Self;
 }
 
 /// One lane of [`Lanes8::fract_steps`]: `x - trunc(x)` is exact (the truncation through
@@ -211,6 +214,17 @@ impl Lanes8 for Scalar8 {
             .into_iter()
             .fold(f32::NEG_INFINITY, |a, b| if b > a { b } else { a })
     }
+    #[inline(always)]
+    fn prefix_sum(self) -> Self {
+        // As the AVX kind: zeros are added where nothing is shifted in.
+        let x = self.0;
+        let s1: [f32; 8] = std::array::from_fn(|i| x[i] + if i % 4 >= 1 { x[i - 1] } else { 0.0 });
+        let s2: [f32; 8] =
+            std::array::from_fn(|i| s1[i] + if i % 4 >= 2 { s1[i - 2] } else { 0.0 });
+        Self(std::array::from_fn(|i| {
+            s2[i] + if i >= 4 { s2[3] } else { 0.0 }
+        }))
+    }
 }
 
 impl Mask8 for ScalarMask8 {
@@ -300,8 +314,27 @@ mod tests {
         assert_eq!(L::Mask::from_bits(0b0000_0111).bits(), 0b0000_0111);
     }
 
+    /// Running sums against sequential ones, and bit for bit against the plain lanes.
+    fn running<L: Lanes8>() {
+        let mut rng = crate::sampling::SampleRng::new(5, 0);
+        for _ in 0..1000 {
+            let x: [f32; 8] = std::array::from_fn(|_| rng.next_f32() * 100.0);
+            let got = L::from_array(x).prefix_sum().to_array();
+            assert_eq!(got, Scalar8(x).prefix_sum().to_array(), "{x:?}");
+            let mut sum = 0.0f32;
+            for (i, lane) in x.iter().enumerate() {
+                sum += lane;
+                assert!(
+                    (got[i] - sum).abs() <= 1e-4 * sum,
+                    "lane {i} of {x:?}: {got:?}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn transpose_and_masks_match_the_plain_lanes() {
+        running::<Scalar8>();
         check::<Scalar8>();
         greatest::<Scalar8>();
         masks_round_trip::<Scalar8>();
@@ -310,6 +343,7 @@ mod tests {
             check::<Avx8>();
             greatest::<Avx8>();
             masks_round_trip::<Avx8>();
+            running::<Avx8>();
         } else {
             eprintln!("skipping the AVX lanes: this CPU has no AVX2");
         }
