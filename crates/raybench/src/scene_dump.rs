@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use serde_json::{Value, json};
-use tracer_core::scene::{self, Handedness, LightKind, LoadOptions, LoadedScene};
+use tracer_core::scene::{self, Handedness, LoadOptions, LoadedScene};
 
 #[derive(Clone, Debug)]
 pub struct Options {
@@ -128,35 +128,7 @@ fn describe(loaded: &LoadedScene) -> Value {
             })
         })
         .collect();
-    let lights: Vec<Value> = setup
-        .lights
-        .iter()
-        .map(|l| {
-            // Every kind's own fields; `intensity_cd` is the peak for a luminaire.
-            let mut v = json!({
-                "kind": l.tag().name(),
-                "position": l.position,
-                "intensity_cd": l.peak_cd(),
-                "color": l.color,
-                "flux_lm": l.flux_lm(),
-            });
-            match &l.kind {
-                LightKind::Point { .. } => {}
-                LightKind::Spot(s) => {
-                    v["aim"] = json!(s.aim);
-                    v["cone_deg"] = json!(s.cone_deg);
-                    v["falloff_deg"] = json!(s.falloff_deg);
-                }
-                LightKind::Luminaire(lum) => {
-                    v["aim"] = json!(lum.aim);
-                    v["rotation_deg"] = json!(lum.rotation_deg);
-                    v["multiplier"] = json!(lum.multiplier);
-                    v["luminaire_file"] = json!(lum.luminaire.file.display().to_string());
-                }
-            }
-            v
-        })
-        .collect();
+    let lights: Vec<Value> = setup.lights.iter().map(|l| json!(l.summary())).collect();
     let camera = &setup.camera;
     json!({
         "name": scene.name,

@@ -5,7 +5,7 @@ use crate::cli::InfoArgs;
 use crate::cli_support::load_scene;
 use anyhow::Result;
 use serde_json::{Value, json};
-use tracer_core::scene::{LightKind, LoadedScene, Material};
+use tracer_core::scene::{LoadedScene, Material};
 
 pub fn run(args: &InfoArgs) -> Result<()> {
     let loaded = load_scene(&args.scene)?;
@@ -47,35 +47,7 @@ pub fn describe(loaded: &LoadedScene) -> Value {
             material_json(&scene.slot_label(slot), &m)
         })
         .collect();
-    let lights: Vec<Value> = setup
-        .lights
-        .iter()
-        .map(|l| {
-            let mut v = json!({
-                "kind": l.tag().name(),
-                "position": l.position,
-                "flux_lm": l.flux_lm(),
-                "color": l.color,
-            });
-            match &l.kind {
-                LightKind::Point { intensity_cd } => v["intensity_cd"] = json!(intensity_cd),
-                LightKind::Spot(s) => {
-                    v["intensity_cd"] = json!(s.intensity_cd);
-                    v["aim"] = json!(s.aim);
-                    v["cone_deg"] = json!(s.cone_deg);
-                    v["falloff_deg"] = json!(s.falloff_deg);
-                }
-                LightKind::Luminaire(lum) => {
-                    v["aim"] = json!(lum.aim);
-                    v["rotation_deg"] = json!(lum.rotation_deg);
-                    v["multiplier"] = json!(lum.multiplier);
-                    v["file"] = json!(lum.luminaire.file.display().to_string());
-                    v["intensity_cd"] = json!(lum.max_cd());
-                }
-            }
-            v
-        })
-        .collect();
+    let lights: Vec<Value> = setup.lights.iter().map(|l| json!(l.summary())).collect();
     let total_flux_lm: f32 = setup.lights.iter().map(|l| l.flux_lm()).sum();
     let b = scene.bounds;
     json!({

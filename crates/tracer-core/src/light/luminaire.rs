@@ -1,9 +1,8 @@
 //! A goniometric luminaire: a measured distribution (IES or EULUMDAT) placed in the scene
 //! with its photometric frame.
 
-use super::point::{UNIFORM_SPHERE_PDF, incident_from_point};
+use super::point::{UNIFORM_SPHERE_PDF, incident_from_point, uniform_emission};
 use super::{Emission, Incident, LightBounds, LightSource, Photometry, Receiver};
-use crate::sampling::uniform_sphere;
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -81,13 +80,7 @@ impl LightSource for GoniometricLight {
 
     /// Uniform over the sphere (the distribution is not importance-sampled).
     fn sample_emission(&self, _u_point: [f32; 2], u_dir: [f32; 2]) -> Option<Emission> {
-        Some(Emission {
-            p: self.position,
-            n: Vec3::ZERO,
-            dir: uniform_sphere(u_dir[0], u_dir[1]),
-            pdf_point: 1.0,
-            pdf_dir: UNIFORM_SPHERE_PDF,
-        })
+        Some(uniform_emission(self.position, u_dir))
     }
 
     fn emission_dir_pdf(&self, _dir: Vec3) -> f32 {

@@ -26,7 +26,7 @@ pub use emitters::{EmissionSides, EmissiveTriangle, EmitterSample, EmitterTable}
 pub use goniometric::{Photometry, PhotometryError, Plane, cosine_flux};
 pub use handle::LightHandle;
 pub use luminaire::{GoniometricLight, Luminaire, LuminaireFrame};
-pub use model::{KindTag, Light, LightKind, LuminairePlacement, Spot};
+pub use model::{KindTag, Light, LightKind, LightSummary, LuminairePlacement, Spot};
 pub use placed::PlacedLight;
 pub use point::PointLight;
 pub use spot::{SpotLight, SpotProfile};

@@ -4,6 +4,7 @@
 
 use super::{Luminaire, LuminaireFrame, SpotProfile, unit_luminance_tint};
 use glam::Vec3;
+use serde::Serialize;
 use std::sync::Arc;
 
 /// A light the user places and edits: where it is, its colour and what kind it is.
@@ -177,6 +178,36 @@ impl Light {
         }
     }
 
+    /// Every field of the light that a report or a dump shows, by kind (see [`LightSummary`]).
+    pub fn summary(&self) -> LightSummary {
+        let mut s = LightSummary {
+            kind: self.tag().name(),
+            position: self.position,
+            color: self.color,
+            intensity_cd: self.peak_cd(),
+            flux_lm: self.flux_lm(),
+            aim: self.aim(),
+            cone_deg: None,
+            falloff_deg: None,
+            rotation_deg: None,
+            multiplier: None,
+            file: None,
+        };
+        match &self.kind {
+            LightKind::Point { .. } => {}
+            LightKind::Spot(spot) => {
+                s.cone_deg = Some(spot.cone_deg);
+                s.falloff_deg = Some(spot.falloff_deg);
+            }
+            LightKind::Luminaire(l) => {
+                s.rotation_deg = Some(l.rotation_deg);
+                s.multiplier = Some(l.multiplier);
+                s.file = Some(l.luminaire.file.display().to_string());
+            }
+        }
+        s
+    }
+
     /// The axis of a spot or luminaire (`None` for a point light).
     pub fn aim(&self) -> Option<[f32; 3]> {
         match &self.kind {
@@ -293,4 +324,29 @@ mod tests {
         let l = Light::point([0.0; 3], 100.0);
         assert!((l.flux_lm() - 400.0 * std::f32::consts::PI).abs() < 1e-3);
     }
+}
+
+/// A light as `raygine info` and raybench's scene dump write it: the fields every kind has,
+/// then those of its kind (absent for other kinds).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LightSummary {
+    pub kind: &'static str,
+    pub position: [f32; 3],
+    pub color: [f32; 3],
+    /// The intensity of a point or spot; a luminaire's peak, multiplier included.
+    pub intensity_cd: f32,
+    pub flux_lm: f32,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aim: Option<[f32; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cone_deg: Option<f32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub falloff_deg: Option<f32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rotation_deg: Option<f32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub multiplier: Option<f32>,
+    /// A luminaire's photometric file.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
 }

@@ -50,13 +50,7 @@ impl LightSource for PointLight {
     }
 
     fn sample_emission(&self, _u_point: [f32; 2], u_dir: [f32; 2]) -> Option<Emission> {
-        Some(Emission {
-            p: self.position,
-            n: Vec3::ZERO,
-            dir: uniform_sphere(u_dir[0], u_dir[1]),
-            pdf_point: 1.0,
-            pdf_dir: UNIFORM_SPHERE_PDF,
-        })
+        Some(uniform_emission(self.position, u_dir))
     }
 
     fn emission_dir_pdf(&self, _dir: Vec3) -> f32 {
@@ -69,6 +63,17 @@ impl LightSource for PointLight {
 
     fn normal(&self) -> Vec3 {
         Vec3::ZERO
+    }
+}
+
+/// A light subpath's start at a point, in a uniform direction (density [`UNIFORM_SPHERE_PDF`]).
+pub(super) fn uniform_emission(position: Vec3, u_dir: [f32; 2]) -> Emission {
+    Emission {
+        p: position,
+        n: Vec3::ZERO,
+        dir: uniform_sphere(u_dir[0], u_dir[1]),
+        pdf_point: 1.0,
+        pdf_dir: UNIFORM_SPHERE_PDF,
     }
 }
 

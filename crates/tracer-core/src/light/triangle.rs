@@ -1,7 +1,7 @@
 //! A glowing triangle as a light: a view into the [`EmitterTable`] that holds it. It emits its
 //! material's luminance from the sides its [`EmissionSides`] name, uniformly over its area.
 
-use super::emitters::{Emitter, flux_of, sample_from, solid_angle_pdf};
+use super::emitters::{Emitter, EmitterSample, flux_of, sample_from, solid_angle_pdf};
 use super::{Emission, EmissionSides, Incident, LightBounds, LightSource, Receiver};
 use crate::sampling::{cosine_hemisphere, to_world, uniform_triangle_barycentric};
 use glam::Vec3;
@@ -50,15 +50,7 @@ impl LightSource for TriangleLight<'_> {
     /// A uniform point on the triangle, seen from `at.origin`.
     #[inline]
     fn sample_incident(&self, at: Receiver, u: [f32; 2]) -> Option<Incident> {
-        let s = sample_from(self.emitter, at.origin, u[0], u[1], 1.0)?;
-        Some(Incident {
-            wi: s.wi,
-            target: s.point,
-            tint: s.radiance,
-            level: 1.0,
-            pdf: s.pdf_solid_angle,
-            delta: false,
-        })
+        sample_from(self.emitter, at.origin, u[0], u[1], 1.0).map(Incident::from)
     }
 
     #[inline]
@@ -114,6 +106,20 @@ impl LightSource for TriangleLight<'_> {
 
     fn normal(&self) -> Vec3 {
         self.emitter.front
+    }
+}
+
+impl From<EmitterSample> for Incident {
+    /// A point on a glowing triangle as incident light: its luminance, its density per sr.
+    fn from(s: EmitterSample) -> Self {
+        Incident {
+            wi: s.wi,
+            target: s.point,
+            tint: s.radiance,
+            level: 1.0,
+            pdf: s.pdf_solid_angle,
+            delta: false,
+        }
     }
 }
 

@@ -148,14 +148,7 @@ impl LitScene<'_> {
             let u_pick = rng.next_f32();
             let (u, v) = rng.next_2d();
             if let Some(s) = self.emitters.sample(origin, u_pick, u, v) {
-                f(Incident {
-                    wi: s.wi,
-                    target: s.point,
-                    tint: s.radiance,
-                    level: 1.0,
-                    pdf: s.pdf_solid_angle,
-                    delta: false,
-                });
+                f(Incident::from(s));
             }
         }
     }
