@@ -15,6 +15,17 @@ pub enum IntegratorKind {
 }
 
 impl IntegratorKind {
+    /// What this integrator leaves out of `setup`, to tell the user (None: nothing).
+    pub fn leaves_out(self, setup: &crate::scene::Setup) -> Option<String> {
+        let splats = matches!(self, IntegratorKind::Bidirectional | IntegratorKind::Light);
+        (splats && setup.environment.is_some()).then(|| {
+            format!(
+                "the {} integrator does not draw the environment light yet: use path or direct",
+                self.name()
+            )
+        })
+    }
+
     /// The global-illumination integrator the viewer opens in and `--gi` names by default.
     pub const DEFAULT_GI: IntegratorKind = IntegratorKind::Bidirectional;
 

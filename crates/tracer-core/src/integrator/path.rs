@@ -177,7 +177,11 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         let mut rays = 0u32;
         let Some((v, le)) = self.arrive(ray, Came::Delta, &mut rays) else {
             sample.rays = rays;
-            sample.missed = true;
+            match &self.lit.environment {
+                // The environment is the background.
+                Some(env) if env.background => sample.rgb = env.radiance(ray.dir.normalize()),
+                _ => sample.missed = true,
+            }
             return sample;
         };
         let mat = self.lit.material_of(v.prim);
@@ -269,8 +273,23 @@ impl<'p, 'a> PathTracer<'p, 'a> {
     ) -> Vec3 {
         match self.arrive(ray, came, rays) {
             Some((v, le)) => le + self.continue_at(v, bounces, rng, rays),
-            None => Vec3::ZERO,
+            None => self.escaped(ray.dir.normalize(), came),
         }
+    }
+
+    /// The MIS-weighted luminance of the environment seen along unit `dir` by a ray that left
+    /// the scene (zero without one).
+    fn escaped(&self, dir: Vec3, came: Came) -> Vec3 {
+        let Some(env) = &self.lit.environment else {
+            return Vec3::ZERO;
+        };
+        let w = match came {
+            Came::Delta => 1.0,
+            Came::Pdf { pdf, .. } => {
+                power_heuristic(pdf, self.lit.environment_pdf(dir, self.every_light))
+            }
+        };
+        env.radiance(dir) * w
     }
 
     /// Traces `ray` to the next drawn surface; returns the vertex and the MIS-weighted emission
@@ -366,6 +385,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
                 v.point - v.ng * lit.epsilon
             };
             let Some((next, le)) = self.arrive(&Ray::new(origin, s.wi), came, rays) else {
+                l += beta * self.escaped(s.wi.normalize(), came);
                 break;
             };
             l += beta * le;

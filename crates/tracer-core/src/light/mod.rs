@@ -12,6 +12,7 @@
 //! tint normalised to Rec. 709 luminance 1, so its intensity stays in candela.
 
 mod emitters;
+mod environment;
 mod goniometric;
 mod handle;
 mod luminaire;
@@ -23,6 +24,7 @@ mod tree;
 mod triangle;
 
 pub use emitters::{EmissionSides, EmissiveTriangle, EmitterSample, EmitterTable};
+pub use environment::{Environment, EnvironmentLight, EnvironmentMap, EnvironmentSource};
 pub use goniometric::{Photometry, PhotometryError, Plane, cosine_flux};
 pub use handle::LightHandle;
 pub use luminaire::{GoniometricLight, Luminaire, LuminaireFrame};

@@ -115,6 +115,14 @@ impl LitScene<'_> {
         n: Vec3,
         rng: &mut SampleRng,
     ) -> Option<Incident> {
+        let env_pick = self.environment_pick();
+        if env_pick > 0.0 && rng.next_f32() < env_pick {
+            let env = self.environment.as_ref()?;
+            let (u, v) = rng.next_2d();
+            let mut s = env.sample_incident(Receiver { p, origin }, [u, v])?;
+            s.pdf *= env_pick;
+            return Some(s);
+        }
         let (id, pmf) = self.pick_light(origin, n, self.pick_number(rng))?;
         let light = self.light(id)?;
         let u = if light.is_delta() {
@@ -124,12 +132,39 @@ impl LitScene<'_> {
             [u, v]
         };
         let mut s = light.sample_incident(Receiver { p, origin }, u)?;
-        s.pdf *= pmf;
+        s.pdf *= pmf * (1.0 - env_pick);
         Some(s)
     }
 
+    /// The probability with which [`LitScene::sample_incident`] samples the environment
+    /// instead of a light of the tree: none without one, all without other lights, else half
+    /// (it has no position for the tree to weigh).
+    #[inline]
+    pub fn environment_pick(&self) -> f32 {
+        match (&self.environment, self.light_sampler.tree.is_empty()) {
+            (None, _) => 0.0,
+            (Some(_), true) => 1.0,
+            (Some(_), false) => 0.5,
+        }
+    }
+
+    /// Density (1/sr) with which [`LitScene::sample_incident`] reaches the environment along
+    /// unit `wi` (`every_light`: [`LitScene::each_incident`]'s).
+    pub fn environment_pdf(&self, wi: Vec3, every_light: bool) -> f32 {
+        let Some(env) = &self.environment else {
+            return 0.0;
+        };
+        let pick = if every_light {
+            1.0
+        } else {
+            self.environment_pick()
+        };
+        pick * env.dir_pdf(wi)
+    }
+
     /// The coursework's exact sum instead of one pick: every placed light at `p` (probability
-    /// 1 each), then one glowing triangle picked by flux (no tree), each given to `f`. Its MIS
+    /// 1 each), then one glowing triangle picked by flux (no tree) and one direction of the
+    /// environment, each given to `f`. Its MIS
     /// density for glowing surfaces is [`LitScene::each_incident_pdf`].
     pub fn each_incident(
         &self,
@@ -149,6 +184,12 @@ impl LitScene<'_> {
             let (u, v) = rng.next_2d();
             if let Some(s) = self.emitters.sample(origin, u_pick, u, v) {
                 f(Incident::from(s));
+            }
+        }
+        if let Some(env) = &self.environment {
+            let (u, v) = rng.next_2d();
+            if let Some(s) = env.sample_incident(at, [u, v]) {
+                f(s);
             }
         }
     }
@@ -177,7 +218,7 @@ impl LitScene<'_> {
         distance: f32,
     ) -> f32 {
         let id = TreeLight::Triangle(triangle);
-        let pmf = self.light_pmf(origin, n, id);
+        let pmf = self.light_pmf(origin, n, id) * (1.0 - self.environment_pick());
         if pmf <= 0.0 {
             return 0.0;
         }

@@ -9,7 +9,7 @@ mod visibility;
 
 pub use light_sampler::{LightSampler, TreeLight};
 
-use crate::light::{EmitterTable, LightHandle, LightSource, PlacedLight};
+use crate::light::{EmitterTable, EnvironmentLight, LightHandle, LightSource, PlacedLight};
 use crate::scene::{Handedness, Scene, Setup};
 use crate::shading::PreparedMaterial;
 use glam::Vec3;
@@ -24,6 +24,8 @@ pub struct LitScene<'a> {
     pub emitters: EmitterTable,
     /// The light tree over `lights` and `emitters`.
     pub light_sampler: LightSampler,
+    /// Light from every direction at infinity (path and direct modes).
+    pub environment: Option<EnvironmentLight>,
     /// +1 when the front normal is (v1 − v0) × (v2 − v0) (right-handed scenes), −1 when it is
     /// its negation (left-handed, as `.shp` files are mirror images).
     pub front_sign: f32,
@@ -76,12 +78,27 @@ impl<'a> LitScene<'a> {
             lights.iter().map(PlacedLight::bounds).collect(),
             emitters.light_bounds(mpu),
         );
+        let environment = setup
+            .environment
+            .as_ref()
+            .filter(|e| e.is_valid())
+            .map(|e| {
+                let b = scene.bounds;
+                let (mut centre, mut radius) =
+                    ((b.min + b.max) * 0.5, (b.max - b.min).length() * 0.5);
+                if !(centre.is_finite() && radius.is_finite() && radius > 0.0) {
+                    // An empty scene.
+                    (centre, radius) = (Vec3::ZERO, 1.0);
+                }
+                EnvironmentLight::new(e, handedness_sign, centre, radius, mpu * mpu)
+            });
         LitScene {
             scene,
             lights,
             materials,
             emitters,
             light_sampler,
+            environment,
             front_sign,
             metres_per_unit: mpu,
             metres_per_unit_sq: mpu * mpu,

@@ -23,6 +23,8 @@ pub struct Setup {
     pub grids: Vec<crate::measure::Grid>,
     /// Maintenance factor applied to measured illuminance (maintained values; 1: new).
     pub maintenance_factor: f32,
+    /// Light from every direction at infinity (None: none, as before).
+    pub environment: Option<crate::light::Environment>,
 }
 
 impl Setup {
@@ -58,6 +60,7 @@ impl Setup {
             hidden: vec![false; slots],
             grids: Vec::new(),
             maintenance_factor: 1.0,
+            environment: None,
         }
     }
 

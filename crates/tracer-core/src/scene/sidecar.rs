@@ -28,6 +28,7 @@
 //! ```
 
 use super::camera::Camera;
+use super::environment_spec::EnvironmentSpec;
 use super::error::SceneError;
 use super::geometry::Scene;
 use super::light_spec::{GridContext, GridSpec, LightSpec};
@@ -72,6 +73,12 @@ pub struct Sidecar {
     /// Maintenance factor of measured illuminance (0 < MF <= 1; default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub maintenance_factor: Option<f32>,
+    /// Light from every direction at infinity: a map or a uniform sky.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub environment: Option<EnvironmentSpec>,
+    /// The environment as read by `parse` (its map loaded once), with its notes.
+    #[serde(skip)]
+    pub environment_model: Option<(crate::light::Environment, Vec<String>)>,
     /// The sidecar's folder: luminaire files are relative to it (not part of the file).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -131,6 +138,10 @@ impl Sidecar {
         };
         sidecar.model_lights().map_err(invalid)?;
         sidecar.model_grids(None).map_err(invalid)?;
+        if let Some(spec) = &sidecar.environment {
+            let base = sidecar.base_dir.clone();
+            sidecar.environment_model = Some(spec.to_model(base.as_deref()).map_err(invalid)?);
+        }
         if let Some(mf) = sidecar.maintenance_factor
             && !(mf.is_finite() && mf > 0.0 && mf <= 1.0)
         {
@@ -223,6 +234,19 @@ impl Sidecar {
             metres_per_unit: setup.unit.metres_per_unit(),
         };
         setup.maintenance_factor = self.maintenance_factor.unwrap_or(1.0);
+        let environment = match (&self.environment_model, &self.environment) {
+            (Some(read), _) => Ok(Some(read.clone())),
+            (None, Some(spec)) => spec.to_model(self.base_dir.as_deref()).map(Some),
+            (None, None) => Ok(None),
+        };
+        match environment {
+            Ok(Some((env, notes))) => {
+                setup.environment = Some(env);
+                warnings.extend(notes);
+            }
+            Ok(None) => {}
+            Err(e) => warnings.push(format!("{e}; no environment")),
+        }
         match self.model_grids(Some(context)) {
             Ok(grids) => setup.grids = grids,
             Err(e) => warnings.push(format!("{e}; grids ignored")),
@@ -310,6 +334,8 @@ impl Sidecar {
             grids: setup.grids.iter().map(GridSpec::from_grid).collect(),
             maintenance_factor: (setup.maintenance_factor != 1.0)
                 .then_some(setup.maintenance_factor),
+            environment: setup.environment.as_ref().map(EnvironmentSpec::from_model),
+            environment_model: None,
             smooth_angle_deg: (scene.smooth_angle_deg
                 != super::smoothing::DEFAULT_SMOOTH_ANGLE_DEG)
                 .then_some(scene.smooth_angle_deg),

@@ -15,6 +15,7 @@ mod cornell_reference;
 mod default_setup;
 mod denoise;
 mod direct_wavefront;
+mod environment;
 mod fuzz_corpus;
 mod gi_analytic;
 mod illuminance_on_demand;

@@ -37,6 +37,7 @@ fn setup(scene: &Scene, unit: LengthUnit, lights: Vec<Light>, mats: Vec<Material
         materials: mats,
         grids: Vec::new(),
         maintenance_factor: 1.0,
+        environment: None,
     }
 }
 

@@ -74,7 +74,7 @@ pub(super) fn shade_first_hits(
     rest: &mut Vec<u32>,
 ) {
     debug_assert!(rays.len() == hits.len() && rays.len() == out.len());
-    if lanes == Lanes::Off || !lit.emitters.is_empty() {
+    if lanes == Lanes::Off || !lit.emitters.is_empty() || lit.environment.is_some() {
         rest.extend(0..rays.len() as u32);
         return;
     }

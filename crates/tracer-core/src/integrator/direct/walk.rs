@@ -82,7 +82,14 @@ impl Walk {
         self.continues = false;
         self.sample.rays += 1;
         let Some(hit) = hit else {
-            self.sample.missed = self.depth == 0;
+            // The environment: the background seen from the camera (unless the backdrop is
+            // kept), and always in mirrors.
+            match &lit.environment {
+                Some(env) if self.depth > 0 || env.background => {
+                    self.sample.rgb += self.weight * env.radiance(ray.dir.normalize());
+                }
+                _ => self.sample.missed = self.depth == 0,
+            }
             return;
         };
         let ray = *ray;

@@ -118,6 +118,7 @@ pub fn setup(scene: &Scene, camera: Camera, lights: Vec<Light>, materials: Vec<M
         materials,
         grids: Vec::new(),
         maintenance_factor: 1.0,
+        environment: None,
     }
 }
 
