@@ -1,9 +1,9 @@
 //! What the user asked the viewer for. Panels, windows, the viewport and the keyboard shortcuts
 //! return these values; the app's `apply` carries them out, in one place.
 //!
-//! Plain value edits (a light's position, a material's colour) go straight into the document's
-//! setup, as egui widgets edit the value they are given; structural edits (lights, luminaires,
-//! visibility, grids) are [`Edit`] commands. The app turns each finished interaction into one
+//! Plain value edits (a light's position, a material's colour, the sky's luminance) go straight
+//! into the document's setup, as egui widgets edit the value they are given; structural edits
+//! (lights, luminaires, environment maps, visibility, grids) are [`Edit`] commands. The app turns each finished interaction into one
 //! undo step either way. Everything else — files, history, the render, messages, the
 //! selection — is a command too.
 
@@ -79,6 +79,9 @@ pub enum Edit {
     RemoveLight(usize),
     /// Read an IES or EULUMDAT file on a background job, then add it as a luminaire.
     AddLuminaire(PathBuf),
+    /// Read a latitude-longitude `.hdr` or `.exr` map on a background job, then make it the
+    /// environment (a map that cannot be read leaves the environment as it was).
+    LoadEnvironmentMap(PathBuf),
     /// Hide or show these material slots.
     SetHidden {
         slots: Vec<u32>,

@@ -139,6 +139,15 @@ pub enum DialogPurpose {
     ExportExr,
     SaveSidecar,
     RenderImage,
+    /// Read a latitude-longitude `.hdr` or `.exr` map as the environment.
+    EnvironmentMap,
+}
+
+impl DialogPurpose {
+    /// Whether the path is written (the window asks before replacing a file); else it is read.
+    pub fn writes(self) -> bool {
+        !matches!(self, DialogPurpose::Open | DialogPurpose::EnvironmentMap)
+    }
 }
 
 /// A native file dialog running on its own thread (rfd). It ends with a path, or `None` when
@@ -196,13 +205,18 @@ impl PendingDialog {
 /// The native dialog for `purpose` (blocks until the user closes it).
 fn run_dialog(purpose: DialogPurpose, suggested: Option<&Path>) -> Option<PathBuf> {
     let mut dialog = rfd::FileDialog::new();
-    if let Some(dir) = suggested.and_then(Path::parent)
-        && !dir.as_os_str().is_empty()
-    {
+    // A folder suggested (where a file to read may be) opens in it.
+    if let Some(dir) = suggested.filter(|p| p.is_dir()) {
         dialog = dialog.set_directory(dir);
-    }
-    if let Some(name) = suggested.and_then(Path::file_name) {
-        dialog = dialog.set_file_name(name.to_string_lossy());
+    } else {
+        if let Some(dir) = suggested.and_then(Path::parent)
+            && !dir.as_os_str().is_empty()
+        {
+            dialog = dialog.set_directory(dir);
+        }
+        if let Some(name) = suggested.and_then(Path::file_name) {
+            dialog = dialog.set_file_name(name.to_string_lossy());
+        }
     }
     match purpose {
         DialogPurpose::Open => dialog
@@ -217,6 +231,9 @@ fn run_dialog(purpose: DialogPurpose, suggested: Option<&Path>) -> Option<PathBu
         }
         DialogPurpose::ExportExr => dialog.add_filter("OpenEXR image", &["exr"]).save_file(),
         DialogPurpose::SaveSidecar => dialog.add_filter("raygine sidecar", &["toml"]).save_file(),
+        DialogPurpose::EnvironmentMap => dialog
+            .add_filter("Environment map (latitude-longitude)", &["hdr", "exr"])
+            .pick_file(),
     }
 }
 

@@ -1,4 +1,17 @@
-//! Numbers as the viewer shows them.
+//! Numbers and notes as the viewer shows them.
+
+/// A note as a sentence: its first letter capital, a full stop at its end.
+pub fn sentence(note: &str) -> String {
+    let mut chars = note.trim().chars();
+    let mut text: String = match chars.next() {
+        Some(first) => first.to_uppercase().chain(chars).collect(),
+        None => return String::new(),
+    };
+    if !text.ends_with(['.', '!', '?']) {
+        text.push('.');
+    }
+    text
+}
 
 /// A value with 3 significant digits.
 pub fn format_value(v: f32) -> String {

@@ -47,6 +47,8 @@ pub mod history;
 #[cfg(feature = "viewer")]
 pub mod luminance_meter;
 #[cfg(feature = "viewer")]
+pub mod map_thumbnail;
+#[cfg(feature = "viewer")]
 pub mod measure_worker;
 #[cfg(feature = "viewer")]
 pub mod panels;

@@ -1,5 +1,6 @@
-//! Structural edits of the scene's setup: lights and luminaires added and removed, surfaces
-//! hidden and shown, grids added, replaced and removed. Panels ask for them as
+//! Structural edits of the scene's setup: lights and luminaires added and removed, an
+//! environment map read, surfaces hidden and shown, grids added, replaced and removed. Panels
+//! ask for them as
 //! [`Edit`]s; they are carried out here, and the frame's end records each as one undo step,
 //! as it does a finished slider drag.
 
@@ -7,7 +8,8 @@ use super::RaygineApp;
 use crate::command::Edit;
 use crate::file_ops::Job;
 use std::path::PathBuf;
-use tracer_core::light::{Luminaire, Photometry};
+use std::sync::Arc;
+use tracer_core::light::{Environment, EnvironmentMap, EnvironmentSource, Luminaire, Photometry};
 use tracer_core::measure::placement::{grid_on_surface, work_plane};
 use tracer_core::scene::{Light, LuminairePlacement, default_light, luminaire_near_surface};
 
@@ -17,6 +19,10 @@ pub struct PendingLuminaire {
     pub path: PathBuf,
     job: Job<Photometry>,
 }
+
+/// An environment map being read on a background job (a 50 MB map takes a while): the map and
+/// its notes (texels read as 0).
+pub type PendingEnvironmentMap = Job<(EnvironmentMap, Vec<String>)>;
 
 impl RaygineApp {
     /// Carries out one structural edit.
@@ -43,6 +49,14 @@ impl RaygineApp {
                     move || tracer_core::formats::read_photometry(&p).map_err(|e| e.to_string()),
                 );
                 self.adding_luminaire = Some(PendingLuminaire { path, job });
+            }
+            Edit::LoadEnvironmentMap(path) => {
+                self.loading_environment = Some(Job::start(
+                    "raygine-envmap",
+                    "reading the environment map",
+                    &self.ctx,
+                    move || EnvironmentMap::load(&path),
+                ));
             }
             Edit::SetHidden { slots, hidden } => {
                 for s in slots {
@@ -121,6 +135,54 @@ impl RaygineApp {
     /// Whether a luminaire file is being read.
     pub fn adding_luminaire(&self) -> bool {
         self.adding_luminaire.is_some()
+    }
+
+    /// Makes the map that has been read the environment, keeping the turn, the background
+    /// choice and (from a map before it) the scale; or says why it could not be read and keeps
+    /// the environment there was.
+    pub(super) fn poll_environment_map(&mut self) {
+        let Some(result) = self.loading_environment.as_ref().and_then(Job::poll) else {
+            return;
+        };
+        self.loading_environment = None;
+        let (map, notes) = match result {
+            Ok(read) => read,
+            Err(e) => {
+                self.error = Some(e);
+                return;
+            }
+        };
+        let previous = self.doc.setup.environment.as_ref();
+        let map = match previous.map(|e| &e.source) {
+            // The same file read again, unchanged: the map already shared stays (setups compare
+            // a shared map without reading its texels).
+            Some(EnvironmentSource::Map(shown)) if **shown == map => Arc::clone(shown),
+            _ => Arc::new(map),
+        };
+        let scale = match previous {
+            Some(Environment {
+                source: EnvironmentSource::Map(_),
+                scale,
+                ..
+            }) => *scale,
+            _ => 1.0,
+        };
+        self.doc.setup.environment = Some(Environment {
+            source: EnvironmentSource::Map(map),
+            scale,
+            rotation_deg: previous.map_or(0.0, |e| e.rotation_deg),
+            background: previous.is_none_or(|e| e.background),
+        });
+        self.error = None;
+        if !notes.is_empty() {
+            self.notice = Some(notes.join("; "));
+            self.doc.warnings.extend(notes);
+        }
+    }
+
+    /// Whether an environment map is being read.
+    pub fn loading_environment(&self) -> bool {
+        self.loading_environment.is_some()
     }
 }
 

@@ -3,6 +3,7 @@
 //! [`crate::file_ops`]; a failure is shown as the error, never dropped).
 
 use super::RaygineApp;
+use crate::command::Edit;
 use crate::file_ops::{DialogPurpose, PendingDialog, PendingLoad, start_write};
 use crate::panels::PathPrompt;
 use crate::render_image::RenderImageJob;
@@ -10,6 +11,7 @@ use crate::render_worker::{exposure_stops, map_rect};
 use crate::unsaved::Switch;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
+use tracer_core::light::{Environment, EnvironmentSource};
 use tracer_core::render::Snapshot;
 use tracer_core::scene::{LengthUnit, Sidecar, sidecar_path};
 
@@ -47,6 +49,13 @@ impl RaygineApp {
         }
         self.poll_dialog();
         self.poll_luminaire();
+        self.poll_environment_map();
+        if let Some(e) = self
+            .map_thumbnails
+            .update(&self.ctx, self.doc.setup.environment.as_ref())
+        {
+            self.error = Some(e);
+        }
         let mut still = Vec::new();
         for w in self.writes.drain(..) {
             match w.poll() {
@@ -93,9 +102,10 @@ impl RaygineApp {
                 Some(p) if p.purpose == purpose => p.text = path.display().to_string(),
                 _ => self.prompt = Some(PathPrompt::new(purpose, path.display().to_string())),
             }
-            if purpose == DialogPurpose::Open {
+            // A file to read is read at once; a file to write waits for the window's Save.
+            if !purpose.writes() {
                 self.prompt = None;
-                self.request(Switch::Open(path));
+                self.run_path_action(purpose, path);
             }
         }
     }
@@ -149,6 +159,17 @@ impl RaygineApp {
             DialogPurpose::ExportPng | DialogPurpose::RenderImage => base.with_extension("png"),
             DialogPurpose::ExportExr => base.with_extension("exr"),
             DialogPurpose::SaveSidecar => sidecar_path(&base),
+            // The map shown, else the scene's folder.
+            DialogPurpose::EnvironmentMap => match &self.doc.setup.environment {
+                Some(Environment {
+                    source: EnvironmentSource::Map(map),
+                    ..
+                }) => map.file.clone(),
+                _ => match self.doc.path.as_deref().and_then(Path::parent) {
+                    Some(dir) if !dir.as_os_str().is_empty() => dir.join(""),
+                    _ => PathBuf::new(),
+                },
+            },
         }
     }
 
@@ -170,6 +191,7 @@ impl RaygineApp {
             DialogPurpose::ExportExr => self.export_exr(&ctx, path),
             DialogPurpose::SaveSidecar => self.save_sidecar(&ctx, path),
             DialogPurpose::RenderImage => self.start_render_image(path),
+            DialogPurpose::EnvironmentMap => self.edit(Edit::LoadEnvironmentMap(path)),
         }
     }
 

@@ -69,6 +69,10 @@ impl RaygineApp {
                     &display,
                     display.exposure_stops,
                     &crate::picture_hints::lights_outside(&self.doc.setup, &self.doc.scene.bounds),
+                    self.render
+                        .integrator
+                        .leaves_out(&self.doc.setup)
+                        .as_deref(),
                 )
             }
             _ => None,
@@ -244,6 +248,13 @@ impl RaygineApp {
             selected_slot: self.selected_slot,
             integrator: self.render.integrator,
         };
+        let thumbnail = match self.doc.setup.environment.as_ref().map(|e| &e.source) {
+            Some(tracer_core::light::EnvironmentSource::Map(map)) => self
+                .map_thumbnails
+                .get(map)
+                .map(egui::load::SizedTexture::from_handle),
+            _ => None,
+        };
         let panel = SidePanel {
             doc: &mut self.doc,
             loading: self.loading.is_some(),
@@ -255,6 +266,8 @@ impl RaygineApp {
             measure,
             state: &mut self.panels,
             adding_luminaire: self.adding_luminaire.is_some(),
+            loading_environment: self.loading_environment.is_some(),
+            environment_thumbnail: thumbnail,
         };
         crate::panels::controls_ui(ui, panel, out);
     }

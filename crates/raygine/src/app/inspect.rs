@@ -158,6 +158,16 @@ impl RaygineApp {
     pub fn hover(&self) -> Option<&HoverInfo> {
         self.hover.as_ref()
     }
+
+    /// The size (pixels) of the Environment section's thumbnail of the current map, once made.
+    pub fn map_thumbnail_size(&self) -> Option<[usize; 2]> {
+        match self.doc.setup.environment.as_ref().map(|e| &e.source) {
+            Some(tracer_core::light::EnvironmentSource::Map(map)) => {
+                self.map_thumbnails.get(map).map(egui::TextureHandle::size)
+            }
+            _ => None,
+        }
+    }
 }
 
 /// Inputs a test gives where a user would use a widget or the system.

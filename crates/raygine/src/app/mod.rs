@@ -91,6 +91,10 @@ pub struct RaygineApp {
     focus_asked: bool,
     /// The luminaire file being read for "Add luminaire".
     adding_luminaire: Option<edits::PendingLuminaire>,
+    /// The environment map being read for "Load map…".
+    loading_environment: Option<edits::PendingEnvironmentMap>,
+    /// The Environment section's pictures of its maps.
+    pub(crate) map_thumbnails: crate::map_thumbnail::MapThumbnails,
     /// When the wheel last turned: a dolly by wheel becomes one undo step once it rests.
     last_scroll: Option<std::time::Instant>,
     /// The grids' background measurement (Measure panel, grid overlay).
@@ -199,6 +203,8 @@ impl RaygineApp {
             allow_close: false,
             last_scroll: None,
             adding_luminaire: None,
+            loading_environment: None,
+            map_thumbnails: crate::map_thumbnail::MapThumbnails::default(),
             focus_asked: false,
             measure: crate::measure_worker::MeasureWorker::default(),
             show_grids: true,

@@ -3,6 +3,7 @@
 //! everything else the user asked for as [`Command`]s, which the app applies.
 
 mod camera;
+mod environment;
 mod frame;
 mod lights;
 mod materials;
@@ -16,6 +17,7 @@ mod status;
 mod widgets;
 mod windows;
 
+pub use environment::{EnvironmentMemory, new_sky_cd_m2};
 pub use lights::MANY_LIGHTS;
 pub use measure::MeasureView;
 pub use menu::{MenuBar, menu_bar};
@@ -43,6 +45,8 @@ pub struct PanelState {
     pub show_notes: bool,
     /// The Materials panel's filter of breps and parts.
     pub part_filter: String,
+    /// The Environment section's last sky of each kind.
+    pub environment: EnvironmentMemory,
 }
 
 /// What the side panel shows and edits: the document (its setup edited in place; the app makes
@@ -61,6 +65,10 @@ pub struct SidePanel<'a> {
     pub state: &'a mut PanelState,
     /// A luminaire file is being read ("Add luminaire").
     pub adding_luminaire: bool,
+    /// An environment map is being read ("Load map…").
+    pub loading_environment: bool,
+    /// The environment map's thumbnail, once made.
+    pub environment_thumbnail: Option<egui::load::SizedTexture>,
 }
 
 /// All control groups of the side panel.
@@ -76,6 +84,8 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         measure,
         state,
         adding_luminaire,
+        loading_environment,
+        environment_thumbnail,
     } = p;
     ui.heading(doc.scene.name.clone());
     ui.label(format!(
@@ -101,6 +111,19 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
                 adding_luminaire,
                 out,
             );
+        });
+    // Open where the scene has a sky; each scene keeps its own fold.
+    egui::CollapsingHeader::new("Environment")
+        .id_salt(("environment", doc.path.clone()))
+        .default_open(doc.setup.environment.is_some())
+        .show(ui, |ui| {
+            let view = environment::EnvironmentView {
+                integrator: render.integrator,
+                exposure_stops: display.exposure_stops,
+                loading_map: loading_environment,
+                thumbnail: environment_thumbnail,
+            };
+            environment::environment_ui(ui, &mut doc.setup, view, &mut state.environment, out);
         });
     egui::CollapsingHeader::new("Camera")
         .default_open(true)

@@ -64,6 +64,7 @@ fn title(purpose: DialogPurpose) -> &'static str {
         DialogPurpose::ExportExr => "Export EXR",
         DialogPurpose::SaveSidecar => "Save scene settings",
         DialogPurpose::RenderImage => "Render image to",
+        DialogPurpose::EnvironmentMap => "Load environment map",
     }
 }
 
@@ -118,7 +119,7 @@ fn path_prompt_ui(ctx: &egui::Context, shown: &mut Option<PathPrompt>, out: &mut
                 ui.colored_label(egui::Color32::from_rgb(255, 210, 90), note);
             }
             let path = PathBuf::from(prompt.text.trim());
-            let writes = prompt.purpose != DialogPurpose::Open;
+            let writes = prompt.purpose.writes();
             if prompt.confirm_overwrite {
                 ui.colored_label(
                     egui::Color32::YELLOW,
@@ -127,6 +128,7 @@ fn path_prompt_ui(ctx: &egui::Context, shown: &mut Option<PathPrompt>, out: &mut
             }
             let label = match (prompt.purpose, prompt.confirm_overwrite) {
                 (DialogPurpose::Open, _) => "Open",
+                (DialogPurpose::EnvironmentMap, _) => "Load",
                 (_, true) => "Replace",
                 _ => "Save",
             };

@@ -1,11 +1,13 @@
 //! The viewer's tests through egui_kittest, built as one test binary (the GUI stack is linked
-//! once): `viewer` (widgets, files, rendering), `commands` (the command path), `denoise` and
-//! `first_view` (previews, status figures and exposure in a scene's first seconds).
+//! once): `viewer` (widgets, files, rendering), `commands` (the command path), `environment`
+//! (the Environment section), `denoise` and `first_view` (previews, status figures and exposure
+//! in a scene's first seconds).
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod commands;
 mod denoise;
+mod environment;
 mod first_view;
 mod rough_edges;
 mod viewer;

@@ -17,12 +17,10 @@ pub enum IntegratorKind {
 impl IntegratorKind {
     /// What this integrator leaves out of `setup`, to tell the user (None: nothing).
     pub fn leaves_out(self, setup: &crate::scene::Setup) -> Option<String> {
-        let splats = matches!(self, IntegratorKind::Bidirectional | IntegratorKind::Light);
-        (splats && setup.environment.is_some()).then(|| {
-            format!(
-                "the {} integrator does not draw the environment light yet: use path or direct",
-                self.name()
-            )
+        (self == IntegratorKind::Light && setup.environment.is_some()).then(|| {
+            "the light tracer does not draw the environment light (it starts no light \
+             subpaths): use path, bdpt or direct"
+                .to_string()
         })
     }
 

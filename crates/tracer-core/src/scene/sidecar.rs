@@ -359,8 +359,8 @@ impl Sidecar {
         }
     }
 
-    /// Luminaire files in `dir` or below it written relative to it (the sidecar's folder), so a
-    /// folder of scene, sidecar and luminaires can move.
+    /// Luminaire and environment-map files in `dir` or below it written relative to it (the
+    /// sidecar's folder), so a folder of scene, sidecar, luminaires and maps can move.
     pub fn relative_to(mut self, dir: &Path) -> Sidecar {
         for light in self.lights.iter_mut().flatten() {
             if let Some(file) = &light.file
@@ -368,6 +368,12 @@ impl Sidecar {
             {
                 light.file = Some(rel);
             }
+        }
+        if let Some(env) = &mut self.environment
+            && let Some(file) = &env.file
+            && let Some(rel) = super::notes::relative_below(Path::new(file), dir)
+        {
+            env.file = Some(rel.display().to_string());
         }
         self
     }
@@ -431,6 +437,29 @@ mod tests {
                 position: [0.0, 273.0, -800.0],
                 ..c
             })
+        );
+    }
+
+    /// A map in the sidecar's folder (or below it) is written relative to it; one elsewhere
+    /// keeps its whole path.
+    #[test]
+    fn map_files_beside_the_sidecar_are_written_relative_to_it() {
+        let dir = Path::new("/scenes/room");
+        let with_map = |file: &str| Sidecar {
+            environment: Some(EnvironmentSpec {
+                file: Some(file.to_owned()),
+                ..EnvironmentSpec::default()
+            }),
+            ..Sidecar::default()
+        };
+        let file = |s: Sidecar| s.environment.and_then(|e| e.file);
+        assert_eq!(
+            file(with_map("/scenes/room/maps/sky.hdr").relative_to(dir)),
+            Some(Path::new("maps").join("sky.hdr").display().to_string())
+        );
+        assert_eq!(
+            file(with_map("/elsewhere/sky.hdr").relative_to(dir)),
+            Some("/elsewhere/sky.hdr".to_owned())
         );
     }
 

@@ -51,7 +51,11 @@ fn cube_setup(
 fn a_convex_object_under_a_uniform_sky_reads_rho_times_l() {
     let (l, rho) = (100.0f32, 0.6f32);
     let exact = f64::from(l * rho);
-    for (integrator, spp) in [(IntegratorKind::Path, 1024), (IntegratorKind::Direct, 8192)] {
+    for (integrator, spp) in [
+        (IntegratorKind::Path, 1024),
+        (IntegratorKind::Direct, 8192),
+        (IntegratorKind::Bidirectional, 2048),
+    ] {
         let (sc, st) = cube_setup(rho, uniform(l));
         let (film, _) = render(&sc, &st, &settings(integrator, spp));
         let n = film.pixels.len() as f64;
@@ -95,7 +99,11 @@ fn a_convex_object_under_a_uniform_sky_reads_rho_times_l() {
 
 #[test]
 fn the_background_is_the_sky_unless_the_backdrop_is_kept() {
-    for integrator in [IntegratorKind::Path, IntegratorKind::Direct] {
+    for integrator in [
+        IntegratorKind::Path,
+        IntegratorKind::Direct,
+        IntegratorKind::Bidirectional,
+    ] {
         let (sc, mut st) = cube_setup(0.5, uniform(250.0));
         // Looking away from the cube.
         st.camera = camera([0.5, 0.5, 3.0], [0.5, 0.5, 6.0], 30.0);
@@ -146,6 +154,18 @@ fn one_bright_patch_gives_its_solid_angle_times_its_cosine() {
     st.environment = Some(patch_map(row, col, l));
     let (film, _) = render(&sc, &st, &settings(IntegratorKind::Path, 256));
     let n = film.pixels.len() as f64;
+    let (bd, _) = render(&sc, &st, &settings(IntegratorKind::Bidirectional, 256));
+    let e_bd = bd
+        .pixels
+        .iter()
+        .map(|p| f64::from(p.mean_illuminance()))
+        .sum::<f64>()
+        / n;
+    println!("patch, bdpt: E {e_bd:.4} lx");
+    assert!(
+        (e_bd / exact - 1.0).abs() < 0.01,
+        "bdpt: E {e_bd} vs {exact}"
+    );
     let e = film
         .pixels
         .iter()

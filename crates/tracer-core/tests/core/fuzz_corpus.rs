@@ -86,6 +86,7 @@ fn replay(data: &[u8], scene: &Scene) {
     }
     replay_integra(data);
     replay_obj_gltf(data);
+    replay_envmap(data);
     // The `part` target: a payload that decodes encodes back to the same film.
     if let Ok(film) = tracer_core::render::partial::decode_film(data) {
         let again = tracer_core::render::partial::encode_film(&film);
@@ -122,6 +123,32 @@ fn replay_obj_gltf(data: &[u8]) {
     let external = |_: &Path| Err("no files while fuzzing".to_owned());
     if let Ok(desc) = gltf::parse(data, Path::new("fuzz.gltf"), &external, &options) {
         let _ = Scene::build(&desc, "fuzz");
+    }
+}
+
+/// What the `envmap` target does with `data`: a map that loads gives a light of finite flux
+/// whose sampled directions and densities are finite.
+fn replay_envmap(data: &[u8]) {
+    use tracer_core::light::{
+        Environment, EnvironmentLight, EnvironmentMap, EnvironmentSource, LightSource,
+    };
+    if let Ok((map, _notes)) = EnvironmentMap::from_bytes(data, Path::new("fuzz.hdr")) {
+        let env = Environment {
+            source: EnvironmentSource::Map(std::sync::Arc::new(map)),
+            scale: 1.0,
+            rotation_deg: 30.0,
+            background: true,
+        };
+        let light = EnvironmentLight::new(&env, 1.0, Default::default(), 1.0, 1.0);
+        let flux = light.power_lm();
+        assert!(flux.is_finite() && flux >= 0.0, "flux {flux}");
+        for u in [[0.0, 0.0], [0.5, 0.5], [0.999, 0.001], [0.3, 0.999]] {
+            if let Some((w, pdf)) = light.sample_dir(u) {
+                assert!(w.is_finite() && pdf.is_finite() && pdf > 0.0, "{w} {pdf}");
+                let _ = light.radiance(w);
+                let _ = light.dir_pdf(w);
+            }
+        }
     }
 }
 
@@ -184,6 +211,7 @@ fn saved_fuzz_inputs_never_panic_or_hang() {
 fn every_target_has_a_corpus() {
     for target in [
         "shp", "brs", "sidecar", "ies", "ldt", "atr", "prb", "lgt", "cam", "obj", "gltf", "part",
+        "envmap",
     ] {
         let dir = fuzz_dir().join("corpus").join(target);
         let count = fs::read_dir(&dir).map(|d| d.count()).unwrap_or(0);

@@ -16,6 +16,7 @@ mod default_setup;
 mod denoise;
 mod direct_wavefront;
 mod environment;
+mod environment_input;
 mod fuzz_corpus;
 mod gi_analytic;
 mod illuminance_on_demand;

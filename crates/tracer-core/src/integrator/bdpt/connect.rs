@@ -63,7 +63,9 @@ impl Bidirectional<'_, '_> {
             if self.light_tracing && t == 2 {
                 continue;
             }
-            for s in 0..=light.len() {
+            // (s = 1 samples a light of its own: it runs even when the light subpath is empty,
+            // as in a scene lit by the environment alone.)
+            for s in 0..=light.len().max(1) {
                 if s + t < 2 || !self.allowed(s, t) {
                     continue;
                 }
@@ -72,6 +74,9 @@ impl Bidirectional<'_, '_> {
                     continue;
                 }
                 if t == 1 {
+                    if s > light.len() {
+                        continue;
+                    }
                     if let Some(splat) = self.connect_to_eye(eye, light, s, rays) {
                         match self.eye {
                             Eye::Camera(_) => splats.push(splat),
@@ -103,7 +108,7 @@ impl Bidirectional<'_, '_> {
         } else {
             count(&eye[1..t])
         };
-        eye_part + count(&light[1.min(s)..s])
+        eye_part + count(light.get(1.min(s)..s).unwrap_or(&[]))
     }
 
     /// s = 0: the eye subpath found a glowing surface.
@@ -206,6 +211,14 @@ impl Bidirectional<'_, '_> {
         let pt = &eye[t - 1];
         if !pt.connectible() {
             return Vec3::ZERO;
+        }
+        let env_pick = self.lit.environment_pick();
+        if env_pick > 0.0 && rng.next_f32() < env_pick {
+            return if self.light_tracing {
+                Vec3::ZERO
+            } else {
+                self.connect_to_environment(pt, env_pick, rng, rays)
+            };
         }
         let Some(start) = self.sample_light_for(pt, rng) else {
             return Vec3::ZERO;

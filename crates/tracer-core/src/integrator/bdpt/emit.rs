@@ -152,7 +152,8 @@ impl super::Bidirectional<'_, '_> {
             light: id,
             p: s.target,
             n: light.normal(),
-            pdf_origin: pmf * light.emission_point_pdf(),
+            // (The rest of the choice went to the environment: see `connect_to_light`.)
+            pdf_origin: pmf * (1.0 - lit.environment_pick()) * light.emission_point_pdf(),
         })
     }
 
@@ -173,6 +174,7 @@ impl super::Bidirectional<'_, '_> {
             .lit
             .light(light)
             .map_or(0.0, |l| l.emission_point_pdf());
-        self.lit.light_pmf(x1.p, x1.n, light) * area / flux
+        let tree_share = 1.0 - self.lit.environment_pick();
+        self.lit.light_pmf(x1.p, x1.n, light) * tree_share * area / flux
     }
 }

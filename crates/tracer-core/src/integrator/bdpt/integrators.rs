@@ -247,7 +247,13 @@ fn camera_sample(
         rgb: estimate.value,
         illuminance_lx,
         rays,
-        missed: first.is_none(),
+        // The environment, when shown, is the background.
+        missed: first.is_none()
+            && !camera
+                .lit
+                .environment
+                .as_ref()
+                .is_some_and(|e| e.background),
     }
 }
 

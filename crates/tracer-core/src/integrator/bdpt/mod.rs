@@ -16,6 +16,7 @@
 
 mod connect;
 mod emit;
+mod environment;
 mod integrators;
 mod vertex;
 mod walk;
@@ -217,10 +218,13 @@ impl Bidirectional<'_, '_> {
         camera.clear();
         camera.push(eye);
         let pdf_dir = self.eye_direction_pdf(&eye, ray.dir);
-        self.walk(*ray, Vec3::ONE, pdf_dir, false, rng, camera, &mut rays);
+        let escape = self.walk(*ray, Vec3::ONE, pdf_dir, false, rng, camera, &mut rays);
         let first = camera.get(1).map(|v| (v.p, v.shading_facing(v.wo)));
         let mut connect_rng = rng.split(CONNECT_STREAM);
-        let value = self.connect_all(camera, &paths.light, &mut connect_rng, splats, &mut rays);
+        let mut value = self.connect_all(camera, &paths.light, &mut connect_rng, splats, &mut rays);
+        if let Some(e) = escape {
+            value += self.hit_environment(camera, &e);
+        }
         (EyeEstimate { value, rays }, first)
     }
 
@@ -241,11 +245,12 @@ impl Bidirectional<'_, '_> {
         let (u, v) = rng.next_2d();
         let wi = crate::sampling::to_world(crate::sampling::cosine_hemisphere(u, v), n);
         let pdf = vertex::cosine_pdf(n, wi);
+        let mut escape = None;
         if pdf > 0.0 {
             let origin = p + n * self.lit.epsilon;
             // W cos θ / pdf = π for cosine sampling.
             let beta = Vec3::splat(std::f32::consts::PI);
-            self.walk(
+            escape = self.walk(
                 Ray::new(origin, wi),
                 beta,
                 pdf,
@@ -258,13 +263,19 @@ impl Bidirectional<'_, '_> {
         let mut connect_rng = rng.split(CONNECT_STREAM);
         // A sensor adds its t = 1 strategies to its own value: nothing is pushed here.
         let mut no_splats = Vec::new();
-        let value = self.connect_all(
+        let mut value = self.connect_all(
             sensor,
             &paths.light,
             &mut connect_rng,
             &mut no_splats,
             &mut rays,
         );
+        if let Some(e) = escape {
+            value += self.hit_environment(sensor, &e);
+        }
+        if self.lit.environment.is_some() {
+            value += self.sensor_environment(&sensor[0], &mut connect_rng, &mut rays);
+        }
         EyeEstimate { value, rays }
     }
 

@@ -43,7 +43,8 @@ impl Bidirectional<'_, '_> {
         } else {
             start.p + start.n * (self.lit.epsilon * start.n.dot(dir).signum())
         };
-        self.walk(Ray::new(origin, dir), beta, pdf_dir, true, rng, path, rays);
+        // (A light subpath that leaves the scene carries nothing further.)
+        let _ = self.walk(Ray::new(origin, dir), beta, pdf_dir, true, rng, path, rays);
         if path.len() >= 2 {
             // Once per subpath, for every connection's MIS weight.
             path[1].tree_ratio = self.tree_factor(&path[0], &path[1]);
@@ -51,7 +52,8 @@ impl Bidirectional<'_, '_> {
     }
 
     /// Extends `path` from its last vertex along `ray` (unit direction), sampled with density
-    /// `pdf_dir` per sr, carrying throughput `beta`. `importance`: a light subpath.
+    /// `pdf_dir` per sr, carrying throughput `beta`. `importance`: a light subpath. Returns how
+    /// the subpath left the scene, when it did.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn walk(
         &self,
@@ -62,13 +64,17 @@ impl Bidirectional<'_, '_> {
         rng: &mut SampleRng,
         path: &mut Vec<Vertex>,
         rays: &mut u32,
-    ) {
+    ) -> Option<Escape> {
         let lit = self.lit;
         let mut relative = Vec3::ONE;
         while path.len() < MAX_SUBPATH {
             *rays += 1;
             let Some(hit) = lit.closest_visible(&ray) else {
-                break;
+                return Some(Escape {
+                    dir: ray.dir.normalize(),
+                    beta,
+                    pdf_dir,
+                });
             };
             let prim = hit.prim;
             let p = ray.at(hit.t);
@@ -155,7 +161,17 @@ impl Bidirectional<'_, '_> {
             };
             ray = Ray::new(origin, s.wi);
         }
+        None
     }
+}
+
+/// A subpath that left the scene: along unit `dir`, with throughput `beta`, sampled with
+/// density `pdf_dir` per sr at its last vertex (0 after a delta lobe).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Escape {
+    pub dir: Vec3,
+    pub beta: Vec3,
+    pub pdf_dir: f32,
 }
 
 /// The factor Veach's adjoint BSDF (§5.3) puts on a light subpath's sampled weight at a

@@ -35,7 +35,7 @@ pub struct Environment {
 }
 
 /// What an environment emits.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub enum EnvironmentSource {
     /// The same luminance (cd/m²) from every direction, tinted by `color`.
     Uniform {
@@ -43,6 +43,27 @@ pub enum EnvironmentSource {
         color: [f32; 3],
     },
     Map(Arc<EnvironmentMap>),
+}
+
+/// A shared map equals itself without a look at its texels: setups are compared every frame
+/// (undo, render restarts), and a 4k map holds 8 million of them.
+impl PartialEq for EnvironmentSource {
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (
+                EnvironmentSource::Uniform {
+                    luminance_cd_m2: l1,
+                    color: c1,
+                },
+                EnvironmentSource::Uniform {
+                    luminance_cd_m2: l2,
+                    color: c2,
+                },
+            ) => l1 == l2 && c1 == c2,
+            (EnvironmentSource::Map(a), EnvironmentSource::Map(b)) => Arc::ptr_eq(a, b) || a == b,
+            _ => false,
+        }
+    }
 }
 
 impl Environment {
