@@ -23,6 +23,15 @@ fn settings(integrator: IntegratorKind, spp: u32) -> RenderSettings {
     }
 }
 
+/// The picture's mean illuminance (lx).
+fn mean_lx(film: &tracer_core::render::Film) -> f64 {
+    film.pixels
+        .iter()
+        .map(|p| f64::from(p.mean_illuminance()))
+        .sum::<f64>()
+        / film.pixels.len() as f64
+}
+
 fn uniform(luminance_cd_m2: f32) -> Environment {
     Environment {
         source: EnvironmentSource::Uniform {
@@ -84,12 +93,7 @@ fn a_convex_object_under_a_uniform_sky_reads_rho_times_l() {
             );
         }
         // Its illuminance is that of the open sky over a plane: E = π L.
-        let e = film
-            .pixels
-            .iter()
-            .map(|p| f64::from(p.mean_illuminance()))
-            .sum::<f64>()
-            / n;
+        let e = mean_lx(&film);
         assert!(
             (e / (PI * f64::from(l)) - 1.0).abs() < 0.01,
             "{integrator:?}: E {e}"
@@ -166,12 +170,7 @@ fn one_bright_patch_gives_its_solid_angle_times_its_cosine() {
         (e_bd / exact - 1.0).abs() < 0.01,
         "bdpt: E {e_bd} vs {exact}"
     );
-    let e = film
-        .pixels
-        .iter()
-        .map(|p| f64::from(p.mean_illuminance()))
-        .sum::<f64>()
-        / n;
+    let e = mean_lx(&film);
     println!("patch: E {e:.4} lx, exact {exact:.4} lx");
     assert!((e / exact - 1.0).abs() < 0.01, "E {e} vs {exact}");
     // Turned half a turn, the same patch lights the floor alike (it is a cosine about the
@@ -180,11 +179,6 @@ fn one_bright_patch_gives_its_solid_angle_times_its_cosine() {
     assert!((lum / (0.5 * exact / PI) - 1.0).abs() < 0.01, "L {lum}");
     st.environment.as_mut().unwrap().rotation_deg = 180.0;
     let (film, _) = render(&sc, &st, &settings(IntegratorKind::Path, 256));
-    let e2 = film
-        .pixels
-        .iter()
-        .map(|p| f64::from(p.mean_illuminance()))
-        .sum::<f64>()
-        / n;
+    let e2 = mean_lx(&film);
     assert!((e2 / exact - 1.0).abs() < 0.01, "turned: E {e2} vs {exact}");
 }
