@@ -196,7 +196,9 @@ impl EnvironmentLight {
                 if sin_t <= 0.0 || density <= 0.0 {
                     return None;
                 }
-                Some((w, density / (2.0 * PI * PI * sin_t)))
+                // (A faint texel beside one 10⁴⁴ times brighter: the density underflows.)
+                let pdf = density / (2.0 * PI * PI * sin_t);
+                (pdf.is_finite() && pdf > 0.0).then_some((w, pdf))
             }
         }
     }
