@@ -66,15 +66,13 @@ pub fn lights_outside(setup: &Setup, bounds: &Aabb) -> Vec<usize> {
 }
 
 /// The hint for a picture, if it is black. `full_pass` says whether every pixel has had at
-/// least one full sample (before that, "all zero" is not yet known); `left_out` is what the
-/// integrator does not draw (an environment in bdpt), a likely reason for an all-zero picture.
+/// least one full sample (before that, "all zero" is not yet known).
 pub fn picture_hint(
     levels: &FilmLevels,
     full_pass: bool,
     display: &DisplaySettings,
     exposure_stops: f32,
     outside: &[usize],
-    left_out: Option<&str>,
 ) -> Option<String> {
     let where_lights = match outside {
         [] => String::new(),
@@ -88,14 +86,8 @@ pub fn picture_hint(
         ),
     };
     if levels.max_cd_m2 <= 0.0 {
-        let left_out = left_out
-            .map(|note| format!(" {}", crate::format::sentence(note)))
-            .unwrap_or_default();
         return full_pass.then(|| {
-            format!(
-                "Every pixel is 0 cd/m²: no light reaches what the camera sees.{left_out}\
-                 {where_lights}"
-            )
+            format!("Every pixel is 0 cd/m²: no light reaches what the camera sees.{where_lights}")
         });
     }
     if display.auto_exposure || display.false_colour.is_some() {
@@ -136,35 +128,19 @@ mod tests {
     #[test]
     fn all_zero_and_too_dark_get_different_hints() {
         let d = DisplaySettings::default();
-        let zero = picture_hint(&levels(0.0, 0.0), true, &d, 0.0, &[2], None).unwrap_or_default();
+        let zero = picture_hint(&levels(0.0, 0.0), true, &d, 0.0, &[2]).unwrap_or_default();
         assert!(zero.starts_with("Every pixel is 0 cd/m²"), "{zero}");
         assert!(zero.contains("Light 2 is outside"), "{zero}");
-        assert_eq!(
-            picture_hint(&levels(0.0, 0.0), false, &d, 0.0, &[], None),
-            None
-        );
-        let sky = "the bdpt integrator does not draw the environment light yet: use path";
-        let unlit = picture_hint(&levels(0.0, 0.0), true, &d, 0.0, &[], Some(sky));
-        assert_eq!(
-            unlit.as_deref(),
-            Some(
-                "Every pixel is 0 cd/m²: no light reaches what the camera sees. The bdpt \
-                 integrator does not draw the environment light yet: use path."
-            )
-        );
-        let dark =
-            picture_hint(&levels(50.0, 30.0), true, &d, -12.0, &[], None).unwrap_or_default();
+        assert_eq!(picture_hint(&levels(0.0, 0.0), false, &d, 0.0, &[]), None);
+        let dark = picture_hint(&levels(50.0, 30.0), true, &d, -12.0, &[]).unwrap_or_default();
         assert!(dark.starts_with("Black at this exposure"), "{dark}");
-        assert_eq!(
-            picture_hint(&levels(50.0, 30.0), true, &d, 0.0, &[], None),
-            None
-        );
+        assert_eq!(picture_hint(&levels(50.0, 30.0), true, &d, 0.0, &[]), None);
         let auto = DisplaySettings {
             auto_exposure: true,
             ..d
         };
         assert_eq!(
-            picture_hint(&levels(50.0, 30.0), true, &auto, -12.0, &[], None),
+            picture_hint(&levels(50.0, 30.0), true, &auto, -12.0, &[]),
             None
         );
     }

@@ -105,9 +105,6 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         guides: args.denoise,
         ..sampling_settings(&args.scene, direct_samples)
     };
-    if let Some(note) = settings.integrator.leaves_out(&loaded.setup) {
-        eprintln!("warning: {note}");
-    }
     let open_ended = args.scene.time_limit.is_some() || args.target_error.is_some();
     if open_ended && args.scene.samples.is_none() && args.shard.partial.is_none() {
         // A time or an error to reach: the cap is far away.

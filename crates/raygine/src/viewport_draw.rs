@@ -91,6 +91,7 @@ pub fn draw_light_markers(
             let galley = painter.layout_no_wrap(label, FontId::proportional(12.0), Color32::YELLOW);
             let at = pos + Vec2::new(9.0, -9.0 - galley.size().y);
             text_on_plate(&painter, at, galley, Color32::YELLOW);
+            draw_opening(&painter, doc, basis, rect, light);
             // Spots and luminaires: their aim, a tenth of the scene's size long.
             if let Some(aim) = light.aim() {
                 let reach = doc.scene.bounds.radius() * 0.2;
@@ -99,6 +100,36 @@ pub fn draw_light_markers(
                     painter.arrow(pos, end - pos, Stroke::new(2.0, Color32::YELLOW));
                 }
             }
+        }
+    }
+}
+
+/// A luminaire's luminous opening as a thin outline (it is not geometry, so the picture does
+/// not show it).
+fn draw_opening(
+    painter: &egui::Painter,
+    doc: &Document,
+    basis: &CameraBasis,
+    rect: Rect,
+    light: &tracer_core::scene::Light,
+) {
+    let tracer_core::scene::LightKind::Luminaire(placement) = &light.kind else {
+        return;
+    };
+    let sign = match doc.setup.handedness {
+        tracer_core::scene::Handedness::Right => 1.0,
+        tracer_core::scene::Handedness::Left => -1.0,
+    };
+    let Some(frame) = light.luminaire_frame(sign) else {
+        return;
+    };
+    let shape = placement.opening(doc.setup.unit.metres_per_unit());
+    let stroke = Stroke::new(1.5, Color32::from_rgb(255, 230, 120));
+    for [a, b] in shape.outline(24) {
+        let a = to_screen(rect, basis, light.position() + frame.to_scene(a));
+        let b = to_screen(rect, basis, light.position() + frame.to_scene(b));
+        if let (Some(a), Some(b)) = (a, b) {
+            painter.line_segment([a, b], stroke);
         }
     }
 }

@@ -11,7 +11,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use tracer_core::light::{Environment, EnvironmentMap, EnvironmentSource, Luminaire, Photometry};
 use tracer_core::measure::placement::{grid_on_surface, work_plane};
-use tracer_core::scene::{Light, LuminairePlacement, default_light, luminaire_near_surface};
+use tracer_core::scene::{
+    Light, LuminairePlacement, default_light, luminaire_near_surface, luminaire_shape,
+};
 
 /// A luminaire file being read on a background job.
 #[derive(Debug)]
@@ -102,8 +104,9 @@ impl RaygineApp {
         }
     }
 
-    /// Adds the luminaire whose file has been read (or says why not), and warns at once when it
-    /// hangs closer to a surface than its far field reaches.
+    /// Adds the luminaire whose file has been read (or says why not), and warns at once when its
+    /// file's opening is a shape raygine does not draw (it becomes a point), or when, drawn as
+    /// a point, it hangs closer to a surface than its far field reaches.
     pub(super) fn poll_luminaire(&mut self) {
         let Some(result) = self.adding_luminaire.as_ref().and_then(|p| p.job.poll()) else {
             return;
@@ -123,7 +126,11 @@ impl RaygineApp {
                 });
                 self.error = None;
                 let index = setup.lights.len() - 1;
-                if let Some(note) = luminaire_near_surface(&self.doc.scene, setup, index) {
+                let notes = [
+                    luminaire_near_surface(&self.doc.scene, setup, index),
+                    luminaire_shape(setup, index),
+                ];
+                for note in notes.into_iter().flatten() {
                     self.notice = Some(note.clone());
                     self.doc.warnings.push(note);
                 }

@@ -69,10 +69,6 @@ impl RaygineApp {
                     &display,
                     display.exposure_stops,
                     &crate::picture_hints::lights_outside(&self.doc.setup, &self.doc.scene.bounds),
-                    self.render
-                        .integrator
-                        .leaves_out(&self.doc.setup)
-                        .as_deref(),
                 )
             }
             _ => None,

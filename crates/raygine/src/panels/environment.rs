@@ -6,7 +6,6 @@
 use crate::command::{Command, Commands};
 use crate::file_ops::DialogPurpose;
 use tracer_core::display::REFERENCE_LUMINANCE;
-use tracer_core::integrator::IntegratorKind;
 use tracer_core::light::{Environment, EnvironmentMap, EnvironmentSource};
 use tracer_core::scene::Setup;
 
@@ -87,7 +86,6 @@ impl EnvironmentMemory {
 /// What the section shows besides the setup it edits.
 #[derive(Debug)]
 pub struct EnvironmentView {
-    pub integrator: IntegratorKind,
     /// The picture's exposure (a new uniform sky is made to show at it).
     pub exposure_stops: f32,
     /// A map is being read ("Load map…").
@@ -124,13 +122,6 @@ pub fn environment_ui(
             Some(env) => setup.environment = env,
             None => out.push(Command::PromptPath(DialogPurpose::EnvironmentMap)),
         }
-    }
-    if let Some(note) = view.integrator.leaves_out(setup) {
-        ui.colored_label(
-            egui::Color32::from_rgb(255, 210, 90),
-            crate::format::sentence(&note),
-        )
-        .on_hover_text("Choose the light transport in the Render section");
     }
     let Some(env) = &mut setup.environment else {
         return;

@@ -7,7 +7,10 @@
 use super::widgets::{drag_hint, fine_drag, length_speed};
 use crate::command::{Command, Commands, Edit};
 use crate::document::Document;
-use tracer_core::scene::{KindTag, Light, LightKind, LuminairePlacement, Spot};
+use tracer_core::light::SHAPE_NAMES;
+use tracer_core::scene::{
+    KindTag, Light, LightKind, LuminairePlacement, LuminousShape, ShapeChoice, Spot,
+};
 
 /// More lights than this are listed one line each (a virtualised list, grouped by kind and
 /// file in a summary), and only the selected one is edited: an office's 1,000 luminaires keep
@@ -117,7 +120,7 @@ pub fn lights_ui(
                 intensity_ui(ui, cd, is_spot);
             }
             match &mut light.kind {
-                LightKind::Luminaire(l) => luminaire_ui(ui, l),
+                LightKind::Luminaire(l) => luminaire_ui(ui, l, unit),
                 LightKind::Spot(s) => spot_ui(ui, s),
                 LightKind::Point { .. } => {}
             }
@@ -276,9 +279,10 @@ fn add_luminaire_ui(ui: &mut egui::Ui, text: &mut String, adding: bool, out: &mu
     });
 }
 
-/// A luminaire's multiplier, aim, rotation and polar intensity diagram.
-fn luminaire_ui(ui: &mut egui::Ui, light: &mut LuminairePlacement) {
+/// A luminaire's multiplier, aim, rotation, luminous opening and polar intensity diagram.
+fn luminaire_ui(ui: &mut egui::Ui, light: &mut LuminairePlacement, unit: &str) {
     ui.label(format!("file {}", light.luminaire.file.display()));
+    shape_ui(ui, light, unit);
     ui.add(
         egui::Slider::new(&mut light.multiplier, 0.001..=1000.0)
             .logarithmic(true)
@@ -300,6 +304,87 @@ fn luminaire_ui(ui: &mut egui::Ui, light: &mut LuminairePlacement) {
     )
     .on_hover_text("Turn of the C planes about the aim");
     super::polar::polar_diagram(ui, &light.luminaire.photometry, light.multiplier, 240.0);
+}
+
+/// The luminous opening: the file's, a point, or a shape with its sizes in the scene unit.
+fn shape_ui(ui: &mut egui::Ui, light: &mut LuminairePlacement, unit: &str) {
+    let file_shape = light.luminaire.photometry.shape;
+    let file_label = match file_shape {
+        LuminousShape::Point => "file (point)".to_owned(),
+        s => format!(
+            "file ({} {})",
+            s.name(),
+            s.size()
+                .iter()
+                .map(|m| format!("{m:.3}"))
+                .collect::<Vec<_>>()
+                .join(" x ")
+                + " m"
+        ),
+    };
+    let current = match light.shape {
+        ShapeChoice::File => file_label.clone(),
+        ShapeChoice::Explicit(s) => s.name().to_owned(),
+    };
+    // A new explicit shape starts from the file's sizes where it has them, else 0.3 units.
+    let seed = |name: &str| {
+        let from_file = file_shape.size();
+        let want = match name {
+            "disc" => 1,
+            "rectangle" | "cylinder" => 2,
+            "box" => 3,
+            _ => 0,
+        };
+        let mut size: Vec<f32> = from_file.into_iter().filter(|v| *v > 0.0).collect();
+        size.resize(want, 0.3);
+        LuminousShape::from_name(name, &size).unwrap_or(LuminousShape::Point)
+    };
+    egui::ComboBox::from_label("opening")
+        .selected_text(current)
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut light.shape, ShapeChoice::File, file_label);
+            for name in SHAPE_NAMES {
+                let chosen = matches!(light.shape, ShapeChoice::Explicit(s) if s.name() == name);
+                if ui.selectable_label(chosen, name).clicked() && !chosen {
+                    light.shape = ShapeChoice::Explicit(seed(name));
+                }
+            }
+        })
+        .response
+        .on_hover_text(
+            "Where the light leaves: the file's luminous opening, a point (the far-field \
+             model), or a shape you size. Each point of an opening emits the file's \
+             distribution with luminance I/A_proj.",
+        );
+    if let ShapeChoice::Explicit(shape) = &mut light.shape
+        && *shape != LuminousShape::Point
+    {
+        let names: &[&str] = match shape {
+            LuminousShape::Rectangle { .. } => &["length", "width"],
+            LuminousShape::Disc { .. } => &["diameter"],
+            LuminousShape::Box { .. } => &["length", "width", "height"],
+            _ => &["diameter", "height"],
+        };
+        let mut size = shape.size();
+        ui.horizontal(|ui| {
+            for (v, name) in size.iter_mut().zip(names) {
+                ui.add(
+                    egui::DragValue::new(v)
+                        .speed(0.01)
+                        .range(0.001..=1000.0)
+                        .prefix(format!("{name} "))
+                        .suffix(format!(" {unit}"))
+                        .update_while_editing(false),
+                )
+                .on_hover_text(format!(
+                    "The opening's {name} in {unit} (length along C0, width along C90)"
+                ));
+            }
+        });
+        if let Ok(resized) = LuminousShape::from_name(shape.name(), &size) {
+            *shape = resized;
+        }
+    }
 }
 
 /// The spot's axis and angles (degrees at this edge).

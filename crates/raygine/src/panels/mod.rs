@@ -118,7 +118,6 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         .default_open(doc.setup.environment.is_some())
         .show(ui, |ui| {
             let view = environment::EnvironmentView {
-                integrator: render.integrator,
                 exposure_stops: display.exposure_stops,
                 loading_map: loading_environment,
                 thumbnail: environment_thumbnail,

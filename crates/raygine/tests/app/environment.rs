@@ -80,27 +80,6 @@ fn a_uniform_sky_set_in_the_section_renders_undoes_and_saves() {
     h.run_steps(2);
     assert_eq!(sky_cd_m2(h.state()), Some(250.0));
 
-    h.state_mut().render_prefs_mut().integrator = IntegratorKind::Light;
-    h.run_steps(2);
-    assert!(
-        h.query_by_label_contains("does not draw the environment")
-            .is_some(),
-        "no note that the light tracer leaves the sky out"
-    );
-    h.state_mut().render_prefs_mut().integrator = IntegratorKind::Bidirectional;
-    h.run_steps(2);
-    assert!(
-        h.query_by_label_contains("does not draw the environment")
-            .is_none(),
-        "bdpt draws the sky"
-    );
-    h.state_mut().render_prefs_mut().integrator = IntegratorKind::Direct;
-    h.run_steps(2);
-    assert!(
-        h.query_by_label_contains("does not draw the environment")
-            .is_none()
-    );
-
     let path = scratch_dir("uniform").join("box.raygine.toml");
     let ctx = h.state().context().clone();
     h.state_mut().save_sidecar(&ctx, path.clone());

@@ -6,7 +6,7 @@
 //! relative photometry (lumens per lamp > 0) the values are already candela for the rated lamps.
 
 use super::{MAX_ANGLES, MAX_VALUES, PhotometryFileError, Symmetry, unfold};
-use crate::light::{Photometry, Plane};
+use crate::light::{LuminousShape, Photometry, Plane};
 use std::path::Path;
 
 /// A number token and the line it is on.
@@ -154,10 +154,14 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
             ));
         }
     };
-    let mut opening: f64 = 0.0;
-    for what in ["the width", "the length", "the height"] {
-        opening = opening.max(nums.number(what)?.0.abs());
+    let mut opening = [0.0f32; 3];
+    for (size, what) in opening
+        .iter_mut()
+        .zip(["the width", "the length", "the height"])
+    {
+        *size = (nums.number(what)?.0 * metres_per_unit) as f32;
     }
+    let (shape, shape_note) = LuminousShape::from_ies(opening[0], opening[1], opening[2]);
     let (ballast, b_line) = nums.number("the ballast factor")?;
     let (ballast_lamp, _) = nums.number("the ballast-lamp photometric factor")?;
     nums.number("the input watts")?;
@@ -218,12 +222,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
         });
     }
     let gamma = vert.iter().map(|(g, _)| *g as f32).collect();
-    Photometry::from_planes(
-        gamma,
-        unfold(symmetry, planes),
-        (opening * metres_per_unit) as f32,
-    )
-    .map_err(|e| PhotometryFileError::new(path, 0, e.to_string()))
+    Photometry::from_planes(gamma, unfold(symmetry, planes), shape)
+        .map(|p| p.with_shape_note(shape_note))
+        .map_err(|e| PhotometryFileError::new(path, 0, e.to_string()))
 }
 
 fn ascending(values: &[(f64, usize)], what: &str, path: &Path) -> Result<(), PhotometryFileError> {

@@ -6,7 +6,7 @@
 //! added.
 
 use super::{MAX_ANGLES, MAX_VALUES, PhotometryFileError, Symmetry, unfold};
-use crate::light::{Photometry, Plane};
+use crate::light::{LuminousShape, Photometry, Plane};
 use std::path::Path;
 
 struct Lines<'a> {
@@ -92,21 +92,19 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
     ] {
         l.number(what)?;
     }
-    let mut opening_mm: f64 = 0.0;
-    for what in [
-        "the luminous area length or diameter",
-        "the luminous area width",
-    ] {
-        opening_mm = opening_mm.max(l.number(what)?.0.abs());
-    }
-    for what in [
+    let mm = |v: f64| (v / 1000.0) as f32;
+    let length = mm(l.number("the luminous area length or diameter")?.0);
+    let width = mm(l.number("the luminous area width")?.0);
+    let mut heights = [0.0f32; 4];
+    for (h, what) in heights.iter_mut().zip([
         "the luminous area height C0",
         "the luminous area height C90",
         "the luminous area height C180",
         "the luminous area height C270",
-    ] {
-        l.number(what)?;
+    ]) {
+        *h = mm(l.number(what)?.0);
     }
+    let (shape, shape_note) = LuminousShape::from_eulumdat(length, width, heights);
     l.number("the downward flux fraction")?;
     l.number("the light output ratio")?;
     let (conversion, conv_line) = l.number("the conversion factor for luminous intensities")?;
@@ -220,10 +218,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
         _ => Symmetry::Quadrants,
     };
     let gamma = gammas.iter().map(|(g, _)| *g as f32).collect();
-    Photometry::from_planes(
-        gamma,
-        unfold(symmetry, planes),
-        (opening_mm / 1000.0) as f32,
-    )
-    .map_err(|e| PhotometryFileError::new(path, 0, e.to_string()))
+    Photometry::from_planes(gamma, unfold(symmetry, planes), shape)
+        .map(|p| p.with_shape_note(shape_note))
+        .map_err(|e| PhotometryFileError::new(path, 0, e.to_string()))
 }

@@ -15,15 +15,6 @@ pub enum IntegratorKind {
 }
 
 impl IntegratorKind {
-    /// What this integrator leaves out of `setup`, to tell the user (None: nothing).
-    pub fn leaves_out(self, setup: &crate::scene::Setup) -> Option<String> {
-        (self == IntegratorKind::Light && setup.environment.is_some()).then(|| {
-            "the light tracer does not draw the environment light (it starts no light \
-             subpaths): use path, bdpt or direct"
-                .to_string()
-        })
-    }
-
     /// The global-illumination integrator the viewer opens in and `--gi` names by default.
     pub const DEFAULT_GI: IntegratorKind = IntegratorKind::Bidirectional;
 

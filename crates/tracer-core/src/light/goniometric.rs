@@ -5,6 +5,7 @@
 //! entries the intensity is interpolated bilinearly in (C, γ), so images show no steps; C wraps
 //! at 360°; outside the table's γ range the intensity is zero.
 
+use super::LuminousShape;
 use std::f64::consts::PI;
 
 /// A complete (0–360°) intensity table in candela.
@@ -16,8 +17,10 @@ pub struct Photometry {
     gamma_deg: Vec<f32>,
     /// Intensity (cd) of plane i at γ j: `cd[i * gamma_deg.len() + j]`.
     cd: Vec<f32>,
-    /// Largest dimension of the luminous opening, metres (0: a point).
-    pub opening_m: f32,
+    /// The luminous opening as the file gives it, metres.
+    pub shape: LuminousShape,
+    /// Why the file's opening was not taken as it is (a shape raygine does not draw).
+    pub shape_note: Option<String>,
 }
 
 /// Why a table is not a distribution.
@@ -40,7 +43,7 @@ impl Photometry {
     pub fn from_planes(
         gamma_deg: Vec<f32>,
         mut planes: Vec<Plane>,
-        opening_m: f32,
+        shape: LuminousShape,
     ) -> Result<Photometry, PhotometryError> {
         let bad = |m: &str| Err(PhotometryError::Invalid(m.to_owned()));
         if gamma_deg.is_empty() || planes.is_empty() {
@@ -87,8 +90,20 @@ impl Photometry {
             c_deg,
             gamma_deg,
             cd,
-            opening_m,
+            shape,
+            shape_note: None,
         })
+    }
+
+    /// The same with a note on its opening (see [`Photometry::shape_note`]).
+    pub fn with_shape_note(mut self, note: Option<String>) -> Photometry {
+        self.shape_note = note;
+        self
+    }
+
+    /// Largest dimension of the luminous opening, metres (0: a point).
+    pub fn opening_m(&self) -> f32 {
+        self.shape.largest_dimension()
     }
 
     /// Scales every intensity by `k`.
@@ -178,7 +193,7 @@ mod tests {
                 cd: gamma.iter().map(|&g| f(c, g)).collect(),
             })
             .collect();
-        Photometry::from_planes(gamma.to_vec(), planes, 0.0).unwrap()
+        Photometry::from_planes(gamma.to_vec(), planes, LuminousShape::Point).unwrap()
     }
 
     #[test]

@@ -30,6 +30,30 @@ impl LightSource for LightHandle<'_> {
         matches!(self, LightHandle::Placed(_))
     }
 
+    #[inline]
+    fn samples_area(&self) -> bool {
+        match self {
+            LightHandle::Placed(l) => l.samples_area(),
+            LightHandle::Triangle(_) => true,
+        }
+    }
+
+    #[inline]
+    fn area_share(&self, p: Vec3) -> f32 {
+        match self {
+            LightHandle::Placed(l) => l.area_share(p),
+            LightHandle::Triangle(_) => 1.0,
+        }
+    }
+
+    #[inline]
+    fn emission_cosine(&self, n: Vec3, dir: Vec3) -> f32 {
+        match self {
+            LightHandle::Placed(l) => l.emission_cosine(n, dir),
+            LightHandle::Triangle(l) => l.emission_cosine(n, dir),
+        }
+    }
+
     #[inline(always)]
     fn sample_incident(&self, at: Receiver, u: [f32; 2]) -> Option<Incident> {
         match self {

@@ -1,8 +1,15 @@
 //! A goniometric luminaire: a measured distribution (IES or EULUMDAT) placed in the scene
-//! with its photometric frame.
+//! with its photometric frame, emitting from a point or from a luminous opening.
+//!
+//! An opening is sampled uniformly by area. A point x on it with outward normal n sends
+//! I(ω) · A · max(0, n·ω) / A_proj(ω) towards ω (I(ω) on a flat opening), which is the
+//! luminance L(ω) = I(ω) / A_proj(ω) over its area, and averages to I(ω) over the opening.
+//! So each sample is a point light at x with that intensity: E = I' cos θ / R² as for the point
+//! model, exact in the near field. No ray finds an opening (it is not geometry): it stays a
+//! delta light for MIS, reached by next-event estimation and light subpaths only.
 
 use super::point::{UNIFORM_SPHERE_PDF, incident_from_point, uniform_emission};
-use super::{Emission, Incident, LightBounds, LightSource, Photometry, Receiver};
+use super::{Emission, Incident, LightBounds, LightSource, LuminousShape, Photometry, Receiver};
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -38,6 +45,8 @@ pub struct GoniometricLight {
     pub frame: LuminaireFrame,
     /// (metres per scene unit)².
     pub metres_per_unit_sq: f32,
+    /// The luminous opening, sizes in the scene unit, in the luminaire's frame.
+    pub shape: LuminousShape,
 }
 
 impl GoniometricLight {
@@ -46,6 +55,31 @@ impl GoniometricLight {
     pub fn intensity_towards(&self, dir: Vec3) -> f32 {
         let (c, gamma) = self.frame.angles_deg(dir);
         self.multiplier * self.luminaire.photometry.intensity(c, gamma)
+    }
+
+    /// A point of the opening from `u` and its outward unit normal (zero on a flat opening or
+    /// a point), in scene coordinates.
+    #[inline]
+    pub fn point_on(&self, u: [f32; 2]) -> (Vec3, Vec3) {
+        if self.shape == LuminousShape::Point {
+            return (self.position, Vec3::ZERO);
+        }
+        let (p, n) = self.shape.sample(u);
+        (
+            self.position + self.frame.to_scene(p),
+            self.frame.to_scene(n),
+        )
+    }
+
+    /// What the point of the opening with normal `n` sends along `dir`, relative to I(dir)
+    /// (see the module's notes).
+    #[inline]
+    fn face_factor(&self, n: Vec3, dir: Vec3) -> f32 {
+        if n == Vec3::ZERO {
+            return 1.0;
+        }
+        self.shape
+            .emission_factor(self.frame.to_local(n), self.frame.to_local(dir))
     }
 }
 
@@ -56,18 +90,55 @@ impl LightSource for GoniometricLight {
     }
 
     fn bounds(&self) -> LightBounds {
-        LightBounds::point(self.position, self.power_lm() as f32)
+        let h = self.shape.half_extent();
+        let f = &self.frame;
+        let reach = f.c0.abs() * h.x + f.c90.abs() * h.y + f.nadir.abs() * h.z;
+        LightBounds::around(
+            self.position - reach,
+            self.position + reach,
+            self.power_lm() as f32,
+        )
     }
 
     fn is_delta(&self) -> bool {
         true
     }
 
+    fn samples_area(&self) -> bool {
+        self.shape != LuminousShape::Point
+    }
+
+    /// A point of the opening that faces `at.p` (on a luminous body, only its faces towards the
+    /// receiver: see [`LightSource::area_share`]), as a point light.
     #[inline]
-    fn sample_incident(&self, at: Receiver, _u: [f32; 2]) -> Option<Incident> {
-        incident_from_point(self.position, self.tint, self.metres_per_unit_sq, at, |d| {
-            self.intensity_towards(d)
-        })
+    fn sample_incident(&self, at: Receiver, u: [f32; 2]) -> Option<Incident> {
+        let (p, n, share) = if self.shape.is_flat() {
+            let (p, n) = self.point_on(u);
+            (p, n, 1.0)
+        } else {
+            let r = self.frame.to_local(at.p - self.position);
+            let (p, n) = self.shape.sample_facing(r, u)?;
+            let share = self.shape.facing_area(r) / self.shape.area();
+            (
+                self.position + self.frame.to_scene(p),
+                self.frame.to_scene(n),
+                share,
+            )
+        };
+        let mut s = incident_from_point(p, self.tint, self.metres_per_unit_sq, at, |d| {
+            self.intensity_towards(d) * self.face_factor(n, d) * share
+        })?;
+        s.n = n;
+        Some(s)
+    }
+
+    fn area_share(&self, p: Vec3) -> f32 {
+        if self.shape.is_flat() {
+            1.0
+        } else {
+            let r = self.frame.to_local(p - self.position);
+            self.shape.facing_area(r) / self.shape.area()
+        }
     }
 
     fn incident_pdf(&self, _origin: Vec3, _wi: Vec3, _distance: f32) -> f32 {
@@ -78,9 +149,15 @@ impl LightSource for GoniometricLight {
         self.tint * (self.intensity_towards(dir) / self.metres_per_unit_sq)
     }
 
-    /// Uniform over the sphere (the distribution is not importance-sampled).
-    fn sample_emission(&self, _u_point: [f32; 2], u_dir: [f32; 2]) -> Option<Emission> {
-        Some(uniform_emission(self.position, u_dir))
+    /// A point of the opening (its density folded into the point-light model: see the
+    /// module's notes), and a direction uniform over the sphere (the distribution is not
+    /// importance-sampled).
+    fn sample_emission(&self, u_point: [f32; 2], u_dir: [f32; 2]) -> Option<Emission> {
+        let (p, n) = self.point_on(u_point);
+        Some(Emission {
+            n,
+            ..uniform_emission(p, u_dir)
+        })
     }
 
     fn emission_dir_pdf(&self, _dir: Vec3) -> f32 {
@@ -93,6 +170,10 @@ impl LightSource for GoniometricLight {
 
     fn normal(&self) -> Vec3 {
         Vec3::ZERO
+    }
+
+    fn emission_cosine(&self, n: Vec3, dir: Vec3) -> f32 {
+        self.face_factor(n, dir)
     }
 }
 
@@ -128,6 +209,18 @@ impl LuminaireFrame {
             c0: c0r,
             c90: c90r,
         }
+    }
+
+    /// `local` (x along C0, y along C90, z along the nadir) in scene coordinates.
+    #[inline]
+    pub fn to_scene(&self, local: Vec3) -> Vec3 {
+        self.c0 * local.x + self.c90 * local.y + self.nadir * local.z
+    }
+
+    /// Scene vector `v` in the frame's coordinates (see [`LuminaireFrame::to_scene`]).
+    #[inline]
+    pub fn to_local(&self, v: Vec3) -> Vec3 {
+        Vec3::new(v.dot(self.c0), v.dot(self.c90), v.dot(self.nadir))
     }
 
     /// (C, γ) in degrees of the unit direction `dir` leaving the luminaire.

@@ -16,6 +16,7 @@ mod environment;
 mod goniometric;
 mod handle;
 mod luminaire;
+mod luminous_shape;
 mod model;
 mod placed;
 mod point;
@@ -28,7 +29,8 @@ pub use environment::{Environment, EnvironmentLight, EnvironmentMap, Environment
 pub use goniometric::{Photometry, PhotometryError, Plane, cosine_flux};
 pub use handle::LightHandle;
 pub use luminaire::{GoniometricLight, Luminaire, LuminaireFrame};
-pub use model::{KindTag, Light, LightKind, LightSummary, LuminairePlacement, Spot};
+pub use luminous_shape::{LuminousShape, SHAPE_NAMES};
+pub use model::{KindTag, Light, LightKind, LightSummary, LuminairePlacement, ShapeChoice, Spot};
 pub use placed::PlacedLight;
 pub use point::PointLight;
 pub use spot::{SpotLight, SpotProfile};
@@ -82,15 +84,30 @@ pub trait LightSource {
     /// Unit front normal of an area light (zero for a point-like one).
     fn normal(&self) -> Vec3;
 
-    /// The cosine a light vertex's emission carries along unit `dir`: |n · dir| on an area
-    /// light, 1 for a point-like one.
-    fn emission_cosine(&self, dir: Vec3) -> f32 {
-        let n = self.normal();
+    /// The cosine a light vertex at a point with unit normal `n` (its [`Emission::n`] or
+    /// [`Incident::n`]) carries along unit `dir`: |n · dir| on an area light, 1 for a
+    /// point-like one. A luminaire with a luminous body weighs the face `n` instead.
+    fn emission_cosine(&self, n: Vec3, dir: Vec3) -> f32 {
         if n == Vec3::ZERO {
             1.0
         } else {
             n.dot(dir).abs()
         }
+    }
+
+    /// The share of its emitting area that [`LightSource::sample_incident`] draws points from
+    /// for a receiver at `p`, relative to [`LightSource::sample_emission`]'s: a luminous body
+    /// samples only the faces that face `p`. 1 for every other light. Bidirectional methods
+    /// divide their light-vertex densities by it.
+    fn area_share(&self, _p: Vec3) -> f32 {
+        1.0
+    }
+
+    /// Whether [`LightSource::sample_incident`] and [`LightSource::sample_emission`] use their
+    /// numbers for the point: area lights, and luminaires with a luminous opening (which
+    /// are still [`LightSource::is_delta`]: no ray finds them).
+    fn samples_area(&self) -> bool {
+        !self.is_delta()
     }
 }
 
@@ -120,6 +137,9 @@ pub struct Incident {
     pub pdf: f32,
     /// A point-like light: no direction sampled at a surface can find it (no MIS).
     pub delta: bool,
+    /// Unit normal at `target` where the emission depends on it: a glowing triangle's front,
+    /// a luminous body's face; zero for points and flat openings.
+    pub n: Vec3,
 }
 
 impl Incident {

@@ -2,7 +2,7 @@
 //! share, with data per kind. The sidecar has its own serde type (`scene::LightSpec`); a render
 //! turns each into a [`super::PlacedLight`].
 
-use super::{Luminaire, LuminaireFrame, SpotProfile, unit_luminance_tint};
+use super::{Luminaire, LuminaireFrame, LuminousShape, SpotProfile, unit_luminance_tint};
 use glam::Vec3;
 use serde::Serialize;
 use std::sync::Arc;
@@ -63,16 +63,42 @@ pub struct LuminairePlacement {
     pub rotation_deg: f32,
     /// Factor applied to the file's intensities (1: as measured).
     pub multiplier: f32,
+    /// Its luminous opening.
+    pub shape: ShapeChoice,
+}
+
+/// Which luminous opening a luminaire emits from.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum ShapeChoice {
+    /// The file's opening (a point when the file gives none or one raygine does not draw).
+    #[default]
+    File,
+    /// A shape given by the user, its sizes in the scene unit; `LuminousShape::Point` is the
+    /// point (far-field) model.
+    Explicit(LuminousShape),
 }
 
 impl LuminairePlacement {
-    /// `luminaire` as measured, aimed down −Y.
+    /// `luminaire` as measured, aimed down −Y, with the file's opening.
     pub fn new(luminaire: Arc<Luminaire>) -> Self {
         Self {
             luminaire,
             aim: [0.0, -1.0, 0.0],
             rotation_deg: 0.0,
             multiplier: 1.0,
+            shape: ShapeChoice::File,
+        }
+    }
+
+    /// The opening it emits from, sizes in the scene unit of a scene with `metres_per_unit`.
+    pub fn opening(&self, metres_per_unit: f32) -> LuminousShape {
+        match self.shape {
+            ShapeChoice::File => self
+                .luminaire
+                .photometry
+                .shape
+                .scaled(1.0 / metres_per_unit),
+            ShapeChoice::Explicit(shape) => shape,
         }
     }
 
@@ -192,6 +218,7 @@ impl Light {
             rotation_deg: None,
             multiplier: None,
             file: None,
+            shape: None,
         };
         match &self.kind {
             LightKind::Point { .. } => {}
@@ -203,6 +230,10 @@ impl Light {
                 s.rotation_deg = Some(l.rotation_deg);
                 s.multiplier = Some(l.multiplier);
                 s.file = Some(l.luminaire.file.display().to_string());
+                s.shape = Some(match l.shape {
+                    ShapeChoice::File => "file",
+                    ShapeChoice::Explicit(shape) => shape.name(),
+                });
             }
         }
         s
@@ -256,7 +287,13 @@ impl Light {
                         && (s.cone_deg..=180.0).contains(&s.falloff_deg)
                 }
                 LightKind::Luminaire(l) => {
-                    cd_ok(l.multiplier) && l.rotation_deg.is_finite() && aimed(l.aim)
+                    let sized = match l.shape {
+                        ShapeChoice::File => true,
+                        ShapeChoice::Explicit(shape) => {
+                            shape.size().iter().all(|s| s.is_finite() && *s > 0.0)
+                        }
+                    };
+                    cd_ok(l.multiplier) && l.rotation_deg.is_finite() && aimed(l.aim) && sized
                 }
             }
     }
@@ -349,4 +386,7 @@ pub struct LightSummary {
     /// A luminaire's photometric file.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
+    /// A luminaire's luminous opening: "file" or the shape's name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shape: Option<&'static str>,
 }

@@ -29,6 +29,7 @@ impl PlacedLight {
                 luminaire: Arc::clone(&lum.luminaire),
                 frame: LuminaireFrame::new(Vec3::from(lum.aim), lum.rotation_deg, handedness_sign),
                 metres_per_unit_sq,
+                shape: lum.opening(metres_per_unit_sq.sqrt()),
             }),
             LightKind::Spot(s) => PlacedLight::Spot(SpotLight {
                 position,
@@ -85,6 +86,11 @@ impl PlacedLight {
         }
     }
 
+    /// Whether it emits from a point (the batched direct shading handles no other).
+    pub fn is_point(&self) -> bool {
+        !self.samples_area()
+    }
+
     /// The intensity (cd) when it is the same in every direction (batched shading skips the
     /// per-direction lookup).
     pub fn uniform_intensity(&self) -> Option<f32> {
@@ -107,6 +113,14 @@ impl LightSource for PlacedLight {
 
     fn is_delta(&self) -> bool {
         true
+    }
+
+    fn samples_area(&self) -> bool {
+        self.source().samples_area()
+    }
+
+    fn area_share(&self, p: Vec3) -> f32 {
+        self.source().area_share(p)
     }
 
     #[inline(always)]
@@ -150,5 +164,10 @@ impl LightSource for PlacedLight {
 
     fn normal(&self) -> Vec3 {
         Vec3::ZERO
+    }
+
+    #[inline]
+    fn emission_cosine(&self, n: Vec3, dir: Vec3) -> f32 {
+        self.source().emission_cosine(n, dir)
     }
 }

@@ -104,6 +104,7 @@ pub(super) fn incident_from_point(
         level: intensity(-wi),
         pdf: dist2 * metres_per_unit_sq,
         delta: true,
+        n: Vec3::ZERO,
     })
 }
 

@@ -119,6 +119,7 @@ impl From<EmitterSample> for Incident {
             level: 1.0,
             pdf: s.pdf_solid_angle,
             delta: false,
+            n: Vec3::ZERO,
         }
     }
 }
@@ -163,7 +164,7 @@ mod tests {
                     .sample_emission([u(1), u(2)], [cell[0] / k as f32, cell[1] / k as f32])
                     .unwrap();
                 assert!((light.emission_dir_pdf(e.dir) - e.pdf_dir).abs() < 1e-4);
-                let value = light.emitted(e.dir).x * light.emission_cosine(e.dir);
+                let value = light.emitted(e.dir).x * light.emission_cosine(e.n, e.dir);
                 sum += f64::from(value / (e.pdf_point * e.pdf_dir));
             }
             // Scene units² to m².

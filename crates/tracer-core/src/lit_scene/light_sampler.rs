@@ -125,7 +125,7 @@ impl LitScene<'_> {
         }
         let (id, pmf) = self.pick_light(origin, n, self.pick_number(rng))?;
         let light = self.light(id)?;
-        let u = if light.is_delta() {
+        let u = if !light.samples_area() {
             [0.5; 2]
         } else {
             let (u, v) = rng.next_2d();
@@ -175,7 +175,13 @@ impl LitScene<'_> {
     ) {
         let at = Receiver { p, origin };
         for light in &self.lights {
-            if let Some(s) = light.sample_incident(at, [0.5; 2]) {
+            let u = if light.samples_area() {
+                let (u, v) = rng.next_2d();
+                [u, v]
+            } else {
+                [0.5; 2]
+            };
+            if let Some(s) = light.sample_incident(at, u) {
                 f(s);
             }
         }

@@ -1,5 +1,6 @@
 //! Lights as the scene's setup sees them: the model types live in [`crate::light`].
 
 pub use crate::light::{
-    KindTag, LUMINANCE_WEIGHTS, Light, LightKind, LuminairePlacement, Spot, luminance,
+    KindTag, LUMINANCE_WEIGHTS, Light, LightKind, LuminairePlacement, LuminousShape, ShapeChoice,
+    Spot, luminance,
 };

@@ -14,6 +14,13 @@
 //! cone_deg = 20.0            # full intensity out to here
 //! falloff_deg = 35.0         # zero from here (default: cone_deg)
 //!
+//! [[lights]]
+//! kind = "luminaire"
+//! file = "panel.ldt"         # IES or EULUMDAT, relative to the sidecar
+//! position = [0.0, 2.9, 0.0]
+//! shape = "rectangle"        # default "file": the file's luminous opening; "point": none
+//! size = [1.2, 0.3]          # an explicit shape's sizes, scene unit
+//!
 //! [[grids]]
 //! name = "floor"
 //! origin = [0.0, 0.0, 0.0]
@@ -24,7 +31,9 @@
 //! normal = [0.0, 1.0, 0.0]   # default: u × v normalised
 //! ```
 
-use crate::light::{Light, LightKind, Luminaire, LuminairePlacement, Spot};
+use crate::light::{
+    Light, LightKind, Luminaire, LuminairePlacement, LuminousShape, ShapeChoice, Spot,
+};
 use crate::measure::Grid;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -67,6 +76,13 @@ pub struct LightSpec {
     /// Luminaire: factor on the file's intensities (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub multiplier: Option<f32>,
+    /// Luminaire: its luminous opening, "file" (default), "point", "rectangle", "disc", "box"
+    /// or "cylinder".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shape: Option<String>,
+    /// Luminaire: an explicit shape's sizes in the scene unit (see [`LuminousShape::size`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<Vec<f32>>,
 }
 
 impl LightSpec {
@@ -78,9 +94,14 @@ impl LightSpec {
         if kind == LightKindSpec::Luminaire {
             return self.to_luminaire(&at, base_dir);
         }
-        if self.file.is_some() || self.rotation_deg.is_some() || self.multiplier.is_some() {
+        if self.file.is_some()
+            || self.rotation_deg.is_some()
+            || self.multiplier.is_some()
+            || self.shape.is_some()
+            || self.size.is_some()
+        {
             return Err(format!(
-                "{at}: file, rotation_deg and multiplier belong to kind = \"luminaire\""
+                "{at}: file, rotation_deg, multiplier, shape and size belong to kind = \"luminaire\""
             ));
         }
         if !self.position.iter().all(|x| x.is_finite()) {
@@ -198,6 +219,7 @@ impl LightSpec {
                 "{at}: multiplier and flux_lm must be finite and not negative"
             ));
         }
+        let shape = self.shape_choice().map_err(|e| format!("{at}: {e}"))?;
         Ok(Light {
             position: self.position,
             color: self.color.unwrap_or([1.0; 3]),
@@ -206,8 +228,23 @@ impl LightSpec {
                 aim,
                 rotation_deg,
                 multiplier,
+                shape,
             }),
         })
+    }
+
+    /// The luminaire's opening from `shape` and `size`.
+    fn shape_choice(&self) -> Result<ShapeChoice, String> {
+        match self.shape.as_deref().unwrap_or("file") {
+            "file" => match self.size {
+                Some(_) => Err("size belongs to an explicit shape, not shape = \"file\"".into()),
+                None => Ok(ShapeChoice::File),
+            },
+            name => {
+                let size = self.size.as_deref().unwrap_or(&[]);
+                LuminousShape::from_name(name, size).map(ShapeChoice::Explicit)
+            }
+        }
     }
 
     /// The table that reproduces `light` (intensity in candela).
@@ -236,6 +273,16 @@ impl LightSpec {
                 file: Some(l.luminaire.file.clone()),
                 rotation_deg: Some(l.rotation_deg),
                 multiplier: Some(l.multiplier),
+                shape: match l.shape {
+                    ShapeChoice::File => None,
+                    ShapeChoice::Explicit(shape) => Some(shape.name().to_owned()),
+                },
+                size: match l.shape {
+                    ShapeChoice::Explicit(shape) if shape != LuminousShape::Point => {
+                        Some(shape.size())
+                    }
+                    _ => None,
+                },
                 ..base
             },
         }

@@ -31,11 +31,12 @@ pub use framing::{framing_camera, framing_side, outline_areas};
 pub use geometry::{Brep, Scene, SlotOwner};
 pub use ground::{GROUND_NAME, GROUND_REFLECTANCE, ground_material};
 pub use light::{
-    KindTag, LUMINANCE_WEIGHTS, Light, LightKind, LuminairePlacement, Spot, luminance,
+    KindTag, LUMINANCE_WEIGHTS, Light, LightKind, LuminairePlacement, LuminousShape, ShapeChoice,
+    Spot, luminance,
 };
 pub use light_spec::{GridContext, GridSpec, LightKindSpec, LightSpec, en12464_spacing_m};
 pub use material::Material;
-pub use notes::{SourceText, luminaire_near_surface, relative_below};
+pub use notes::{SourceText, luminaire_near_surface, luminaire_shape, relative_below};
 pub use setup::Setup;
 pub use sidecar::{Sidecar, sidecar_path};
 pub use sidecar_open::{

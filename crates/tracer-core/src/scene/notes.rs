@@ -75,24 +75,48 @@ pub(crate) fn nearest_surface(scene: &Scene, p: glam::Vec3) -> Option<f32> {
 }
 
 /// The warning for light `index` (0-based) when it is a luminaire closer to a surface than five
-/// times its luminous opening, where the point-source model breaks; it names the light as the
-/// viewer does ("Light 2").
+/// times its luminous opening while drawn as a point (`shape = "point"`), where the point-source
+/// model breaks; it names the light as the viewer does ("Light 2").
 pub fn luminaire_near_surface(scene: &Scene, setup: &Setup, index: usize) -> Option<String> {
     let light = setup.lights.get(index)?;
     let crate::light::LightKind::Luminaire(placement) = &light.kind else {
         return None;
     };
     let lum = &placement.luminaire;
-    let opening = lum.photometry.opening_m / setup.unit.metres_per_unit();
+    let mpu = setup.unit.metres_per_unit();
+    if placement.opening(mpu) != crate::light::LuminousShape::Point {
+        // Drawn with its opening: exact near it.
+        return None;
+    }
+    let opening = lum.photometry.opening_m() / mpu;
     let d = nearest_surface(scene, light.position())?;
     (opening > 0.0 && d < 5.0 * opening).then(|| {
         let unit = setup.unit.symbol();
         format!(
             "Light {}: a surface is {d:.3} {unit} away, closer than five times the luminous \
-             opening ({opening:.3} {unit}): the far-field (point source) assumption breaks there",
+             opening ({opening:.3} {unit}): the far-field (point source) assumption breaks there; \
+             shape = \"file\" draws its opening",
             index + 1
         )
     })
+}
+
+/// The note for light `index` when it is a luminaire drawn with its file's opening and the
+/// file's shape is one raygine does not draw (it became a point).
+pub fn luminaire_shape(setup: &Setup, index: usize) -> Option<String> {
+    let light = setup.lights.get(index)?;
+    let crate::light::LightKind::Luminaire(placement) = &light.kind else {
+        return None;
+    };
+    if placement.shape != crate::light::ShapeChoice::File {
+        return None;
+    }
+    let note = placement.luminaire.photometry.shape_note.as_ref()?;
+    Some(format!(
+        "Light {}: {}: {note}",
+        index + 1,
+        placement.luminaire.file.display()
+    ))
 }
 
 /// When `path` lies in `dir` or below it (both resolved, when they exist), the path relative to

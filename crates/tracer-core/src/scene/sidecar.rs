@@ -276,6 +276,9 @@ impl Sidecar {
             if let Some(note) = super::notes::luminaire_near_surface(scene, &setup, i) {
                 warnings.push(note);
             }
+            if let Some(note) = super::notes::luminaire_shape(&setup, i) {
+                warnings.push(note);
+            }
             if !light.is_valid() {
                 warnings.push(format!(
                     "Light {}: position and intensity must be finite, intensity >= 0",

@@ -64,6 +64,7 @@ fn a_convex_object_under_a_uniform_sky_reads_rho_times_l() {
         (IntegratorKind::Path, 1024),
         (IntegratorKind::Direct, 8192),
         (IntegratorKind::Bidirectional, 2048),
+        (IntegratorKind::Light, 98_304),
     ] {
         let (sc, st) = cube_setup(rho, uniform(l));
         let (film, _) = render(&sc, &st, &settings(integrator, spp));
@@ -107,6 +108,7 @@ fn the_background_is_the_sky_unless_the_backdrop_is_kept() {
         IntegratorKind::Path,
         IntegratorKind::Direct,
         IntegratorKind::Bidirectional,
+        IntegratorKind::Light,
     ] {
         let (sc, mut st) = cube_setup(0.5, uniform(250.0));
         // Looking away from the cube.

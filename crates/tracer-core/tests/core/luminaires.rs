@@ -111,7 +111,7 @@ fn cie_5_2_point_source_through_ies_and_ldt_files() {
     for file in ["cos.ies", "cos.ldt"] {
         let text = format!(
             "unit = \"m\"\nhandedness = \"right\"\n[default_material]\nkd = [0.0, 0.0, 0.0]\n\
-             [[lights]]\nkind = \"luminaire\"\nfile = \"{file}\"\nposition = [2.0, 3.0, 2.0]\n\
+             [[lights]]\nkind = \"luminaire\"\nshape = \"point\"\nfile = \"{file}\"\nposition = [2.0, 3.0, 2.0]\n\
              aim = [0.0, -1.0, 0.0]\n\
              [[grids]]\nname = \"floor\"\norigin = [0.0, 0.0, 0.0]\nu = [4.0, 0.0, 0.0]\n\
              v = [0.0, 0.0, 4.0]\nnu = 5\nnv = 5\nnormal = [0.0, 1.0, 0.0]\n"
@@ -278,7 +278,7 @@ fn c_angles_run_counter_clockwise_on_screen_in_both_handednesses() {
                 "unit = \"m\"\nhandedness = \"{hand}\"\n[camera]\nposition = [2.0, 2.9, 2.0]\n\
                  look_at = [2.0, 0.0, 2.0]\nup = [0.0, 0.0, -1.0]\nfov_deg = 100.0\n\
                  [default_material]\nkd = [0.8, 0.8, 0.8]\n\
-                 [[lights]]\nkind = \"luminaire\"\nfile = \"{file}\"\nposition = [2.0, 2.5, 2.0]\n"
+                 [[lights]]\nkind = \"luminaire\"\nshape = \"point\"\nfile = \"{file}\"\nposition = [2.0, 2.5, 2.0]\n"
             );
             let sidecar = Sidecar::parse(&text, &dir.join("s.raygine.toml")).unwrap();
             let st = sidecar.apply(&sc, None, &mut Vec::new());
@@ -410,14 +410,13 @@ fn bad_files_are_refused_with_file_line_and_reason() {
     // A sidecar naming a missing file, or giving both multiplier and flux, is refused.
     let dir = temp_dir("bad");
     let side = dir.join("s.raygine.toml");
-    let missing =
-        "[[lights]]\nkind = \"luminaire\"\nfile = \"nope.ies\"\nposition = [0.0, 1.0, 0.0]\n";
+    let missing = "[[lights]]\nkind = \"luminaire\"\nshape = \"point\"\nfile = \"nope.ies\"\nposition = [0.0, 1.0, 0.0]\n";
     let e = Sidecar::parse(missing, &side)
         .expect_err("missing")
         .to_string();
     assert!(e.contains("nope.ies") && e.contains("lights[0]"), "{e}");
     std::fs::write(dir.join("ok.ies"), ies(&g, &[0.0], |_, _| 10.0)).unwrap();
-    let both = "[[lights]]\nkind = \"luminaire\"\nfile = \"ok.ies\"\nposition = [0.0, 1.0, 0.0]\nmultiplier = 2.0\nflux_lm = 10.0\n";
+    let both = "[[lights]]\nkind = \"luminaire\"\nshape = \"point\"\nfile = \"ok.ies\"\nposition = [0.0, 1.0, 0.0]\nmultiplier = 2.0\nflux_lm = 10.0\n";
     let e = Sidecar::parse(both, &side).expect_err("both").to_string();
     assert!(e.contains("not both"), "{e}");
     let _ = Grid::new(

@@ -8,6 +8,7 @@ mod bvh_support;
 mod gi_support;
 
 mod adaptive;
+mod area_luminaires;
 mod bdpt_analytic;
 mod bvh_differential;
 mod bvh_speed;

@@ -77,7 +77,7 @@ fn cie_5_2_with_100_luminaires_adds_up() {
             let p = Vec3::new(0.2 + 0.4 * i as f32, 3.0, 0.2 + 0.4 * j as f32);
             sources.push(p);
             text += &format!(
-                "[[lights]]\nkind = \"luminaire\"\nfile = \"cos.ies\"\nmultiplier = 0.01\n\
+                "[[lights]]\nkind = \"luminaire\"\nshape = \"point\"\nfile = \"cos.ies\"\nmultiplier = 0.01\n\
                  position = [{}, {}, {}]\naim = [0.0, -1.0, 0.0]\n",
                 p.x, p.y, p.z
             );
@@ -215,7 +215,7 @@ fn integrators_agree_on_every_light_kind() {
         [[lights]]\nposition = [1.0, 2.5, 1.0]\nintensity_cd = 50.0\n\
         [[lights]]\nkind = \"spot\"\nposition = [3.0, 2.5, 1.0]\nintensity_cd = 200.0\n\
         aim = [0.0, -1.0, 0.0]\ncone_deg = 20.0\nfalloff_deg = 35.0\n\
-        [[lights]]\nkind = \"luminaire\"\nfile = \"cos.ies\"\nmultiplier = 0.1\n\
+        [[lights]]\nkind = \"luminaire\"\nshape = \"point\"\nfile = \"cos.ies\"\nmultiplier = 0.1\n\
         position = [1.0, 2.9, 3.0]\naim = [0.0, -1.0, 0.0]\n\
         [[grids]]\nname = \"floor\"\norigin = [0.0, 0.0, 0.0]\nu = [4.0, 0.0, 0.0]\n\
         v = [0.0, 0.0, 4.0]\nnu = 3\nnv = 3\nnormal = [0.0, 1.0, 0.0]\n";

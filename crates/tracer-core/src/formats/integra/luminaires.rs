@@ -236,6 +236,10 @@ pub fn diagram_photometry(d: &Diagram, flux_lm: f64) -> Result<Photometry, Strin
     let gamma_deg = (0..theta).map(|i| (i as f64 * step) as f32).collect();
     let scale = flux_lm / normal;
     let cd = d.values.iter().map(|v| (v * scale) as f32).collect();
-    Photometry::from_planes(gamma_deg, vec![Plane { c_deg: 0.0, cd }], 0.0)
-        .map_err(|e| e.to_string())
+    Photometry::from_planes(
+        gamma_deg,
+        vec![Plane { c_deg: 0.0, cd }],
+        crate::light::LuminousShape::Point,
+    )
+    .map_err(|e| e.to_string())
 }

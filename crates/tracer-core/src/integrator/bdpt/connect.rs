@@ -59,6 +59,12 @@ impl Bidirectional<'_, '_> {
         } else {
             1
         };
+        // A light subpath from the environment (the light tracer's) is joined to the eye by
+        // t = 1 alone; every other path that ends in the environment is the eye subpath's
+        // (s = 0 and s = 1, weighed over those two: see `environment.rs`).
+        let from_environment = light
+            .first()
+            .is_some_and(|v| matches!(v.kind, Kind::Environment));
         for t in 1..=eye_strategies {
             if self.light_tracing && t == 2 {
                 continue;
@@ -67,6 +73,9 @@ impl Bidirectional<'_, '_> {
             // as in a scene lit by the environment alone.)
             for s in 0..=light.len().max(1) {
                 if s + t < 2 || !self.allowed(s, t) {
+                    continue;
+                }
+                if from_environment && s >= 2 && !(self.light_tracing && t == 1) {
                     continue;
                 }
                 if self.max_bounces != u32::MAX && self.bounces(eye, light, s, t) > self.max_bounces
@@ -151,7 +160,7 @@ impl Bidirectional<'_, '_> {
     #[inline(always)]
     fn join(&self, a: &Vertex, b: &Vertex, link: Link) -> Vec3 {
         let w = link.w;
-        let g = a.cosine(w) * b.cosine(-w) / link.dist2;
+        let g = a.cosine(self, w) * b.cosine(self, -w) / link.dist2;
         if g <= 0.0 {
             return Vec3::ZERO;
         }

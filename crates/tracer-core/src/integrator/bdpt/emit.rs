@@ -24,16 +24,53 @@ pub struct LightPoint {
     pub pdf_origin: f32,
 }
 
-/// Lights in proportion to their flux, in [`LitScene::light_count`]'s order.
+/// Lights in proportion to their flux, in [`LitScene::light_count`]'s order; for the light
+/// tracer, the environment too (last, by the flux through its disc).
 #[derive(Clone, Debug, Default)]
 pub struct LightPicker {
     /// Cumulative flux (lm), one entry per light.
     cdf: Vec<f64>,
     /// Probability of each light.
     probability: Vec<f32>,
+    /// Total flux including the environment's (lm).
+    total: f64,
+    /// Probability of the environment.
+    environment: f32,
+}
+
+/// The start of a light subpath.
+#[derive(Clone, Copy, Debug)]
+pub enum Start {
+    Light(LightPoint, Emission),
+    /// A point on the disc across the scene's bounding sphere, and a direction into the scene,
+    /// picked with `probability`.
+    Environment(Emission, f32),
 }
 
 impl LightPicker {
+    /// Light subpaths from the environment too (the light tracer's: bidirectional transport
+    /// reaches the environment by its eye subpaths, which escape or sample it).
+    pub fn with_environment(lit: &LitScene<'_>) -> Self {
+        let mut picker = Self::new(lit);
+        let env_flux = lit
+            .environment
+            .as_ref()
+            .map_or(0.0, |e| e.power_lm())
+            .max(0.0);
+        if !(env_flux.is_finite() && env_flux > 0.0) {
+            return picker;
+        }
+        let lights = picker.cdf.last().copied().unwrap_or(0.0);
+        let total = lights + env_flux;
+        picker
+            .probability
+            .iter_mut()
+            .for_each(|p| *p = (f64::from(*p) * lights / total) as f32);
+        picker.total = total;
+        picker.environment = (env_flux / total) as f32;
+        picker
+    }
+
     pub fn new(lit: &LitScene<'_>) -> Self {
         let fluxes: Vec<f64> = (0..lit.light_count())
             .map(|i| {
@@ -62,11 +99,59 @@ impl LightPicker {
         LightPicker {
             cdf,
             probability: fluxes.iter().map(|f| (f / total) as f32).collect(),
+            total,
+            environment: 0.0,
         }
     }
 
     pub fn is_empty(&self) -> bool {
-        self.cdf.is_empty()
+        self.cdf.is_empty() && self.environment <= 0.0
+    }
+
+    /// Picks the environment or a light by flux, then a point and a direction.
+    pub fn sample_start(&self, lit: &LitScene<'_>, rng: &mut SampleRng) -> Option<Start> {
+        if self.environment > 0.0 {
+            let u_pick = rng.next_f32();
+            let (u, v) = rng.next_2d();
+            let (du, dv) = rng.next_2d();
+            let lights = self.cdf.last().copied().unwrap_or(0.0);
+            if f64::from(u_pick) * self.total >= lights {
+                let e = lit
+                    .environment
+                    .as_ref()?
+                    .sample_emission([u, v], [du, dv])?;
+                return Some(Start::Environment(e, self.environment));
+            }
+            let target = f64::from(u_pick) * self.total;
+            return self
+                .pick(lit, target, [u, v], [du, dv])
+                .map(|(p, e)| Start::Light(p, e));
+        }
+        self.sample(lit, rng).map(|(p, e)| Start::Light(p, e))
+    }
+
+    /// The light whose share of the cumulative flux holds `target` (lm), a point on it and a
+    /// direction.
+    fn pick(
+        &self,
+        lit: &LitScene<'_>,
+        target: f64,
+        u_point: [f32; 2],
+        u_dir: [f32; 2],
+    ) -> Option<(LightPoint, Emission)> {
+        let i = self
+            .cdf
+            .partition_point(|&c| c <= target)
+            .min(self.cdf.len().checked_sub(1)?);
+        let id = lit.light_id(i as u32)?;
+        let e = lit.light(id)?.sample_emission(u_point, u_dir)?;
+        let start = LightPoint {
+            light: id,
+            p: e.p,
+            n: e.n,
+            pdf_origin: self.probability[i] * e.pdf_point,
+        };
+        Some((start, e))
     }
 
     /// Picks a light by flux, then a point on it and a direction: the start and the direction
@@ -80,20 +165,7 @@ impl LightPicker {
         let u_pick = rng.next_f32();
         let (u, v) = rng.next_2d();
         let (du, dv) = rng.next_2d();
-        let target = f64::from(u_pick) * last;
-        let i = self
-            .cdf
-            .partition_point(|&c| c <= target)
-            .min(self.cdf.len() - 1);
-        let id = lit.light_id(i as u32)?;
-        let e = lit.light(id)?.sample_emission([u, v], [du, dv])?;
-        let start = LightPoint {
-            light: id,
-            p: e.p,
-            n: e.n,
-            pdf_origin: self.probability[i] * e.pdf_point,
-        };
-        Some((start, e))
+        self.pick(lit, f64::from(u_pick) * last, [u, v], [du, dv])
     }
 
     /// Density of picking this light's position (see [`LightPoint::pdf_origin`]).
@@ -114,11 +186,13 @@ pub fn emitted(lit: &LitScene<'_>, light: TreeLight, dir: Vec3) -> Vec3 {
     lit.light(light).map_or(Vec3::ZERO, |l| l.emitted(dir))
 }
 
-/// The cosine a light vertex's emission carries along `dir` (1 for point-like lights).
+/// The cosine a light vertex's emission carries along `dir` from a point with normal `n` (1 for
+/// point-like lights; see [`LightSource::emission_cosine`]).
 #[inline]
-pub fn emission_cosine(light: TreeLight, n: Vec3, dir: Vec3) -> f32 {
+pub fn emission_cosine(lit: &LitScene<'_>, light: TreeLight, n: Vec3, dir: Vec3) -> f32 {
     match light {
-        TreeLight::Placed(_) => 1.0,
+        TreeLight::Placed(_) if n == Vec3::ZERO => 1.0,
+        TreeLight::Placed(_) => lit.light(light).map_or(0.0, |l| l.emission_cosine(n, dir)),
         TreeLight::Triangle(_) => n.dot(dir).abs(),
     }
 }
@@ -137,7 +211,7 @@ impl super::Bidirectional<'_, '_> {
         let lit = self.lit;
         let (id, pmf) = lit.pick_light(pt.p, pt.n, lit.pick_number(rng))?;
         let light = lit.light(id)?;
-        let u = if light.is_delta() {
+        let u = if !light.samples_area() {
             [0.5; 2]
         } else {
             let (u, v) = rng.next_2d();
@@ -151,9 +225,16 @@ impl super::Bidirectional<'_, '_> {
         Some(LightPoint {
             light: id,
             p: s.target,
-            n: light.normal(),
-            // (The rest of the choice went to the environment: see `connect_to_light`.)
-            pdf_origin: pmf * (1.0 - lit.environment_pick()) * light.emission_point_pdf(),
+            // A luminous body's face, a glowing triangle's front, or zero.
+            n: if s.n == Vec3::ZERO {
+                light.normal()
+            } else {
+                s.n
+            },
+            // (The rest of the choice went to the environment: see `connect_to_light`. A
+            // luminous body drew from its faces towards `pt` alone.)
+            pdf_origin: pmf * (1.0 - lit.environment_pick()) * light.emission_point_pdf()
+                / light.area_share(pt.p),
         })
     }
 
@@ -164,7 +245,7 @@ impl super::Bidirectional<'_, '_> {
         let light = match x0.kind {
             Kind::Light(l) => l,
             Kind::Surface(prim) => TreeLight::Triangle(prim),
-            Kind::Eye => return 1.0,
+            Kind::Eye | Kind::Environment => return 1.0,
         };
         let flux = self.lights.pdf_origin(self.lit, light);
         if flux <= 0.0 {
@@ -175,6 +256,12 @@ impl super::Bidirectional<'_, '_> {
             .light(light)
             .map_or(0.0, |l| l.emission_point_pdf());
         let tree_share = 1.0 - self.lit.environment_pick();
-        self.lit.light_pmf(x1.p, x1.n, light) * tree_share * area / flux
+        // A luminous body's s = 1 draws from the faces towards x1 alone (`sample_light_for`).
+        let faces = self.lit.light(light).map_or(1.0, |l| l.area_share(x1.p));
+        if faces <= 0.0 {
+            // Inside the body: s = 1 cannot reach it from x1.
+            return 0.0;
+        }
+        self.lit.light_pmf(x1.p, x1.n, light) * tree_share * area / (flux * faces)
     }
 }

@@ -1,8 +1,11 @@
-//! The environment in bidirectional transport. It starts no light subpaths, so a path that
-//! ends in it has two strategies: the eye subpath leaves the scene (s = 0), or an eye vertex
-//! samples it (s = 1, in the share `LitScene::environment_pick` of the light choice). They
-//! are weighted by the power heuristic over those two, as in path mode. The light tracer,
-//! which only joins light vertices to the eye, leaves it out.
+//! The environment in bidirectional transport. A path that ends in it has two strategies: the
+//! eye subpath leaves the scene (s = 0), or an eye vertex samples it (s = 1, in the share
+//! `LitScene::environment_pick` of the light choice). They are weighted by the power heuristic
+//! over those two, as in path mode. The light tracer also starts light subpaths from it (on
+//! the disc across the bounding sphere, picked by the flux through it): their surface vertices
+//! are joined to the eye (t = 1), which carries every path whose first surface scatters
+//! smoothly; the eye subpath's two strategies carry the rest (the sky seen directly or through
+//! mirrors and glass).
 
 use super::vertex::{Kind, Vertex};
 use super::walk::Escape;
@@ -29,7 +32,7 @@ impl Bidirectional<'_, '_> {
         let Some(env) = &self.lit.environment else {
             return Vec3::ZERO;
         };
-        if self.light_tracing || e.beta.max_element() <= 0.0 {
+        if e.beta.max_element() <= 0.0 {
             return Vec3::ZERO;
         }
         let from_camera = eye.len() == 1 && matches!(self.eye, Eye::Camera(_));

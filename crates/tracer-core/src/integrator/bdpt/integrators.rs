@@ -50,7 +50,7 @@ impl<'a> BidirectionalPathTracing<'a> {
 impl<'a> LightTracing<'a> {
     pub fn new(lit: LitScene<'a>, settings: IntegratorSettings) -> Self {
         Self {
-            lights: LightPicker::new(&lit),
+            lights: LightPicker::with_environment(&lit),
             lit,
             max_bounces: settings.max_bounces,
         }

@@ -18,6 +18,9 @@ pub enum Kind {
     Eye,
     /// The first vertex of a light subpath (or a light sampled for a connection).
     Light(TreeLight),
+    /// The first vertex of a light subpath from the environment (the light tracer's), on the
+    /// disc across the bounding sphere: never joined to anything.
+    Environment,
     /// A surface point a subpath reached.
     Surface(u32),
 }
@@ -102,6 +105,7 @@ impl Vertex {
     pub fn connectible(&self) -> bool {
         match self.kind {
             Kind::Surface(_) => self.bsdf.is_some_and(|b| b.has_smooth_lobe()),
+            Kind::Environment => false,
             _ => true,
         }
     }
@@ -146,16 +150,18 @@ impl Vertex {
                 None => Vec3::ZERO,
             },
             Kind::Light(light) => emitted(bd.lit, light, w),
+            Kind::Environment => Vec3::ZERO,
             Kind::Eye => Vec3::splat(bd.eye_importance(self, w)),
         }
     }
 
     /// The cosine at this vertex towards unit `w` that a connection's geometry term carries.
     #[inline]
-    pub fn cosine(&self, w: Vec3) -> f32 {
+    pub fn cosine(&self, bd: &Bidirectional<'_, '_>, w: Vec3) -> f32 {
         match self.kind {
             Kind::Surface(_) => self.n.dot(w).abs(),
-            Kind::Light(light) => emission_cosine(light, self.n, w),
+            Kind::Light(light) => emission_cosine(bd.lit, light, self.n, w),
+            Kind::Environment => 1.0,
             Kind::Eye => bd_eye_cosine(self.n, w),
         }
     }
@@ -171,6 +177,7 @@ impl Vertex {
                 None => 0.0,
             },
             Kind::Light(light) => direction_pdf(bd.lit, light, to),
+            Kind::Environment => 0.0,
             Kind::Eye => bd.eye_direction_pdf(self, to),
         }
     }
@@ -181,7 +188,7 @@ impl Vertex {
         match self.kind {
             Kind::Light(light) => bd.lights.pdf_origin(bd.lit, light),
             Kind::Surface(prim) => bd.lights.pdf_origin(bd.lit, TreeLight::Triangle(prim)),
-            Kind::Eye => 0.0,
+            Kind::Eye | Kind::Environment => 0.0,
         }
     }
 
@@ -191,7 +198,7 @@ impl Vertex {
         let light = match self.kind {
             Kind::Light(light) => light,
             Kind::Surface(prim) => TreeLight::Triangle(prim),
-            Kind::Eye => return 0.0,
+            Kind::Eye | Kind::Environment => return 0.0,
         };
         prev.density_from(
             direction_pdf(bd.lit, light, self.wo),

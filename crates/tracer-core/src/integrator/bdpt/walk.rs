@@ -1,9 +1,10 @@
 //! Random walks: the eye and light subpaths.
 
-use super::emit::{emission_cosine, emitted};
+use super::emit::{Start, emission_cosine, emitted};
 use super::vertex::{Kind, Vertex};
 use super::{Bidirectional, MAX_SUBPATH, Subpaths};
 use crate::geometry::Ray;
+use crate::light::{Emission, LightSource};
 use crate::sampling::SampleRng;
 use crate::shading::{Surface, bsdf_at};
 use glam::Vec3;
@@ -14,8 +15,13 @@ impl Bidirectional<'_, '_> {
     pub fn light_subpath(&self, rng: &mut SampleRng, rays: &mut u32, paths: &mut Subpaths) {
         let path = &mut paths.light;
         path.clear();
-        let Some((start, emission)) = self.lights.sample(self.lit, rng) else {
-            return;
+        let (start, emission) = match self.lights.sample_start(self.lit, rng) {
+            Some(Start::Light(start, emission)) => (start, emission),
+            Some(Start::Environment(e, probability)) => {
+                self.environment_subpath(e, probability, rng, rays, path);
+                return;
+            }
+            None => return,
         };
         if start.pdf_origin <= 0.0 {
             return;
@@ -33,7 +39,7 @@ impl Bidirectional<'_, '_> {
             return;
         }
         let le = emitted(self.lit, start.light, dir);
-        let beta = beta0 * le * (emission_cosine(start.light, start.n, dir) / pdf_dir);
+        let beta = beta0 * le * (emission_cosine(self.lit, start.light, start.n, dir) / pdf_dir);
         if beta.max_element() <= 0.0 {
             return;
         }
@@ -49,6 +55,40 @@ impl Bidirectional<'_, '_> {
             // Once per subpath, for every connection's MIS weight.
             path[1].tree_ratio = self.tree_factor(&path[0], &path[1]);
         }
+    }
+
+    /// A light subpath from the environment (the light tracer's): from a point on the disc
+    /// across the bounding sphere, along a direction by the map, picked with `probability`.
+    /// Its first vertex is not connectible: only its surface vertices are joined to the eye.
+    fn environment_subpath(
+        &self,
+        e: Emission,
+        probability: f32,
+        rng: &mut SampleRng,
+        rays: &mut u32,
+        path: &mut Vec<Vertex>,
+    ) {
+        let Some(env) = &self.lit.environment else {
+            return;
+        };
+        let pdf_origin = probability * e.pdf_point;
+        if pdf_origin <= 0.0 || e.pdf_dir <= 0.0 {
+            return;
+        }
+        let beta0 = Vec3::splat(1.0 / pdf_origin);
+        path.push(Vertex::new(
+            Kind::Environment,
+            e.p,
+            Vec3::ZERO,
+            beta0,
+            pdf_origin,
+        ));
+        // The disc faces the direction: no cosine.
+        let beta = beta0 * env.emitted(e.dir) / e.pdf_dir;
+        if beta.max_element() <= 0.0 {
+            return;
+        }
+        let _ = self.walk(Ray::new(e.p, e.dir), beta, e.pdf_dir, true, rng, path, rays);
     }
 
     /// Extends `path` from its last vertex along `ray` (unit direction), sampled with density

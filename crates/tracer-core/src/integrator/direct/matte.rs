@@ -21,6 +21,7 @@ use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;
 use crate::lanes8::{Lanes8, Mask8, Scalar8, ray_columns};
+use crate::light::PlacedLight;
 use crate::lit_scene::LitScene;
 use crate::shading::PreparedMaterial;
 use glam::Vec3;
@@ -74,7 +75,11 @@ pub(super) fn shade_first_hits(
     rest: &mut Vec<u32>,
 ) {
     debug_assert!(rays.len() == hits.len() && rays.len() == out.len());
-    if lanes == Lanes::Off || !lit.emitters.is_empty() || lit.environment.is_some() {
+    if lanes == Lanes::Off
+        || !lit.emitters.is_empty()
+        || lit.environment.is_some()
+        || !lit.lights.iter().all(PlacedLight::is_point)
+    {
         rest.extend(0..rays.len() as u32);
         return;
     }

@@ -244,6 +244,7 @@ impl LightSource for EnvironmentLight {
             level: 1.0,
             pdf,
             delta: false,
+            n: Vec3::ZERO,
         })
     }
 

@@ -60,6 +60,15 @@ impl LightBounds {
         .with_trig()
     }
 
+    /// A light within the box `min`..`max` emitting in every direction.
+    pub fn around(min: Vec3, max: Vec3, power: f32) -> Self {
+        Self {
+            min,
+            max,
+            ..Self::point(min, power)
+        }
+    }
+
     /// A light at point `p` emitting only within `half_angle` of unit `axis`.
     pub fn beam(p: Vec3, power: f32, axis: Vec3, half_angle: f32) -> Self {
         Self {

@@ -247,10 +247,26 @@ pub fn render_on_threads(
     pool.install(|| tracer_core::render::render(scene, setup, settings).0)
 }
 
-/// An LM-63-2002 file of `f(C, γ)` at the given angles (absolute photometry).
+/// An LM-63-2002 file of `f(C, γ)` at the given angles (absolute photometry), with a
+/// 0.1 x 0.2 m luminous rectangle.
 pub fn ies(vert: &[f64], horiz: &[f64], f: impl Fn(f64, f64) -> f64) -> String {
+    ies_sized(vert, horiz, f, [0.1, 0.2, 0.0])
+}
+
+/// [`ies`] with the luminous opening's width, length and height in metres (LM-63's fields).
+pub fn ies_sized(
+    vert: &[f64],
+    horiz: &[f64],
+    f: impl Fn(f64, f64) -> f64,
+    [width, length, height]: [f64; 3],
+) -> String {
     let mut s = String::from("IESNA:LM-63-2002\n[TEST] raygine\n[MANUFAC] tests\nTILT=NONE\n");
-    let _ = writeln!(s, "1 -1 1 {} {} 1 2 0.1 0.2 0", vert.len(), horiz.len());
+    let _ = writeln!(
+        s,
+        "1 -1 1 {} {} 1 2 {width} {length} {height}",
+        vert.len(),
+        horiz.len()
+    );
     s.push_str("1 1 50\n");
     let join = |v: &[f64]| {
         v.iter()
