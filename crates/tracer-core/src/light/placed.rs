@@ -115,8 +115,12 @@ impl LightSource for PlacedLight {
         true
     }
 
+    #[inline]
     fn samples_area(&self) -> bool {
-        self.source().samples_area()
+        match self {
+            PlacedLight::Goniometric(l) => l.samples_area(),
+            _ => false,
+        }
     }
 
     fn area_share(&self, p: Vec3) -> f32 {
