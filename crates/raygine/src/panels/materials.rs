@@ -1,9 +1,11 @@
-//! Materials per brep and part: Kd colour, Ks colour, glossiness; hide or isolate breps; the
+//! Materials per brep and part: Kd colour, Ks colour, glossiness (or base colour, metallic and
+//! roughness); hide or isolate breps; the
 //! surface clicked in the viewport is selected here.
 
 use crate::command::{Command, Commands, Edit};
 use crate::document::Document;
 use tracer_core::light::EmissionSides;
+use tracer_core::scene::Pbr;
 
 /// A part's name in the list: its own name when the format gives one, else its number, and
 /// beside it its material's name in the file ("proom2_0003 · wood").
@@ -143,18 +145,22 @@ pub fn materials_ui(
     };
     ui.strong(format!("Material of {label}"))
         .on_hover_text("Ctrl+S saves it in the sidecar under this key");
-    super::reflectance::reflectance_ui(ui, "Kd", "Kd, diffuse reflectance", &mut m.kd);
-    super::reflectance::reflectance_ui(ui, "Ks", "Ks, mirror reflectance", &mut m.ks);
-    ui.add(
-        egui::Slider::new(&mut m.glossiness, 0.0..=10_000.0)
-            .logarithmic(true)
-            .text("glossiness")
-            .update_while_editing(false),
-    )
-    .on_hover_text(
-        "Blinn-Phong exponent of the Ks lobe: 0 makes Ks a perfect mirror; in direct mode it \
-         is the point lights' highlight",
-    );
+    if let Some(pbr) = &mut m.pbr {
+        metal_rough_ui(ui, pbr);
+    } else {
+        super::reflectance::reflectance_ui(ui, "Kd", "Kd, diffuse reflectance", &mut m.kd);
+        super::reflectance::reflectance_ui(ui, "Ks", "Ks, mirror reflectance", &mut m.ks);
+        ui.add(
+            egui::Slider::new(&mut m.glossiness, 0.0..=10_000.0)
+                .logarithmic(true)
+                .text("glossiness")
+                .update_while_editing(false),
+        )
+        .on_hover_text(
+            "Blinn-Phong exponent of the Ks lobe: 0 makes Ks a perfect mirror; in direct mode \
+             it is the point lights' highlight",
+        );
+    }
     ui.add(
         egui::Slider::new(&mut m.emission_cd_m2, 0.0..=1.0e6)
             .logarithmic(true)
@@ -196,6 +202,9 @@ pub fn materials_ui(
         }
         *m = clamped;
     }
+    if m.pbr.is_some() {
+        return;
+    }
     let sums: [f32; 3] = std::array::from_fn(|c| m.kd[c] + m.ks[c] + m.kt[c]);
     let at_limit = sums.iter().any(|&v| v >= 0.999);
     let text = format!(
@@ -210,6 +219,28 @@ pub fn materials_ui(
     } else {
         ui.label(text);
     }
+}
+
+/// A metallic-roughness material's base colour, metallic and roughness (glTF's model).
+fn metal_rough_ui(ui: &mut egui::Ui, pbr: &mut Pbr) {
+    super::reflectance::reflectance_ui(
+        ui,
+        "base colour",
+        "base colour (metals: F0; others: diffuse)",
+        &mut pbr.base_color,
+    );
+    ui.add(
+        egui::Slider::new(&mut pbr.metallic, 0.0..=1.0)
+            .text("metallic")
+            .update_while_editing(false),
+    )
+    .on_hover_text("0: a dielectric over a diffuse base; 1: a metal tinted by the base colour");
+    ui.add(
+        egui::Slider::new(&mut pbr.roughness, 0.0..=1.0)
+            .text("roughness")
+            .update_while_editing(false),
+    )
+    .on_hover_text("Perceptual roughness: GGX α = roughness²");
 }
 
 fn sides_name(s: EmissionSides) -> &'static str {

@@ -191,7 +191,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
             return sample;
         }
         let p = v.point;
-        if mat.ks.max_element() <= 0.0 && mat.kt.max_element() <= 0.0 {
+        if mat.ks.max_element() <= 0.0 && mat.kt.max_element() <= 0.0 && mat.pbr.is_none() {
             let e = self.irradiance_from(p, v.n, v.ng, v.origin, rng, &mut rays);
             sample.rgb = le + mat.kd_over_pi * e;
             sample.illuminance_lx = luminance(e);

@@ -142,7 +142,11 @@ pub fn trace_guide(lit: &LitScene<'_>, ray: &Ray, rng: &mut SampleRng) -> Guide 
             } else {
                 Vec3::ZERO
             };
-            let reflectance = mat.kd_over_pi * std::f32::consts::PI + glossy;
+            // A metallic-roughness surface: its base colour (glTF's albedo).
+            let reflectance = match &mat.pbr {
+                Some(pbr) => pbr.base_color,
+                None => mat.kd_over_pi * std::f32::consts::PI + glossy,
+            };
             // A surface that only glows is its own colour to the denoiser: white.
             let albedo = if reflectance.max_element() <= 0.0 && mat.emission.max_element() > 0.0 {
                 Vec3::ONE

@@ -16,64 +16,57 @@ use serde::{Deserialize, Serialize};
 /// the front face, outside 1): Fresnel reflection R(θ) and refraction 1 − R by Snell's law, with
 /// total internal reflection, both times `kt`. `Kd + Ks + Kt <= 1` per channel. The direct
 /// (coursework) integrator does not trace glass: there `kt` is absorbed.
+///
+/// Metallic-roughness (glTF 2.0 Appendix B): [`Material::pbr`] replaces Kd, Ks and glossiness
+/// with a base colour, metallic and roughness (see `crate::shading::MetalRough`); `ior` then sets
+/// the dielectric layer's F0.
+///
+/// The sidecar's keys are those of `super::material_keys::MaterialKeys`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "super::material_keys::MaterialKeys")]
+#[serde(into = "super::material_keys::MaterialKeys")]
 pub struct Material {
     /// Diffuse reflectance Kd per channel.
     pub kd: [f32; 3],
     /// Mirror reflectance Ks per channel.
-    #[serde(default)]
     pub ks: [f32; 3],
     /// Blinn-Phong exponent g of the highlight of point lights (0: no highlight, mirror only).
-    #[serde(default)]
     pub glossiness: f32,
     /// Weight Kt of the smooth dielectric interface (glass) per channel.
-    #[serde(default, skip_serializing_if = "is_black")]
     pub kt: [f32; 3],
-    /// Refractive index of the inside (behind the front face) when `kt` > 0.
-    #[serde(default = "glass_ior", skip_serializing_if = "is_glass_ior")]
+    /// Refractive index of the inside (behind the front face) when `kt` > 0; of the dielectric
+    /// layer of a metallic-roughness material.
     pub ior: f32,
     /// Luminance the surface emits as a Lambertian emitter, cd/m² (0: not a light).
-    #[serde(default, skip_serializing_if = "is_zero")]
     pub emission_cd_m2: f32,
     /// RGB tint of the emission, normalised to luminance 1 (so `emission_cd_m2` stays cd/m²).
-    #[serde(default = "white", skip_serializing_if = "is_white")]
     pub emission_color: [f32; 3],
     /// Which faces emit: both (default), front or back.
-    #[serde(default, skip_serializing_if = "is_both")]
     pub emission_sides: EmissionSides,
+    /// Metallic-roughness instead of Kd, Ks and glossiness.
+    pub pbr: Option<Pbr>,
 }
 
-fn is_zero(x: &f32) -> bool {
-    *x == 0.0
+/// glTF's metallic-roughness parameters (its defaults: white, metallic 1, roughness 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pbr {
+    pub base_color: [f32; 3],
+    pub metallic: f32,
+    pub roughness: f32,
 }
 
-fn is_black(c: &[f32; 3]) -> bool {
-    *c == [0.0; 3]
+impl Default for Pbr {
+    fn default() -> Self {
+        Self {
+            base_color: [1.0; 3],
+            metallic: 1.0,
+            roughness: 1.0,
+        }
+    }
 }
 
 /// Default refractive index: crown glass.
 pub const GLASS_IOR: f32 = 1.5;
-
-fn glass_ior() -> f32 {
-    GLASS_IOR
-}
-
-fn is_glass_ior(x: &f32) -> bool {
-    *x == GLASS_IOR
-}
-
-fn white() -> [f32; 3] {
-    [1.0; 3]
-}
-
-fn is_white(c: &[f32; 3]) -> bool {
-    *c == [1.0; 3]
-}
-
-fn is_both(s: &EmissionSides) -> bool {
-    *s == EmissionSides::Both
-}
 
 impl Default for Material {
     /// Neutral grey diffuse: Kd 0.7, Ks 0.
@@ -87,6 +80,7 @@ impl Default for Material {
             emission_cd_m2: 0.0,
             emission_color: [1.0; 3],
             emission_sides: EmissionSides::Both,
+            pbr: None,
         }
     }
 }
@@ -153,6 +147,18 @@ impl Material {
         let emission_color = self
             .emission_color
             .map(|c| if c.is_finite() { c.max(0.0) } else { 0.0 });
+        let unit = |x: f32| {
+            if x.is_finite() {
+                x.clamp(0.0, 1.0)
+            } else {
+                1.0
+            }
+        };
+        let pbr = self.pbr.map(|p| Pbr {
+            base_color: p.base_color.map(fix),
+            metallic: unit(p.metallic),
+            roughness: unit(p.roughness),
+        });
         let out = Material {
             kd,
             ks,
@@ -162,6 +168,7 @@ impl Material {
             emission_cd_m2,
             emission_color,
             emission_sides: self.emission_sides,
+            pbr,
         };
         (out, out != *self)
     }

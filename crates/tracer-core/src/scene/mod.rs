@@ -13,6 +13,7 @@ mod ground;
 mod light;
 mod light_spec;
 mod material;
+mod material_keys;
 mod notes;
 mod pick;
 mod setup;
@@ -35,7 +36,8 @@ pub use light::{
     Spot, luminance,
 };
 pub use light_spec::{GridContext, GridSpec, LightKindSpec, LightSpec, en12464_spacing_m};
-pub use material::Material;
+pub use material::{Material, Pbr};
+pub use material_keys::MaterialKeys;
 pub use notes::{SourceText, luminaire_near_surface, luminaire_shape, relative_below};
 pub use setup::Setup;
 pub use sidecar::{Sidecar, sidecar_path};

@@ -8,14 +8,18 @@
 //! `f cos / pdf` with the mixture's full density (one-sample MIS over the lobes), so the estimate
 //! stays unbiased whichever lobe was picked.
 //!
+//! A metallic-roughness material ([`MetalRough`]: GGX over a Lambertian base, glTF 2.0) is
+//! one smooth lobe instead, evaluated and sampled in the normal's frame.
+//!
 //! The non-delta part is symmetric in (wo, wi), so light paths use the same `eval` and `pdf`.
 //! Refraction is not symmetric: camera paths (radiance) scale a refracted sample by
 //! (η_wo / η_wi)², light paths (importance, [`Bsdf::for_light_paths`]) do not.
 
+use super::MetalRough;
 use super::dielectric::{fresnel, refract};
 use super::material::PreparedMaterial;
 use crate::light::luminance;
-use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
+use crate::sampling::{SampleRng, cosine_hemisphere, frame_from_normal, to_world};
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -47,6 +51,15 @@ pub struct Bsdf {
     eta: f32,
     /// Light paths (importance): no (η_wo / η_wi)² on refraction.
     importance: bool,
+    /// Metallic-roughness: the only lobe.
+    pbr: Option<MetalRough>,
+}
+
+/// Unit `n`'s frame: `w` in it, and back.
+#[inline]
+fn local(n: Vec3, w: Vec3) -> Vec3 {
+    let (t, b) = frame_from_normal(n);
+    Vec3::new(w.dot(t), w.dot(b), w.dot(n))
 }
 
 impl Bsdf {
@@ -70,6 +83,7 @@ impl Bsdf {
             p_reflective,
             eta: m.ior,
             importance: false,
+            pbr: m.pbr,
         }
     }
 
@@ -86,12 +100,17 @@ impl Bsdf {
     }
 
     pub fn is_black(&self) -> bool {
-        self.kd.max_element() <= 0.0 && self.ks.max_element() <= 0.0 && self.kt.max_element() <= 0.0
+        self.pbr.is_none()
+            && self.kd.max_element() <= 0.0
+            && self.ks.max_element() <= 0.0
+            && self.kt.max_element() <= 0.0
     }
 
     /// Whether any lobe is not a delta (light sampling pays off).
     pub fn has_smooth_lobe(&self) -> bool {
-        self.kd.max_element() > 0.0 || (self.glossiness > 0.0 && self.ks.max_element() > 0.0)
+        self.pbr.is_some()
+            || self.kd.max_element() > 0.0
+            || (self.glossiness > 0.0 && self.ks.max_element() > 0.0)
     }
 
     fn is_mirror(&self) -> bool {
@@ -103,6 +122,9 @@ impl Bsdf {
     pub fn eval(&self, n: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
         if n.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
             return Vec3::ZERO;
+        }
+        if let Some(pbr) = &self.pbr {
+            return pbr.eval(local(n, wo), local(n, wi));
         }
         let mut f = self.kd / PI;
         if !self.is_mirror() {
@@ -119,6 +141,9 @@ impl Bsdf {
         let cos_i = n.dot(wi);
         if cos_i <= 0.0 || n.dot(wo) <= 0.0 {
             return 0.0;
+        }
+        if let Some(pbr) = &self.pbr {
+            return pbr.pdf(local(n, wo), local(n, wi));
         }
         let mut pdf = self.p_diffuse * cos_i / PI;
         let p_glossy = self.p_reflective - self.p_diffuse;
@@ -141,6 +166,17 @@ impl Bsdf {
         }
         let pick = rng.next_f32();
         let (u, v) = rng.next_2d();
+        if let Some(pbr) = &self.pbr {
+            let (t, b) = frame_from_normal(n);
+            let lo = Vec3::new(wo.dot(t), wo.dot(b), wo.dot(n));
+            let (li, f, pdf) = pbr.sample(lo, pick, [u, v])?;
+            return Some(BsdfSample {
+                wi: t * li.x + b * li.y + n * li.z,
+                weight: f * (li.z / pdf),
+                pdf,
+                delta: false,
+            });
+        }
         if pick >= self.p_reflective {
             return self.sample_glass(n, wo, u);
         }
@@ -231,6 +267,7 @@ mod tests {
             kt: Vec3::ZERO,
             ior: 1.5,
             emission: Vec3::ZERO,
+            pbr: None,
         }
     }
 

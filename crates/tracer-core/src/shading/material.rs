@@ -1,6 +1,7 @@
-//! A material's per-render constants: Kd / π, the highlight's normalisation, glass and emission,
-//! so the per-ray code does no conversions.
+//! A material's per-render constants: Kd / π, the highlight's normalisation, glass, emission and
+//! the metallic-roughness model, so the per-ray code does no conversions.
 
+use super::MetalRough;
 use crate::scene::Material;
 use glam::Vec3;
 
@@ -16,6 +17,8 @@ pub struct PreparedMaterial {
     pub ior: f32,
     /// Emitted luminance per channel, cd/m² (zero for surfaces that are not lights).
     pub emission: Vec3,
+    /// Metallic-roughness instead of Kd, Ks and glossiness.
+    pub pbr: Option<MetalRough>,
 }
 
 impl PreparedMaterial {
@@ -29,6 +32,9 @@ impl PreparedMaterial {
             kt: m.kt(),
             ior: m.ior,
             emission: m.emission(),
+            pbr: m
+                .pbr
+                .map(|p| MetalRough::new(Vec3::from(p.base_color), p.metallic, p.roughness, m.ior)),
         }
     }
 }

@@ -5,11 +5,15 @@
 mod bsdf;
 mod dielectric;
 mod material;
+mod metal_rough;
+mod microfacet;
 mod surface;
 
 pub use bsdf::{Bsdf, BsdfSample};
 pub use dielectric::{fresnel, refract};
 pub use material::PreparedMaterial;
+pub use metal_rough::{MetalRough, dielectric_f0};
+pub use microfacet::{Ggx, MIN_ALPHA};
 pub use surface::Surface;
 
 use crate::lit_scene::LitScene;

@@ -59,7 +59,7 @@ fn is_matte(mat: &PreparedMaterial, max_depth: u32) -> bool {
     // The walk ends at depth 0 or where `ks.max_element() <= 0.0` (not for NaN).
     let ends = mat.ks.max_element() <= 0.0;
     let mirrors = max_depth > 0 && !ends;
-    !glows && !glossy && !mirrors
+    !glows && !glossy && !mirrors && mat.pbr.is_none()
 }
 
 /// Shades the first hits `hits` of the camera rays `rays` where the sample ends (misses, and

@@ -8,7 +8,7 @@ use crate::bvh::Hit;
 use crate::geometry::Ray;
 use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
-use crate::shading::{PreparedMaterial, Surface};
+use crate::shading::{Bsdf, PreparedMaterial, Surface};
 use glam::Vec3;
 
 /// What one light adds at a hit when its shadow ray is free: illuminance (lx) and reflected
@@ -176,8 +176,15 @@ fn direct_light(
     contributions: &mut Vec<Contribution>,
 ) {
     let (p, n, origin) = (surface.p, surface.ns, surface.origin);
-    let view = (mat.glossiness > 0.0).then(view);
+    let view = (mat.glossiness > 0.0 || mat.pbr.is_some()).then(view);
+    // A metallic-roughness surface evaluates its BSDF (glTF's model) for every light.
+    let metal_rough = view
+        .filter(|_| mat.pbr.is_some())
+        .map(|view| (Bsdf::new(mat), view));
     let brdf = |wi: Vec3| {
+        if let Some((bsdf, view)) = &metal_rough {
+            return bsdf.eval(n, *view, wi);
+        }
         let mut f = mat.kd_over_pi;
         if let Some(view) = view {
             let h = (wi + view).normalize_or_zero();
