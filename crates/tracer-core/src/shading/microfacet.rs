@@ -117,9 +117,9 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
     use super::*;
 
-    /// Midpoint quadrature of `f(ω)` over the upper hemisphere, `q` steps in θ.
-    fn hemisphere(q: usize, mut f: impl FnMut(Vec3) -> f64) -> f64 {
-        let mut sum = 0.0;
+    /// The midpoint rule's directions over the upper hemisphere, `q` steps in θ, each with
+    /// its solid angle.
+    fn each_direction(q: usize, mut f: impl FnMut(Vec3, f64)) {
         let (dt, dp) = (
             0.5 * std::f64::consts::PI / q as f64,
             std::f64::consts::PI / q as f64,
@@ -133,9 +133,15 @@ mod tests {
                     (t.sin() * p.sin()) as f32,
                     t.cos() as f32,
                 );
-                sum += f(w) * t.sin() * dt * dp;
+                f(w, t.sin() * dt * dp);
             }
         }
+    }
+
+    /// Midpoint quadrature of `f(ω)` over the upper hemisphere.
+    fn hemisphere(q: usize, mut f: impl FnMut(Vec3) -> f64) -> f64 {
+        let mut sum = 0.0;
+        each_direction(q, |w, d_omega| sum += f(w) * d_omega);
         sum
     }
 
@@ -185,24 +191,10 @@ mod tests {
             }
             // Expected counts: the density integrated over each cell, fine quadrature.
             let mut expected = vec![0.0f64; nt * np];
-            let q = 1200;
-            let (dt, dp) = (
-                0.5 * std::f64::consts::PI / q as f64,
-                std::f64::consts::PI / q as f64,
-            );
-            for i in 0..q {
-                let t = (i as f64 + 0.5) * dt;
-                for j in 0..2 * q {
-                    let p = (j as f64 + 0.5) * dp;
-                    let h = Vec3::new(
-                        (t.sin() * p.cos()) as f32,
-                        (t.sin() * p.sin()) as f32,
-                        t.cos() as f32,
-                    );
-                    expected[cell(h)] +=
-                        f64::from(ggx.visible_normal_pdf(wo, h)) * t.sin() * dt * dp * f64::from(n);
-                }
-            }
+            each_direction(1200, |h, d_omega| {
+                expected[cell(h)] +=
+                    f64::from(ggx.visible_normal_pdf(wo, h)) * d_omega * f64::from(n);
+            });
             let mut chi2 = 0.0;
             let mut dof = 0;
             for (o, e) in observed.iter().zip(&expected) {

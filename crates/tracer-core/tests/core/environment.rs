@@ -68,15 +68,7 @@ fn a_convex_object_under_a_uniform_sky_reads_rho_times_l() {
     ] {
         let (sc, st) = cube_setup(rho, uniform(l));
         let (film, _) = render(&sc, &st, &settings(integrator, spp));
-        let n = film.pixels.len() as f64;
-        let mean = film.pixels.iter().map(|p| p.mean_luminance()).sum::<f64>() / n;
-        let se = film
-            .pixels
-            .iter()
-            .map(|p| p.luminance_std_error().unwrap().powi(2))
-            .sum::<f64>()
-            .sqrt()
-            / n;
+        let (mean, se) = film_mean_luminance(&film);
         check(
             &format!("{integrator:?} furnace"),
             mean,

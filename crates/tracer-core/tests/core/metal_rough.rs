@@ -138,16 +138,7 @@ fn plane_reading(pbr: Pbr, theta_deg: f64, integrator: IntegratorKind, spp: u32)
         ..RenderSettings::default()
     };
     let (film, _) = render(&sc, &st, &settings);
-    let n = film.pixels.len() as f64;
-    let mean = film.pixels.iter().map(|p| p.mean_luminance()).sum::<f64>() / n;
-    let se = film
-        .pixels
-        .iter()
-        .map(|p| p.luminance_std_error().unwrap().powi(2))
-        .sum::<f64>()
-        .sqrt()
-        / n;
-    (mean, se)
+    film_mean_luminance(&film)
 }
 
 /// Rough metal (F0 = 1) and a rough dielectric over a coloured base, roughness 0.1-1, at
