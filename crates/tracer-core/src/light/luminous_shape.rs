@@ -349,23 +349,12 @@ impl LuminousShape {
                 length,
                 width,
                 height,
-            } => {
-                let h = Vec3::new(length, width, height) * 0.5;
-                let faces = Vec3::new(width * height, length * height, length * width);
-                let outside = r.abs().cmpgt(h);
-                [0, 1, 2]
-                    .iter()
-                    .filter(|&&k| outside.test(k))
-                    .map(|&k| faces[k])
-                    .sum()
-            }
+            } => box_facing_areas(Vec3::new(length, width, height), r)
+                .iter()
+                .sum(),
             LuminousShape::Cylinder { diameter, height } => {
-                let cap = if r.z.abs() > height * 0.5 {
-                    disc_area(diameter)
-                } else {
-                    0.0
-                };
-                cap + mantle_arc(diameter, r) * diameter * 0.5 * height
+                let (arc, cap) = cylinder_facing(diameter, height, r);
+                arc * diameter * 0.5 * height + cap
             }
             _ => self.area(),
         }
@@ -383,10 +372,7 @@ impl LuminousShape {
             } => {
                 let size = Vec3::new(length, width, height);
                 let h = size * 0.5;
-                // The visible face across each axis, with its area.
-                let faces = Vec3::new(width * height, length * height, length * width);
-                let areas: [f32; 3] =
-                    std::array::from_fn(|k| if r[k].abs() > h[k] { faces[k] } else { 0.0 });
+                let areas = box_facing_areas(size, r);
                 let total: f32 = areas.iter().sum();
                 if total <= 0.0 {
                     return None;
@@ -410,13 +396,8 @@ impl LuminousShape {
                 Some((p, n))
             }
             LuminousShape::Cylinder { diameter, height } => {
-                let arc = mantle_arc(diameter, r);
+                let (arc, cap) = cylinder_facing(diameter, height, r);
                 let mantle = arc * diameter * 0.5 * height;
-                let cap = if r.z.abs() > height * 0.5 {
-                    disc_area(diameter)
-                } else {
-                    0.0
-                };
                 if mantle + cap <= 0.0 {
                     return None;
                 }
@@ -525,6 +506,30 @@ impl LuminousShape {
             }
         }
     }
+}
+
+/// The area of the face of a box of `size` across each axis that faces `r` (local), 0 where
+/// `r` lies between the two faces.
+fn box_facing_areas(size: Vec3, r: Vec3) -> [f32; 3] {
+    let faces = Vec3::new(size.y * size.z, size.x * size.z, size.x * size.y);
+    std::array::from_fn(|k| {
+        if r[k].abs() > size[k] * 0.5 {
+            faces[k]
+        } else {
+            0.0
+        }
+    })
+}
+
+/// What of a cylinder faces `r` (local): the angle of its mantle, and the area of the end
+/// towards `r` (0 when `r` lies between the ends).
+fn cylinder_facing(diameter: f32, height: f32, r: Vec3) -> (f32, f32) {
+    let cap = if r.z.abs() > height * 0.5 {
+        disc_area(diameter)
+    } else {
+        0.0
+    };
+    (mantle_arc(diameter, r), cap)
 }
 
 /// The angle of a cylinder's mantle that faces `r` (local): 2 acos(R / ρ) from a distance ρ

@@ -132,21 +132,24 @@ mod tests {
         Vec3::new(w[0] as f32, w[1] as f32, w[2] as f32)
     }
 
-    /// Directional albedo A(θo) = ∫ f cos θi dωi by quadrature of `eval` (the sampler must
-    /// agree with it: the renders check `eval` against the formulas).
-    fn albedo(m: &MetalRough, theta_o: f64) -> f64 {
-        let wo = v(dir(theta_o, 0.0));
-        let q = 500;
+    /// Midpoint quadrature of `f(ωi)` over the upper hemisphere, `q` steps in θ.
+    fn over_hemisphere(q: usize, f: impl Fn([f64; 3]) -> f64) -> f64 {
         let (dt, dp) = (0.5 * PI64 / q as f64, PI64 / q as f64);
         let mut sum = 0.0;
         for i in 0..q {
             let t = (i as f64 + 0.5) * dt;
             for j in 0..2 * q {
-                let wi = dir(t, (j as f64 + 0.5) * dp);
-                sum += f64::from(m.eval(wo, v(wi)).y) * wi[2] * t.sin() * dt * dp;
+                sum += f(dir(t, (j as f64 + 0.5) * dp)) * t.sin() * dt * dp;
             }
         }
         sum
+    }
+
+    /// Directional albedo A(θo) = ∫ f cos θi dωi by quadrature of `eval` (the sampler must
+    /// agree with it: the renders check `eval` against the formulas).
+    fn albedo(m: &MetalRough, theta_o: f64) -> f64 {
+        let wo = v(dir(theta_o, 0.0));
+        over_hemisphere(500, |wi| f64::from(m.eval(wo, v(wi)).y) * wi[2])
     }
 
     /// f is reciprocal, and the sampled weights average to the quadrature albedo, for a rough
@@ -193,16 +196,7 @@ mod tests {
     fn the_density_integrates_to_at_most_one() {
         let m = MetalRough::new(Vec3::splat(0.5), 0.5, 0.5, 1.5);
         let wo = v(dir(0.6, 0.0));
-        let q = 600;
-        let (dt, dp) = (0.5 * PI64 / q as f64, PI64 / q as f64);
-        let mut sum = 0.0;
-        for i in 0..q {
-            let t = (i as f64 + 0.5) * dt;
-            for j in 0..2 * q {
-                let wi = v(dir(t, (j as f64 + 0.5) * dp));
-                sum += f64::from(m.pdf(wo, wi)) * t.sin() * dt * dp;
-            }
-        }
+        let sum = over_hemisphere(600, |wi| f64::from(m.pdf(wo, v(wi))));
         assert!(sum <= 1.0 + 2e-3 && sum > 0.95, "{sum}");
     }
 }
