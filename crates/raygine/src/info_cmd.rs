@@ -23,15 +23,26 @@ pub fn run(args: &InfoArgs) -> Result<()> {
 }
 
 fn material_json(name: &str, m: &Material) -> Value {
-    json!({
+    let mut v = json!({
         "name": name,
-        "kd": m.kd,
-        "ks": m.ks,
-        "glossiness": m.glossiness,
         "emission_cd_m2": m.emission_cd_m2,
         "emission_color": m.emission_color,
         "emission_sides": m.emission_sides,
-    })
+    });
+    let model = match &m.pbr {
+        Some(p) => json!({
+            "base_color": p.base_color,
+            "metallic": p.metallic,
+            "roughness": p.roughness,
+            "transmission": p.transmission,
+            "ior": m.ior,
+        }),
+        None => json!({"kd": m.kd, "ks": m.ks, "glossiness": m.glossiness}),
+    };
+    if let (Some(v), Value::Object(model)) = (v.as_object_mut(), model) {
+        v.extend(model);
+    }
+    v
 }
 
 /// The JSON description (also the source of the text form).
@@ -104,10 +115,23 @@ fn print_text(v: &Value) {
     );
     println!("materials (sidecar keys):");
     for m in v["materials"].as_array().into_iter().flatten() {
-        let mut line = format!(
-            "  {}: kd {} ks {} glossiness {}",
-            m["name"], m["kd"], m["ks"], m["glossiness"]
-        );
+        let mut line = if m.get("base_color").is_some() {
+            format!(
+                "  {}: base_color {} metallic {} roughness {}",
+                m["name"], m["base_color"], m["metallic"], m["roughness"]
+            )
+        } else {
+            format!(
+                "  {}: kd {} ks {} glossiness {}",
+                m["name"], m["kd"], m["ks"], m["glossiness"]
+            )
+        };
+        if m["transmission"].as_f64().unwrap_or(0.0) > 0.0 {
+            line.push_str(&format!(
+                ", transmission {} (ior {})",
+                m["transmission"], m["ior"]
+            ));
+        }
         if m["emission_cd_m2"].as_f64().unwrap_or(0.0) > 0.0 {
             line.push_str(&format!(
                 ", emits {} cd/m² ({} faces)",

@@ -265,7 +265,13 @@ fn hover_info(worker: &RenderWorker, doc: &Document, fx: f32, fy: f32) -> Option
         let lx = f.illuminance_measured(i).then(|| f.shown_illuminance(i));
         Some((luminance(f.shown_rgb(i)), lx))
     })?;
-    let surface = pick_slot(worker, fx, fy).map(|s| doc.scene.slot_label(s));
+    let surface = pick_slot(worker, fx, fy).map(|s| {
+        let label = doc.scene.slot_label(s);
+        match doc.setup.materials.get(s as usize) {
+            Some(m) => format!("{label}: {}", crate::panels::materials::summary(m)),
+            None => label,
+        }
+    });
     Some(HoverInfo {
         luminance: lum,
         illuminance: lx,

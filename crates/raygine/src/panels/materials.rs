@@ -5,7 +5,7 @@
 use crate::command::{Command, Commands, Edit};
 use crate::document::Document;
 use tracer_core::light::EmissionSides;
-use tracer_core::scene::Pbr;
+use tracer_core::scene::{Material, Pbr};
 
 /// A part's name in the list: its own name when the format gives one, else its number, and
 /// beside it its material's name in the file ("proom2_0003 · wood").
@@ -145,8 +145,9 @@ pub fn materials_ui(
     };
     ui.strong(format!("Material of {label}"))
         .on_hover_text("Ctrl+S saves it in the sidecar under this key");
+    model_ui(ui, m);
     if let Some(pbr) = &mut m.pbr {
-        metal_rough_ui(ui, pbr);
+        metal_rough_ui(ui, pbr, &mut m.ior);
     } else {
         super::reflectance::reflectance_ui(ui, "Kd", "Kd, diffuse reflectance", &mut m.kd);
         super::reflectance::reflectance_ui(ui, "Ks", "Ks, mirror reflectance", &mut m.ks);
@@ -221,8 +222,106 @@ pub fn materials_ui(
     }
 }
 
-/// A metallic-roughness material's base colour, metallic and roughness (glTF's model).
-fn metal_rough_ui(ui: &mut egui::Ui, pbr: &mut Pbr) {
+/// The model menu: switching converts the values (glTF's reader's Blinn-Phong approximation one
+/// way, its inverse the other), so the surface keeps about its look.
+fn model_ui(ui: &mut egui::Ui, m: &mut Material) {
+    const CLASSIC: &str = "Lambert + Blinn-Phong";
+    const GLTF: &str = "metallic-roughness (glTF)";
+    let mut pbr = m.pbr.is_some();
+    egui::ComboBox::from_label("model")
+        .selected_text(if pbr { GLTF } else { CLASSIC })
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut pbr, false, CLASSIC);
+            ui.selectable_value(&mut pbr, true, GLTF);
+        });
+    match (pbr, m.pbr) {
+        (true, None) => {
+            // α from the Beckmann-equivalent exponent g = 2/α² − 2; roughness = √α.
+            let alpha = (2.0 / (m.glossiness.max(0.0) + 2.0)).sqrt();
+            let roughness = if m.glossiness > 0.0 {
+                alpha.sqrt()
+            } else {
+                0.0
+            };
+            let metal = m.ks.iter().sum::<f32>() > m.kd.iter().sum::<f32>();
+            *m = Material {
+                pbr: Some(Pbr {
+                    base_color: if metal { m.ks } else { m.kd },
+                    metallic: if metal { 1.0 } else { 0.0 },
+                    roughness: if metal || m.glossiness > 0.0 {
+                        roughness
+                    } else {
+                        1.0
+                    },
+                    transmission: 0.0,
+                }),
+                kd: [0.0; 3],
+                ks: [0.0; 3],
+                glossiness: 0.0,
+                kt: [0.0; 3],
+                ..*m
+            };
+        }
+        (false, Some(p)) => {
+            let alpha = p.roughness * p.roughness;
+            let g = if alpha > 0.0 {
+                2.0 / (alpha * alpha) - 2.0
+            } else {
+                0.0
+            };
+            *m = Material {
+                kd: p.base_color.map(|c| c * (1.0 - p.metallic) * 0.96),
+                ks: p
+                    .base_color
+                    .map(|c| c * p.metallic + 0.04 * (1.0 - p.metallic)),
+                glossiness: if g > 10_000.0 { 0.0 } else { g.max(1.0) },
+                pbr: None,
+                ..*m
+            };
+        }
+        _ => {}
+    }
+}
+
+/// A material's values on one line, for the viewport's hover read-out.
+pub fn summary(m: &Material) -> String {
+    let rgb = |c: [f32; 3]| format!("{:.2} {:.2} {:.2}", c[0], c[1], c[2]);
+    let mut s = match &m.pbr {
+        Some(p) => {
+            let mut s = format!(
+                "base colour {}, metallic {:.2}, roughness {:.2}",
+                rgb(p.base_color),
+                p.metallic,
+                p.roughness
+            );
+            if p.transmission > 0.0 {
+                s += &format!(", transmission {:.2}, ior {:.2}", p.transmission, m.ior);
+            }
+            s
+        }
+        None => {
+            let mut s = format!("Kd {}", rgb(m.kd));
+            if m.ks.iter().any(|&k| k > 0.0) {
+                s += &format!(", Ks {}, glossiness {:.0}", rgb(m.ks), m.glossiness);
+            }
+            if m.kt.iter().any(|&k| k > 0.0) {
+                s += &format!(", Kt {}, ior {:.2}", rgb(m.kt), m.ior);
+            }
+            s
+        }
+    };
+    if m.emission_cd_m2 > 0.0 {
+        s += &format!(
+            ", emits {} cd/m²",
+            crate::format::format_value(m.emission_cd_m2)
+        );
+    }
+    s
+}
+
+/// A metallic-roughness material's base colour, metallic, roughness, transmission and the
+/// dielectric's index (glTF's model).
+fn metal_rough_ui(ui: &mut egui::Ui, pbr: &mut Pbr, ior: &mut f32) {
     super::reflectance::reflectance_ui(
         ui,
         "base colour",
@@ -241,6 +340,23 @@ fn metal_rough_ui(ui: &mut egui::Ui, pbr: &mut Pbr) {
             .update_while_editing(false),
     )
     .on_hover_text("Perceptual roughness: GGX α = roughness²");
+    ui.add(
+        egui::Slider::new(&mut pbr.transmission, 0.0..=1.0)
+            .text("transmission")
+            .update_while_editing(false),
+    )
+    .on_hover_text(
+        "glTF's thin-walled transmission: light passes through the dielectric, tinted by the \
+         base colour (traced in path, bdpt and light-tracing modes)",
+    );
+    ui.add(
+        egui::Slider::new(ior, 1.0..=3.0)
+            .text("ior")
+            .update_while_editing(false),
+    )
+    .on_hover_text(
+        "Refractive index of the dielectric layer: F0 = ((ior − 1)/(ior + 1))², 0.04 at 1.5",
+    );
 }
 
 fn sides_name(s: EmissionSides) -> &'static str {

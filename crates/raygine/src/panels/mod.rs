@@ -6,7 +6,7 @@ mod camera;
 mod environment;
 mod frame;
 mod lights;
-mod materials;
+pub mod materials;
 mod measure;
 mod menu;
 mod notes;

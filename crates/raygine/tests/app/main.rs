@@ -9,6 +9,7 @@ mod commands;
 mod denoise;
 mod environment;
 mod first_view;
+mod materials;
 mod rough_edges;
 mod viewer;
 

@@ -106,6 +106,22 @@ pub struct MaterialDescription {
     pub transmission: Option<TransmissionDescription>,
     /// Light the surface emits itself.
     pub emission: Option<EmissionDescription>,
+    /// glTF's metallic-roughness model when the format gives it: raygine then draws it instead
+    /// of `diffuse`, `specular` and `glossiness` (which stay a Blinn-Phong approximation for
+    /// readers of the description) and instead of `transmission`.
+    pub metal_rough: Option<MetalRoughDescription>,
+}
+
+/// glTF 2.0's metallic-roughness parameters (fractions in 0..=1, linear RGB).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MetalRoughDescription {
+    pub base_color: [f32; 3],
+    pub metallic: f32,
+    pub roughness: f32,
+    /// Thin-walled transmission of the dielectric (`KHR_materials_transmission`).
+    pub transmission: f32,
+    /// Refractive index of the dielectric layer (`KHR_materials_ior`, 1.5 by default).
+    pub ior: f32,
 }
 
 /// Transmission as formats describe it (fractions of the incident light).

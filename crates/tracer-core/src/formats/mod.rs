@@ -20,8 +20,8 @@ pub mod shp;
 
 pub use description::{
     CameraDescription, EmissionDescription, LightDescription, LightDistribution,
-    MaterialDescription, MeshDescription, PartDescription, PlacementDescription, SceneDescription,
-    SceneFormat, TransmissionDescription,
+    MaterialDescription, MeshDescription, MetalRoughDescription, PartDescription,
+    PlacementDescription, SceneDescription, SceneFormat, TransmissionDescription,
 };
 pub use error::FormatError;
 pub use scene_file::{

@@ -340,7 +340,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         let mut v = v;
         let mut bounces = bounces;
         for _ in 0..MAX_VERTICES {
-            let bsdf = bsdf_at(lit, v.prim, v.wo);
+            let bsdf = bsdf_at(lit, v.prim, v.wo, false);
             if bsdf.is_black() {
                 break;
             }

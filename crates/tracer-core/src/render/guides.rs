@@ -130,7 +130,7 @@ pub fn trace_guide(lit: &LitScene<'_>, ray: &Ray, rng: &mut SampleRng) -> Guide 
             return Guide::default();
         };
         let (surface, wo) = frame(lit, &hit, &ray);
-        let bsdf = bsdf_at(lit, hit.prim, wo);
+        let bsdf = bsdf_at(lit, hit.prim, wo, false);
         let mat = lit.material_of(hit.prim);
         let guide = |albedo: Vec3| Guide {
             albedo: (throughput * albedo).clamp(Vec3::ZERO, Vec3::ONE),

@@ -3,7 +3,7 @@
 //! the parts empty and raygine's own defaults apply.
 
 use super::camera::Camera;
-use super::material::Material;
+use super::material::{Material, Pbr};
 use super::units::{Handedness, LengthUnit};
 use crate::formats::{LightDescription, LightDistribution, MaterialDescription, SceneDescription};
 use crate::light::{Light, LightKind, Luminaire, LuminairePlacement, Spot};
@@ -91,8 +91,8 @@ impl Design {
     }
 }
 
-/// A described material as raygine's model draws it: diffuse and specular reflectance and the
-/// lobe's glossiness carry over (clamped into range, with a note), emission becomes a
+/// A described material as raygine's model draws it: glTF's metallic-roughness when the
+/// description has it; else diffuse and specular reflectance and the lobe's glossiness carry over (clamped into range, with a note), emission becomes a
 /// Lambertian emitter, clear transmission becomes glass (Kt, ior; the global-illumination
 /// integrators trace it), diffuse transmission is noted once per material and absorbed.
 pub fn material_from_description(m: &MaterialDescription, notes: &mut Vec<String>) -> Material {
@@ -107,21 +107,29 @@ pub fn material_from_description(m: &MaterialDescription, notes: &mut Vec<String
         out.emission_color = e.color;
         out.emission_sides = e.sides;
     }
-    if let Some(t) = m.transmission {
+    if let Some(mr) = m.metal_rough {
+        // glTF's model replaces the Blinn-Phong approximation and the glass.
+        out = Material {
+            kd: [0.0; 3],
+            ks: [0.0; 3],
+            glossiness: 0.0,
+            ior: mr.ior,
+            pbr: Some(Pbr {
+                base_color: mr.base_color,
+                metallic: mr.metallic,
+                roughness: mr.roughness,
+                transmission: mr.transmission,
+            }),
+            ..out
+        };
+        note_ior(m, mr.ior, notes);
+    } else if let Some(t) = m.transmission {
         // Clear transmission is the smooth dielectric (glass): Kt with the index behind the
         // front face; an index of 1 is a thin sheet that does not bend light.
         if t.specular > 0.0 {
             out.kt = [t.specular; 3];
             out.ior = t.ior;
-            if !(1.0..=4.0).contains(&t.ior) {
-                notes.push(format!(
-                    "{}:{}: material {}: index of refraction {} is outside 1..4; clamped",
-                    m.source.display(),
-                    m.line,
-                    m.name,
-                    t.ior
-                ));
-            }
+            note_ior(m, t.ior, notes);
         }
         if t.diffuse > 0.0 {
             notes.push(format!(
@@ -144,6 +152,18 @@ pub fn material_from_description(m: &MaterialDescription, notes: &mut Vec<String
         ));
     }
     clamped
+}
+
+/// A note when a described index of refraction is clamped into 1..4.
+fn note_ior(m: &MaterialDescription, ior: f32, notes: &mut Vec<String>) {
+    if !(1.0..=4.0).contains(&ior) {
+        notes.push(format!(
+            "{}:{}: material {}: index of refraction {ior} is outside 1..4; clamped",
+            m.source.display(),
+            m.line,
+            m.name,
+        ));
+    }
 }
 
 /// A described light as a model light: isotropic sources become point lights, spots spots, tabulated ones luminaires (multiplier 1: the table is already in candela).

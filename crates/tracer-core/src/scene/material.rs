@@ -47,12 +47,15 @@ pub struct Material {
     pub pbr: Option<Pbr>,
 }
 
-/// glTF's metallic-roughness parameters (its defaults: white, metallic 1, roughness 1).
+/// glTF's metallic-roughness parameters (its defaults: white, metallic 1, roughness 1, no
+/// transmission).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pbr {
     pub base_color: [f32; 3],
     pub metallic: f32,
     pub roughness: f32,
+    /// `KHR_materials_transmission`'s factor: thin-walled transmission of the dielectric.
+    pub transmission: f32,
 }
 
 impl Default for Pbr {
@@ -61,6 +64,7 @@ impl Default for Pbr {
             base_color: [1.0; 3],
             metallic: 1.0,
             roughness: 1.0,
+            transmission: 0.0,
         }
     }
 }
@@ -158,6 +162,7 @@ impl Material {
             base_color: p.base_color.map(fix),
             metallic: unit(p.metallic),
             roughness: unit(p.roughness),
+            transmission: fix(p.transmission),
         });
         let out = Material {
             kd,

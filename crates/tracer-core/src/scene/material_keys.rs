@@ -11,6 +11,7 @@
 //! metallic = 1.0
 //! roughness = 0.3
 //! ior = 1.5                   # F0 of the dielectric layer (0.04 at 1.5)
+//! transmission = 0.0          # glTF's thin-walled transmission (metallic-roughness only)
 //! ```
 
 use super::material::{GLASS_IOR, Material, Pbr};
@@ -32,6 +33,8 @@ pub struct MaterialKeys {
     pub metallic: Option<f32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub roughness: Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transmission: Option<f32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kt: Option<[f32; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -60,10 +63,18 @@ impl TryFrom<MaterialKeys> for Material {
             ("base_color", k.base_color.is_some()),
             ("metallic", k.metallic.is_some()),
             ("roughness", k.roughness.is_some()),
+            ("transmission", k.transmission.is_some()),
         ]
         .iter()
         .filter_map(|&(name, given)| given.then_some(name))
         .collect();
+        if k.kt.is_some() && !gltf.is_empty() {
+            return Err(
+                "kt is the Blinn-Phong model's glass; a metallic-roughness material takes \
+                 transmission (0..1) instead"
+                    .into(),
+            );
+        }
         if !classic.is_empty() && !gltf.is_empty() {
             return Err(format!(
                 "give kd, ks and glossiness (Blinn-Phong) or base_color, metallic and roughness \
@@ -78,6 +89,7 @@ impl TryFrom<MaterialKeys> for Material {
                 base_color: k.base_color.unwrap_or(d.base_color),
                 metallic: k.metallic.unwrap_or(d.metallic),
                 roughness: k.roughness.unwrap_or(d.roughness),
+                transmission: k.transmission.unwrap_or(d.transmission),
             }
         });
         let kd = match (k.kd, pbr) {
@@ -120,6 +132,7 @@ impl From<Material> for MaterialKeys {
             base_color: m.pbr.map(|p| p.base_color),
             metallic: m.pbr.map(|p| p.metallic),
             roughness: m.pbr.map(|p| p.roughness),
+            transmission: m.pbr.map(|p| p.transmission).filter(|&t| t != 0.0),
             kt: (m.kt != [0.0; 3]).then_some(m.kt),
             ior: (m.ior != GLASS_IOR).then_some(m.ior),
             emission_cd_m2: (m.emission_cd_m2 != 0.0).then_some(m.emission_cd_m2),

@@ -13,11 +13,11 @@
 //!
 //! The non-delta part is symmetric in (wo, wi), so light paths use the same `eval` and `pdf`.
 //! Refraction is not symmetric: camera paths (radiance) scale a refracted sample by
-//! (η_wo / η_wi)², light paths (importance, [`Bsdf::for_light_paths`]) do not.
+//! (η_wo / η_wi)², light paths (importance, [`Bsdf::at`]) do not.
 
-use super::MetalRough;
 use super::dielectric::{fresnel, refract};
 use super::material::PreparedMaterial;
+use super::{MetalRough, MetalRoughSample};
 use crate::light::luminance;
 use crate::sampling::{SampleRng, cosine_hemisphere, frame_from_normal, to_world};
 use glam::Vec3;
@@ -71,25 +71,18 @@ fn local(n: Vec3, w: Vec3) -> Vec3 {
 impl Bsdf {
     /// The scattering of `m` seen from outside (from the front face, or `m` has no glass).
     pub fn new(m: &PreparedMaterial) -> Self {
+        Self::at(m, false, false)
+    }
+
+    /// The scattering of `m` seen from inside its glass (from behind the front face) when
+    /// `inside`, for light paths (importance transport) when `importance`. Built in place:
+    /// bdpt builds one per vertex.
+    #[inline]
+    pub fn at(m: &PreparedMaterial, inside: bool, importance: bool) -> Self {
         match m.pbr {
+            // Metallic-roughness is symmetric and has no refraction.
             Some(pbr) => Bsdf::MetalRough(pbr),
-            None => Bsdf::Classic(Classic::new(m)),
-        }
-    }
-
-    /// The same surface seen from inside its glass (from behind the front face).
-    pub fn from_inside(self) -> Self {
-        match self {
-            Bsdf::Classic(c) => Bsdf::Classic(c.inside()),
-            other => other,
-        }
-    }
-
-    /// For light paths (importance transport; metallic-roughness is symmetric).
-    pub fn for_light_paths(self) -> Self {
-        match self {
-            Bsdf::Classic(c) => Bsdf::Classic(c.for_light_paths()),
-            other => other,
+            None => Bsdf::Classic(Classic::at(m, inside, importance)),
         }
     }
 
@@ -166,18 +159,27 @@ fn metal_rough_sample(
     let (u, v) = rng.next_2d();
     let (t, b) = frame_from_normal(n);
     let lo = Vec3::new(wo.dot(t), wo.dot(b), wo.dot(n));
-    let (li, f, pdf) = m.sample(lo, pick, [u, v])?;
-    Some(BsdfSample {
-        wi: t * li.x + b * li.y + n * li.z,
-        weight: f * (li.z / pdf),
-        pdf,
-        delta: false,
+    Some(match m.sample(lo, pick, [u, v])? {
+        MetalRoughSample::Reflected { wi: li, f, pdf } => BsdfSample {
+            wi: t * li.x + b * li.y + n * li.z,
+            weight: f * (li.z / pdf),
+            pdf,
+            delta: false,
+        },
+        MetalRoughSample::Through(weight) => BsdfSample {
+            wi: -wo,
+            weight,
+            pdf: 0.0,
+            delta: true,
+        },
     })
 }
 
 impl Classic {
-    /// The lobes of `m` seen from outside (from the front face, or `m` has no glass).
-    pub fn new(m: &PreparedMaterial) -> Self {
+    /// The lobes of `m`, seen from inside its glass when `inside`, for light paths when
+    /// `importance`.
+    #[inline]
+    pub fn at(m: &PreparedMaterial, inside: bool, importance: bool) -> Self {
         let kd = m.kd_over_pi * PI;
         let (yd, ys, yt) = (luminance(kd), luminance(m.ks), luminance(m.kt));
         let total = yd + ys + yt;
@@ -194,21 +196,9 @@ impl Classic {
             highlight_norm: m.highlight_norm,
             p_diffuse,
             p_reflective,
-            eta: m.ior,
-            importance: false,
+            eta: if inside { 1.0 / m.ior } else { m.ior },
+            importance,
         }
-    }
-
-    /// The same surface seen from inside its glass (from behind the front face).
-    pub fn inside(mut self) -> Self {
-        self.eta = 1.0 / self.eta;
-        self
-    }
-
-    /// For light paths (importance transport).
-    pub fn for_light_paths(mut self) -> Self {
-        self.importance = true;
-        self
     }
 
     pub fn is_black(&self) -> bool {

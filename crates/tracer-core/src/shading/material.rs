@@ -32,9 +32,10 @@ impl PreparedMaterial {
             kt: m.kt(),
             ior: m.ior,
             emission: m.emission(),
-            pbr: m
-                .pbr
-                .map(|p| MetalRough::new(Vec3::from(p.base_color), p.metallic, p.roughness, m.ior)),
+            pbr: m.pbr.map(|p| {
+                MetalRough::new(Vec3::from(p.base_color), p.metallic, p.roughness, m.ior)
+                    .with_transmission(p.transmission)
+            }),
         }
     }
 }

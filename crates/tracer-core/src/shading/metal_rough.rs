@@ -7,8 +7,15 @@
 //! - metal = conductor_fresnel(c, specular_brdf), its F0 the base colour c;
 //! - f = mix(dielectric, metal, metallic).
 //!
+//! `KHR_materials_transmission` (factor T) replaces the dielectric's diffuse base by a
+//! transmission of the base colour: thin-walled, as glTF defines it without
+//! `KHR_materials_volume`, so the light goes on in its own direction (a delta lobe), weighed by
+//! T (1 − metallic) (1 − F(n·ωo)) c. The rough transmission lobe of the extension is drawn
+//! smooth (noted by the glTF reader).
+//!
 //! Sampled as a mixture of a cosine lobe and GGX's visible normals, each chosen with a
-//! probability from ωo alone, weighted by the mixture's full density (one-sample MIS).
+//! probability from ωo alone, weighted by the mixture's full density (one-sample MIS); the
+//! transmission, when present, is picked first with its own probability from ωo.
 
 use super::microfacet::Ggx;
 use crate::light::luminance;
@@ -24,6 +31,10 @@ pub struct MetalRough {
     pub ggx: Ggx,
     /// The dielectric layer's reflectance at normal incidence.
     pub f0: f32,
+    /// glTF's transmission factor T (thin-walled, onto the dielectric).
+    pub transmission: f32,
+    /// Roughness 0: the specular layer is a mirror (direct mode follows it as one).
+    pub smooth: bool,
 }
 
 /// F0 of a dielectric of refractive index `ior` in air.
@@ -47,7 +58,68 @@ impl MetalRough {
             metallic: metallic.clamp(0.0, 1.0),
             ggx: Ggx::from_roughness(roughness),
             f0: dielectric_f0(ior.max(1.0)),
+            transmission: 0.0,
+            smooth: roughness <= 0.0,
         }
+    }
+
+    /// The same surface with glTF's transmission factor `t` (0..=1).
+    pub fn with_transmission(mut self, t: f32) -> Self {
+        self.transmission = t.clamp(0.0, 1.0);
+        self
+    }
+
+    /// The dielectric layer's Fresnel reflectance for cos θ = |ωo·h|.
+    #[inline]
+    fn fresnel_dielectric(&self, cos: f32) -> f32 {
+        self.f0 + (1.0 - self.f0) * schlick(cos)
+    }
+
+    /// Weight of the diffuse base of the dielectric per channel: c (1 − T).
+    #[inline]
+    fn base(&self) -> Vec3 {
+        self.base_color * (1.0 - self.transmission)
+    }
+
+    /// The diffuse base's BRDF alone, c (1 − T) / π (1 − F(|ωo·h|)) (1 − metallic): what direct
+    /// mode evaluates for its lights on a smooth surface, whose specular layer it follows as a
+    /// mirror.
+    pub fn eval_base(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let h = (wo + wi).normalize_or_zero();
+        self.base() / PI
+            * ((1.0 - self.fresnel_dielectric(wo.dot(h).abs())) * (1.0 - self.metallic))
+    }
+
+    /// Reflectance of the smooth specular layer at cos θo (its mirror weight per channel).
+    pub fn mirror_reflectance(&self, cos_o: f32) -> Vec3 {
+        let w = schlick(cos_o);
+        let metal = self.base_color + (Vec3::ONE - self.base_color) * w;
+        Vec3::splat(self.fresnel_dielectric(cos_o)) * (1.0 - self.metallic) + metal * self.metallic
+    }
+
+    /// The thin-walled transmission's weight per channel for ωo (zero without transmission).
+    #[inline]
+    pub fn transmittance(&self, cos_o: f32) -> Vec3 {
+        if self.transmission <= 0.0 {
+            return Vec3::ZERO;
+        }
+        self.base_color
+            * (self.transmission * (1.0 - self.metallic) * (1.0 - self.fresnel_dielectric(cos_o)))
+    }
+
+    /// Probability of picking the transmission for ωo (0 without it).
+    #[inline]
+    fn transmission_probability(&self, wo: Vec3) -> f32 {
+        let t = luminance(self.transmittance(wo.z));
+        if t <= 0.0 {
+            return 0.0;
+        }
+        let reflected = luminance(self.mirror_reflectance(wo.z))
+            + luminance(self.base()) * (1.0 - self.metallic);
+        (t / (t + reflected)).clamp(0.0, 1.0)
     }
 
     /// f(ωo, ωi) per channel for unit local directions (0 unless both are above the surface).
@@ -61,7 +133,7 @@ impl MetalRough {
         let w = schlick(vh);
         let f_dielectric = self.f0 + (1.0 - self.f0) * w;
         let dielectric =
-            self.base_color / PI * (1.0 - f_dielectric) + Vec3::splat(specular * f_dielectric);
+            self.base() / PI * (1.0 - f_dielectric) + Vec3::splat(specular * f_dielectric);
         let f_metal = self.base_color + (Vec3::ONE - self.base_color) * w;
         let metal = f_metal * specular;
         dielectric * (1.0 - self.metallic) + metal * self.metallic
@@ -75,7 +147,7 @@ impl MetalRough {
         let f0 = Vec3::splat(self.f0) * (1.0 - self.metallic) + self.base_color * self.metallic;
         let specular = luminance(f0 + (Vec3::ONE - f0) * w);
         let diffuse = (1.0 - self.metallic)
-            * luminance(self.base_color)
+            * luminance(self.base())
             * (1.0 - (self.f0 + (1.0 - self.f0) * w));
         if specular + diffuse > 0.0 {
             (specular / (specular + diffuse)).clamp(0.0, 1.0)
@@ -84,21 +156,27 @@ impl MetalRough {
         }
     }
 
-    /// Density (per sr) with which [`MetalRough::sample`] picks `wi`.
+    /// Density (per sr) with which [`MetalRough::sample`] picks `wi` through its smooth lobes.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
         }
         let p = self.specular_probability(wo);
-        p * self.ggx.reflection_pdf(wo, wi) + (1.0 - p) * wi.z / PI
+        let smooth = 1.0 - self.transmission_probability(wo);
+        smooth * (p * self.ggx.reflection_pdf(wo, wi) + (1.0 - p) * wi.z / PI)
     }
 
-    /// An incident direction for `wo` from `pick` and `u`, with f and the density; None below
-    /// the surface.
-    pub fn sample(&self, wo: Vec3, pick: f32, u: [f32; 2]) -> Option<(Vec3, Vec3, f32)> {
+    /// An incident direction for `wo` from `pick` and `u`; None below the surface.
+    pub fn sample(&self, wo: Vec3, pick: f32, u: [f32; 2]) -> Option<MetalRoughSample> {
         if wo.z <= 0.0 {
             return None;
         }
+        let p_t = self.transmission_probability(wo);
+        if pick < p_t {
+            // Thin-walled transmission: on in the same direction, through the surface.
+            return Some(MetalRoughSample::Through(self.transmittance(wo.z) / p_t));
+        }
+        let pick = (pick - p_t) / (1.0 - p_t);
         let wi = if pick < self.specular_probability(wo) {
             let h = self.ggx.sample_visible_normal(wo, u);
             h * (2.0 * wo.dot(h)) - wo
@@ -109,8 +187,21 @@ impl MetalRough {
             return None;
         }
         let pdf = self.pdf(wo, wi);
-        (pdf.is_finite() && pdf > 0.0).then(|| (wi, self.eval(wo, wi), pdf))
+        (pdf.is_finite() && pdf > 0.0).then(|| MetalRoughSample::Reflected {
+            wi,
+            f: self.eval(wo, wi),
+            pdf,
+        })
     }
+}
+
+/// What [`MetalRough::sample`] chose.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MetalRoughSample {
+    /// A reflected direction with f and the smooth lobes' density.
+    Reflected { wi: Vec3, f: Vec3, pdf: f32 },
+    /// The delta transmission (ωi = −ωo), with its weight over its probability.
+    Through(Vec3),
 }
 
 #[cfg(test)]
@@ -175,7 +266,9 @@ mod tests {
                         let mut rng = SampleRng::new(9, k);
                         let pick = rng.next_f32();
                         let (a, b) = rng.next_2d();
-                        if let Some((wi, f, pdf)) = m.sample(wo, pick, [a, b]) {
+                        if let Some(MetalRoughSample::Reflected { wi, f, pdf }) =
+                            m.sample(wo, pick, [a, b])
+                        {
                             sum += f64::from(f.y * wi.z / pdf);
                         }
                     }

@@ -13,15 +13,17 @@ use tracer_core::scene::{Camera, Material, Pbr, Sidecar};
 
 /// Appendix B's f(ωo, ωi), green channel of base colour `c`, F0 of the dielectric 0.04.
 fn appendix_b(c: f64, metallic: f64, roughness: f64, wo: [f64; 3], wi: [f64; 3]) -> f64 {
-    let (diffuse, specular) = appendix_b_parts(c, metallic, roughness, wo, wi);
+    let (diffuse, specular) = appendix_b_parts(c, metallic, roughness, 0.0, wo, wi);
     diffuse + specular
 }
 
-/// Appendix B's f split into its diffuse base (smooth in ωi) and its GGX terms.
+/// Appendix B's f split into its diffuse base (smooth in ωi) and its GGX terms; `t` is
+/// `KHR_materials_transmission`'s factor, which takes its share of the diffuse base.
 fn appendix_b_parts(
     c: f64,
     metallic: f64,
     roughness: f64,
+    transmission: f64,
     wo: [f64; 3],
     wi: [f64; 3],
 ) -> (f64, f64) {
@@ -42,7 +44,7 @@ fn appendix_b_parts(
     let f_dielectric = 0.04 + 0.96 * w;
     let metal = (c + (1.0 - c) * w) * d * vis;
     (
-        (1.0 - metallic) * (1.0 - f_dielectric) * c / PI,
+        (1.0 - metallic) * (1.0 - f_dielectric) * c * (1.0 - transmission) / PI,
         (1.0 - metallic) * f_dielectric * d * vis + metallic * metal,
     )
 }
@@ -50,19 +52,19 @@ fn appendix_b_parts(
 /// A(θo) = ∫ f cos θi dωi: the diffuse base over ωi (midpoint rule), the GGX terms over half
 /// vectors h (dωi = 4 (ωo·h) dωh), θh on GGX's own inverse CDF so that even α = 0.01 is
 /// resolved.
-fn albedo(c: f64, metallic: f64, roughness: f64, theta_o: f64) -> f64 {
+fn albedo(c: f64, metallic: f64, roughness: f64, t: f64, theta_o: f64) -> f64 {
     let a = (roughness * roughness).max(1e-3);
     let wo = [theta_o.sin(), 0.0, theta_o.cos()];
     let q = 400;
     let (dt, dp) = (0.5 * PI / q as f64, PI / q as f64);
     let mut diffuse = 0.0;
     for i in 0..q {
-        let t = (i as f64 + 0.5) * dt;
+        let th = (i as f64 + 0.5) * dt;
         for j in 0..2 * q {
             let p = (j as f64 + 0.5) * dp;
-            let wi = [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()];
+            let wi = [th.sin() * p.cos(), th.sin() * p.sin(), th.cos()];
             diffuse +=
-                appendix_b_parts(c, metallic, roughness, wo, wi).0 * wi[2] * t.sin() * dt * dp;
+                appendix_b_parts(c, metallic, roughness, t, wo, wi).0 * wi[2] * th.sin() * dt * dp;
         }
     }
     let (nx, np) = (4000, 720);
@@ -88,7 +90,7 @@ fn albedo(c: f64, metallic: f64, roughness: f64, theta_o: f64) -> f64 {
             if wi[2] <= 0.0 {
                 continue;
             }
-            let f = appendix_b_parts(c, metallic, roughness, wo, wi).1;
+            let f = appendix_b_parts(c, metallic, roughness, t, wo, wi).1;
             sum += f * wi[2] * 4.0 * oh * th.sin() * dt * (2.0 * PI / np as f64);
         }
     }
@@ -153,12 +155,14 @@ fn a_plane_under_a_uniform_sky_reads_its_directional_albedo() {
                         f64::from(c),
                         f64::from(metallic),
                         f64::from(roughness),
+                        0.0,
                         theta.to_radians(),
                     );
                 let pbr = Pbr {
                     base_color: [c; 3],
                     metallic,
                     roughness,
+                    transmission: 0.0,
                 };
                 for (integrator, spp) in [
                     (IntegratorKind::Path, 2048),
@@ -213,6 +217,7 @@ fn direct_mode_shades_with_the_metallic_roughness_brdf() {
             base_color: [c; 3],
             metallic,
             roughness,
+            transmission: 0.0,
         }),
         kd: [0.0; 3],
         ..Material::default()
@@ -254,4 +259,75 @@ fn direct_mode_shades_with_the_metallic_roughness_brdf() {
         (centre / exact - 1.0).abs() < 0.01,
         "direct: {centre} vs E f = {exact}"
     );
+}
+
+/// glTF's thin-walled transmission: the plane, with the sky on both sides, reads L (A(θo) +
+/// T (1 − metallic)(1 − F(cos θo)) c): the reflection with the diffuse base's share 1 − T, and
+/// the sky behind seen through it, with F = F0 + (1 − F0)(1 − cos θo)⁵.
+#[test]
+fn thin_walled_transmission_lets_the_sky_behind_through() {
+    let (c, metallic, roughness, t) = (0.8f32, 0.2f32, 0.3f32, 0.7f32);
+    for theta in [0.0f64, 60.0] {
+        let cos = theta.to_radians().cos();
+        let through =
+            f64::from(t * (1.0 - metallic) * c) * (1.0 - (0.04 + 0.96 * (1.0 - cos).powi(5)));
+        let exact = 100.0
+            * (albedo(
+                f64::from(c),
+                f64::from(metallic),
+                f64::from(roughness),
+                f64::from(t),
+                theta.to_radians(),
+            ) + through);
+        let pbr = Pbr {
+            base_color: [c; 3],
+            metallic,
+            roughness,
+            transmission: t,
+        };
+        for (integrator, spp) in [
+            (IntegratorKind::Path, 2048),
+            (IntegratorKind::Bidirectional, 4096),
+        ] {
+            let (mean, se) = plane_reading(pbr, theta, integrator, spp);
+            let what = format!("{integrator} transmission {t} θo {theta}°");
+            println!(
+                "{what}: {mean:.3} ± {se:.3} cd/m² vs {exact:.3} ({:+.2} %)",
+                (mean / exact - 1.0) * 100.0
+            );
+            assert!(
+                (mean / exact - 1.0).abs() < 0.01 && (mean - exact).abs() < 4.0 * se + 1e-6,
+                "{what}: {mean} ± {se} vs {exact}"
+            );
+        }
+    }
+}
+
+/// A smooth metal (roughness 0) is a mirror of reflectance F = c + (1 − c)(1 − cos θo)⁵:
+/// direct mode follows it as its mirrors (the sky seen in it), and path mode's GGX at its
+/// smallest α reads the same.
+#[test]
+fn a_smooth_metal_is_a_mirror_in_direct_mode() {
+    let c = 0.6f32;
+    let pbr = Pbr {
+        base_color: [c; 3],
+        metallic: 1.0,
+        roughness: 0.0,
+        transmission: 0.0,
+    };
+    for theta in [0.0f64, 75.0] {
+        let w = (1.0 - theta.to_radians().cos()).powi(5);
+        let exact = 100.0 * (f64::from(c) + (1.0 - f64::from(c)) * w);
+        for (integrator, spp, tolerance) in [
+            (IntegratorKind::Direct, 16, 1e-3),
+            (IntegratorKind::Path, 256, 0.01),
+        ] {
+            let (mean, se) = plane_reading(pbr, theta, integrator, spp);
+            println!("{integrator} smooth metal θo {theta}°: {mean:.3} ± {se:.3} vs {exact:.3}");
+            assert!(
+                (mean / exact - 1.0).abs() < tolerance,
+                "{integrator} θo {theta}°: {mean} ± {se} vs mirror {exact}"
+            );
+        }
+    }
 }

@@ -1,19 +1,23 @@
-//! glTF's metallic-roughness materials in raygine's model (also in `docs/formats.md`):
+//! glTF's metallic-roughness materials (also in `docs/formats.md`). raygine draws them with
+//! glTF 2.0 Appendix B's model (`crate::shading::MetalRough`):
 //!
-//! - Diffuse Kd = base colour × (1 − metallic) × (1 − transmission) × (1 − F0), with the
-//!   dielectric reflectance at normal incidence F0 = 0.04.
-//! - Specular Ks = base colour × metallic + F0 × (1 − metallic), a normalised Blinn-Phong lobe
-//!   of glossiness g = 2 / α² − 2 for α = roughness² (the Beckmann-equivalent exponent); a
-//!   roughness whose g falls below 1 (r > 0.84) reflects about diffusely: Ks joins Kd and there
-//!   is no lobe (so glTF's default material, a fully rough white metal, is white, not black);
-//!   g above 10 000 is a mirror.
-//! - `KHR_materials_transmission`: clear transmission Kt = factor × (1 − metallic), with the
-//!   `KHR_materials_ior` index (default 1.5).
-//! - Emission: emissive factor × `KHR_materials_emissive_strength`, read as
-//!   `emission_scale` cd/m² per unit (1 by default: nits), noted once per material.
-//! - Textures, alpha blending and masks are not used (noted).
+//! - `baseColorFactor` (RGB; alpha unused), `metallicFactor`, `roughnessFactor`;
+//! - `KHR_materials_ior`: the dielectric layer's F0 = ((ior − 1) / (ior + 1))², 0.04 at the
+//!   default 1.5;
+//! - `KHR_materials_transmission`: thin-walled transmission of the dielectric (its rough
+//!   spread drawn smooth, noted);
+//! - emission: emissive factor × `KHR_materials_emissive_strength`, read as
+//!   `emission_scale` cd/m² per unit (1 by default: nits), noted once per material;
+//! - textures, alpha blending and masks are not used (noted).
+//!
+//! The description also carries a Blinn-Phong approximation for readers that want one: Kd =
+//! c (1 − metallic)(1 − T)(1 − F0), Ks = c metallic + F0 (1 − metallic) with glossiness
+//! g = 2 / α⁴ − 2 for α = roughness² (the Beckmann-equivalent exponent; below 1 Ks joins Kd,
+//! above 10 000 a mirror).
 
-use crate::formats::{EmissionDescription, MaterialDescription, TransmissionDescription};
+use crate::formats::{
+    EmissionDescription, MaterialDescription, MetalRoughDescription, TransmissionDescription,
+};
 use crate::light::EmissionSides;
 use std::path::Path;
 
@@ -66,10 +70,24 @@ pub(super) fn to_description(
             },
         )
     };
-    let transmission = (transmission > 0.0).then(|| TransmissionDescription {
+    let ior = m.ior().unwrap_or(1.5);
+    let metal_rough = MetalRoughDescription {
+        base_color: base,
+        metallic,
+        roughness,
+        transmission,
+        ior,
+    };
+    if transmission > 0.0 && roughness > 0.0 {
+        notes.push(format!(
+            "{at}: transmission is drawn smooth (thin-walled, no rough spread of roughness \
+             {roughness})"
+        ));
+    }
+    let transmission = (transmission > 0.0).then_some(TransmissionDescription {
         specular: transmission * (1.0 - metallic),
         diffuse: 0.0,
-        ior: m.ior().unwrap_or(1.5),
+        ior,
     });
     let strength = m.emissive_strength().unwrap_or(1.0).max(0.0);
     let emissive = m.emissive_factor().map(|c| c.max(0.0) * strength);
@@ -103,6 +121,7 @@ pub(super) fn to_description(
         glossiness,
         transmission,
         emission,
+        metal_rough: Some(metal_rough),
     }
 }
 
@@ -118,6 +137,30 @@ mod tests {
         .expect("valid");
         let m = doc.materials().next().expect("one material");
         to_description(&m, Path::new("t.gltf"), 1.0, &mut Vec::new())
+    }
+
+    #[test]
+    fn factors_and_extensions_become_the_metallic_roughness_model() {
+        let m = material(
+            r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.8,0.7,0.5],"metallicFactor":0.25,"roughnessFactor":0.4},
+                "extensions":{"KHR_materials_ior":{"ior":1.33},"KHR_materials_transmission":{"transmissionFactor":0.6}}}"#,
+        );
+        let mr = m.metal_rough.expect("metallic-roughness");
+        assert_eq!(mr.base_color, [0.9, 0.8, 0.7]);
+        assert_eq!((mr.metallic, mr.roughness), (0.25, 0.4));
+        assert_eq!((mr.transmission, mr.ior), (0.6, 1.33));
+        // glTF's defaults: white, metallic 1, roughness 1, ior 1.5, no transmission.
+        let d = material("{}").metal_rough.expect("metallic-roughness");
+        assert_eq!(
+            d,
+            MetalRoughDescription {
+                base_color: [1.0; 3],
+                metallic: 1.0,
+                roughness: 1.0,
+                transmission: 0.0,
+                ior: 1.5
+            }
+        );
     }
 
     #[test]

@@ -107,6 +107,7 @@ pub fn material_from_attr(
         },
         transmission,
         emission,
+        metal_rough: None,
     }
 }
 

@@ -8,13 +8,16 @@
 //! | `Ks`, `Ns` 0 or absent, other `illum` | no lobe (noted) |
 //! | `d` < 1 (or `Tr` > 0) | clear transmission Kt = 1 − d with index `Ni` (default 1: a thin sheet) |
 //! | `Ke` | a Lambertian emitter of luminance `emission_scale` × Y(Ke) cd/m² (noted) |
+//! | `Pr`, `Pm` (the PBR extension) | glTF's metallic-roughness model instead of the lobes above: base colour Kd, roughness Pr (default 1), metallic Pm (default 0), transmission 1 − d, F0 from `Ni` (default 1.5) |
 //! | `Ka`, texture maps | not used (textures noted) |
 //!
 //! MTL's Ks with Ns is the legacy, unnormalised Phong highlight; raygine's lobe is normalised,
 //! so a highlight's peak differs while Ks stays the fraction of light the lobe reflects.
 
 use crate::formats::error::FormatError;
-use crate::formats::{EmissionDescription, MaterialDescription, TransmissionDescription};
+use crate::formats::{
+    EmissionDescription, MaterialDescription, MetalRoughDescription, TransmissionDescription,
+};
 use crate::light::EmissionSides;
 use std::collections::HashMap;
 use std::path::Path;
@@ -33,7 +36,7 @@ pub(super) fn check(bytes: &[u8], path: &Path) -> Result<HashMap<String, usize>,
         let rest: Vec<&str> = words.collect();
         let want = match key {
             "Ka" | "Kd" | "Ks" | "Ke" => 3,
-            "Ns" | "Ni" | "d" | "Tr" => 1,
+            "Ns" | "Ni" | "d" | "Tr" | "Pr" | "Pm" => 1,
             "illum" => {
                 if rest.len() != 1 || rest[0].parse::<u8>().is_err() {
                     return Err(FormatError::new(
@@ -145,6 +148,23 @@ pub(super) fn to_description(
             "{at}: texture maps are not supported; drawn untextured"
         ));
     }
+    let number = |key: &str| {
+        m.unknown_param
+            .get(key)
+            .and_then(|t| t.trim().parse::<f32>().ok())
+            .filter(|x| x.is_finite())
+    };
+    let (pr, pm) = (number("Pr"), number("Pm"));
+    let metal_rough = (pr.is_some() || pm.is_some()).then(|| MetalRoughDescription {
+        base_color: m.diffuse.unwrap_or([0.8; 3]).map(|c| c.clamp(0.0, 1.0)),
+        metallic: pm.unwrap_or(0.0).clamp(0.0, 1.0),
+        roughness: pr.unwrap_or(1.0).clamp(0.0, 1.0),
+        transmission: 1.0 - d,
+        ior: m
+            .optical_density
+            .filter(|n| n.is_finite() && *n > 0.0)
+            .unwrap_or(1.5),
+    });
     MaterialDescription {
         name: m.name.clone(),
         source: source.to_owned(),
@@ -154,6 +174,7 @@ pub(super) fn to_description(
         glossiness,
         transmission,
         emission,
+        metal_rough,
     }
 }
 
@@ -181,6 +202,29 @@ mod tests {
         let e = m.emission.expect("Ke");
         assert!((e.luminance_cd_m2 - 2.0).abs() < 1e-5);
         assert_eq!(notes.len(), 1, "{notes:?}");
+    }
+
+    #[test]
+    fn pr_and_pm_give_the_metallic_roughness_model() {
+        let (m, _) = material("newmtl a\nKd 0.9 0.6 0.3\nPr 0.35\nPm 1\nNi 1.4\n");
+        let mr = m.metal_rough.expect("Pr, Pm");
+        assert_eq!(mr.base_color, [0.9, 0.6, 0.3]);
+        assert_eq!((mr.metallic, mr.roughness, mr.ior), (1.0, 0.35, 1.4));
+        assert_eq!(mr.transmission, 0.0);
+        // Either key alone: the other takes its default (metallic 0, roughness 1).
+        let (m, _) = material("newmtl a\nKd 0.5 0.5 0.5\nPr 0.2\nd 0.75\n");
+        let mr = m.metal_rough.expect("Pr");
+        assert_eq!(
+            (mr.metallic, mr.roughness, mr.transmission),
+            (0.0, 0.2, 0.25)
+        );
+        let (m, _) = material("newmtl a\nKd 0.5 0.5 0.5\nKs 0.1 0.1 0.1\nNs 20\n");
+        assert!(m.metal_rough.is_none());
+        let e = check(b"newmtl a\nPr rough\n", Path::new("m.mtl")).expect_err("bad");
+        assert_eq!(
+            e.to_string(),
+            "m.mtl:2: Pr takes 1 finite number, found `rough`"
+        );
     }
 
     #[test]

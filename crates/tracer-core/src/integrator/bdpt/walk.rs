@@ -130,10 +130,7 @@ impl Bidirectional<'_, '_> {
             v.origin = surface.origin;
             v.adjoint = importance;
             v.wo = -ray.dir;
-            let mut bsdf = bsdf_at(lit, prim, v.wo);
-            if importance {
-                bsdf = bsdf.for_light_paths();
-            }
+            let bsdf = bsdf_at(lit, prim, v.wo, importance);
             v.bsdf = Some(bsdf);
             let Some(prev) = path.last() else {
                 break;

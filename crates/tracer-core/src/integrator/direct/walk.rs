@@ -7,8 +7,8 @@ use super::super::Sample;
 use crate::bvh::Hit;
 use crate::geometry::Ray;
 use crate::lit_scene::LitScene;
-use crate::sampling::SampleRng;
-use crate::shading::{Bsdf, PreparedMaterial, Surface};
+use crate::sampling::{SampleRng, frame_from_normal};
+use crate::shading::{PreparedMaterial, Surface};
 use glam::Vec3;
 
 /// What one light adds at a hit when its shadow ray is free: illuminance (lx) and reflected
@@ -118,11 +118,17 @@ impl Walk {
         if self.depth == lit.max_depth {
             return;
         }
-        let weight = self.weight * mat.ks;
+        let d = ray.dir.normalize();
+        // The mirror: Ks, or a smooth metallic-roughness surface's specular layer.
+        let reflectance = match &mat.pbr {
+            None => mat.ks,
+            Some(m) if m.smooth => m.mirror_reflectance(-d.dot(n)),
+            Some(_) => Vec3::ZERO,
+        };
+        let weight = self.weight * reflectance;
         if weight.max_element() <= 0.0 {
             return;
         }
-        let d = ray.dir.normalize();
         let reflected = d - n * (2.0 * d.dot(n));
         if surface.ng.dot(reflected) <= 0.0 {
             // The shading normal bent the mirror direction into the mesh: it ends here.
@@ -177,13 +183,21 @@ fn direct_light(
 ) {
     let (p, n, origin) = (surface.p, surface.ns, surface.origin);
     let view = (mat.glossiness > 0.0 || mat.pbr.is_some()).then(view);
-    // A metallic-roughness surface evaluates its BSDF (glTF's model) for every light.
-    let metal_rough = view
-        .filter(|_| mat.pbr.is_some())
-        .map(|view| (Bsdf::new(mat), view));
+    // A metallic-roughness surface evaluates its BSDF (glTF's model) for every light, in the
+    // normal's frame; a smooth one only its diffuse base (its mirror is followed as a ray).
+    let metal_rough = mat.pbr.zip(view.as_ref()).map(|(m, view)| {
+        let (t, b) = frame_from_normal(n);
+        let local = move |w: Vec3| Vec3::new(w.dot(t), w.dot(b), w.dot(n));
+        (m, local(*view), local)
+    });
     let brdf = |wi: Vec3| {
-        if let Some((bsdf, view)) = &metal_rough {
-            return bsdf.eval(n, *view, wi);
+        if let Some((m, wo, local)) = &metal_rough {
+            let wi = local(wi);
+            return if m.smooth {
+                m.eval_base(*wo, wi)
+            } else {
+                m.eval(*wo, wi)
+            };
         }
         let mut f = mat.kd_over_pi;
         if let Some(view) = view {
