@@ -26,6 +26,7 @@ mod integra_room2;
 mod luminaires;
 mod many_lights;
 mod measure_grids;
+mod metal_peers;
 mod metal_rough;
 mod proptest_shp;
 mod session;
