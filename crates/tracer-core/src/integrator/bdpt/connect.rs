@@ -5,6 +5,7 @@ use super::vertex::{Kind, Vertex};
 use super::{Bidirectional, Eye, Splat};
 use crate::lit_scene::TreeLight;
 use crate::sampling::SampleRng;
+use crate::shading::Scatter;
 use glam::Vec3;
 
 /// The segment of a connection, from its light-side vertex to its eye-side one.
@@ -16,7 +17,7 @@ struct Link {
 }
 
 impl Link {
-    fn between(a: &Vertex, b: &Vertex) -> Option<Self> {
+    fn between<S: Scatter>(a: &Vertex<S>, b: &Vertex<S>) -> Option<Self> {
         let d = b.p - a.p;
         let dist2 = d.length_squared();
         (dist2 > 0.0).then(|| Self {
@@ -41,10 +42,10 @@ impl Bidirectional<'_, '_> {
 
     /// Sum over every allowed strategy of the weighted contribution to this eye sample; splats
     /// for the camera's t = 1 strategies.
-    pub(super) fn connect_all(
+    pub(super) fn connect_all<S: Scatter>(
         &self,
-        eye: &[Vertex],
-        light: &[Vertex],
+        eye: &[Vertex<S>],
+        light: &[Vertex<S>],
         rng: &mut SampleRng,
         splats: &mut Vec<Splat>,
         rays: &mut u32,
@@ -105,8 +106,14 @@ impl Bidirectional<'_, '_> {
     }
 
     /// Non-delta scattering vertices of the path of strategy (s, t).
-    fn bounces(&self, eye: &[Vertex], light: &[Vertex], s: usize, t: usize) -> u32 {
-        let count = |vs: &[Vertex]| {
+    fn bounces<S: Scatter>(
+        &self,
+        eye: &[Vertex<S>],
+        light: &[Vertex<S>],
+        s: usize,
+        t: usize,
+    ) -> u32 {
+        let count = |vs: &[Vertex<S>]| {
             vs.iter()
                 .filter(|v| matches!(v.kind, Kind::Surface(_)) && v.connectible())
                 .count() as u32
@@ -121,7 +128,7 @@ impl Bidirectional<'_, '_> {
     }
 
     /// s = 0: the eye subpath found a glowing surface.
-    fn hit_light(&self, eye: &[Vertex], t: usize) -> Vec3 {
+    fn hit_light<S: Scatter>(&self, eye: &[Vertex<S>], t: usize) -> Vec3 {
         let pt = &eye[t - 1];
         let le = pt.emission(self);
         if le.max_element() <= 0.0 {
@@ -132,9 +139,9 @@ impl Bidirectional<'_, '_> {
     }
 
     /// Whether the segment between two vertices is clear.
-    fn visible(&self, a: &Vertex, b: &Vertex, rays: &mut u32) -> bool {
+    fn visible<S: Scatter>(&self, a: &Vertex<S>, b: &Vertex<S>, rays: &mut u32) -> bool {
         let d = b.p - a.p;
-        let lift = |v: &Vertex, towards: Vec3| match v.kind {
+        let lift = |v: &Vertex<S>, towards: Vec3| match v.kind {
             // Towards the side the subpath arrived on, by the shading normal (as next-event
             // estimation decides): from the lifted origin.
             Kind::Surface(_) if v.ns.dot(towards) * v.ns.dot(v.wo) > 0.0 => v.origin,
@@ -158,7 +165,7 @@ impl Bidirectional<'_, '_> {
     /// The unweighted contribution of joining light-side `a` to eye-side `b` over `link`
     /// (without visibility): a.β f_a G f_b b.β.
     #[inline(always)]
-    fn join(&self, a: &Vertex, b: &Vertex, link: Link) -> Vec3 {
+    fn join<S: Scatter>(&self, a: &Vertex<S>, b: &Vertex<S>, link: Link) -> Vec3 {
         let w = link.w;
         let g = a.cosine(self, w) * b.cosine(self, -w) / link.dist2;
         if g <= 0.0 {
@@ -168,10 +175,10 @@ impl Bidirectional<'_, '_> {
     }
 
     /// t = 1: light vertex s − 1 seen by the eye (a splat for the camera).
-    fn connect_to_eye(
+    fn connect_to_eye<S: Scatter>(
         &self,
-        eye: &[Vertex],
-        light: &[Vertex],
+        eye: &[Vertex<S>],
+        light: &[Vertex<S>],
         s: usize,
         rays: &mut u32,
     ) -> Option<Splat> {
@@ -209,10 +216,10 @@ impl Bidirectional<'_, '_> {
     }
 
     /// s = 1: a light sampled anew for eye vertex t − 1.
-    fn connect_to_light(
+    fn connect_to_light<S: Scatter>(
         &self,
-        eye: &[Vertex],
-        light: &[Vertex],
+        eye: &[Vertex<S>],
+        light: &[Vertex<S>],
         t: usize,
         rng: &mut SampleRng,
         rays: &mut u32,
@@ -253,10 +260,10 @@ impl Bidirectional<'_, '_> {
     }
 
     /// s, t ≥ 2: light vertex s − 1 joined to eye vertex t − 1.
-    fn connect_inner(
+    fn connect_inner<S: Scatter>(
         &self,
-        eye: &[Vertex],
-        light: &[Vertex],
+        eye: &[Vertex<S>],
+        light: &[Vertex<S>],
         s: usize,
         t: usize,
         rays: &mut u32,
@@ -281,16 +288,16 @@ impl Bidirectional<'_, '_> {
     /// loops as overrides. Each is a direction density at one end of the link or next to it,
     /// turned per area with the link's length or the stored one to the vertex's predecessor.
     #[allow(clippy::too_many_arguments)]
-    fn mis_weight(
+    fn mis_weight<S: Scatter>(
         &self,
-        eye: &[Vertex],
-        light: &[Vertex],
-        sampled: Option<&Vertex>,
+        eye: &[Vertex<S>],
+        light: &[Vertex<S>],
+        sampled: Option<&Vertex<S>>,
         s: usize,
         t: usize,
         link: Option<Link>,
     ) -> f32 {
-        let light_at = |i: usize| -> &Vertex {
+        let light_at = |i: usize| -> &Vertex<S> {
             match (i, sampled) {
                 (0, Some(v)) => v,
                 _ => &light[i],

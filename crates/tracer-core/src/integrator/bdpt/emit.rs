@@ -10,6 +10,7 @@ use super::vertex::{Kind, Vertex};
 use crate::light::{Emission, LightSource, Receiver};
 use crate::lit_scene::{LitScene, TreeLight};
 use crate::sampling::SampleRng;
+use crate::shading::Scatter;
 use glam::Vec3;
 
 /// A point on a light: the start of a light subpath, or the light vertex of a connection.
@@ -207,7 +208,11 @@ impl super::Bidirectional<'_, '_> {
     /// Strategy s = 1: a light picked by the light tree for eye vertex `pt`, and a point on it
     /// (uniform on a glowing triangle). Its `pdf_origin` is the tree's probability times the
     /// area density.
-    pub(super) fn sample_light_for(&self, pt: &Vertex, rng: &mut SampleRng) -> Option<LightPoint> {
+    pub(super) fn sample_light_for<S: Scatter>(
+        &self,
+        pt: &Vertex<S>,
+        rng: &mut SampleRng,
+    ) -> Option<LightPoint> {
         let lit = self.lit;
         let (id, pmf) = lit.pick_light(pt.p, pt.n, lit.pick_number(rng))?;
         let light = lit.light(id)?;
@@ -241,7 +246,7 @@ impl super::Bidirectional<'_, '_> {
     /// How much likelier strategy s = 1 makes light vertex `x0` when it joins it to `x1` (the
     /// tree's choice at `x1`) than a light subpath's start does (by flux):
     /// p_tree(x0 | x1) / p_flux(x0).
-    pub(super) fn tree_factor(&self, x0: &Vertex, x1: &Vertex) -> f32 {
+    pub(super) fn tree_factor<S: Scatter>(&self, x0: &Vertex<S>, x1: &Vertex<S>) -> f32 {
         let light = match x0.kind {
             Kind::Light(l) => l,
             Kind::Surface(prim) => TreeLight::Triangle(prim),

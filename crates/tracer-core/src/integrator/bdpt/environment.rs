@@ -12,6 +12,7 @@ use super::walk::Escape;
 use super::{Bidirectional, Eye};
 use crate::light::{LightSource, Receiver};
 use crate::sampling::SampleRng;
+use crate::shading::Scatter;
 use glam::Vec3;
 
 fn power_heuristic(a: f32, b: f32) -> f32 {
@@ -21,14 +22,14 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 
 impl Bidirectional<'_, '_> {
     /// Non-delta scattering vertices of an eye subpath.
-    fn eye_bounces(eye: &[Vertex]) -> u32 {
+    fn eye_bounces<S: Scatter>(eye: &[Vertex<S>]) -> u32 {
         eye.iter()
             .filter(|v| matches!(v.kind, Kind::Surface(_)) && v.connectible())
             .count() as u32
     }
 
     /// s = 0 on the environment: the eye subpath `eye` left the scene as `e` says.
-    pub(super) fn hit_environment(&self, eye: &[Vertex], e: &Escape) -> Vec3 {
+    pub(super) fn hit_environment<S: Scatter>(&self, eye: &[Vertex<S>], e: &Escape) -> Vec3 {
         let Some(env) = &self.lit.environment else {
             return Vec3::ZERO;
         };
@@ -56,9 +57,9 @@ impl Bidirectional<'_, '_> {
 
     /// s = 1 at a sensor (eye vertex `eye0`, facing `eye0.n`): a direction of the environment,
     /// against the sensor's own cosine-sampled ray (which `hit_environment` weighs).
-    pub(super) fn sensor_environment(
+    pub(super) fn sensor_environment<S: Scatter>(
         &self,
-        eye0: &Vertex,
+        eye0: &Vertex<S>,
         rng: &mut SampleRng,
         rays: &mut u32,
     ) -> Vec3 {
@@ -85,9 +86,9 @@ impl Bidirectional<'_, '_> {
 
     /// s = 1 on the environment: a direction sampled for eye vertex `pt`, the environment
     /// having been chosen with probability `pick`.
-    pub(super) fn connect_to_environment(
+    pub(super) fn connect_to_environment<S: Scatter>(
         &self,
-        pt: &Vertex,
+        pt: &Vertex<S>,
         pick: f32,
         rng: &mut SampleRng,
         rays: &mut u32,

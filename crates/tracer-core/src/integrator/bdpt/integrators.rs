@@ -2,12 +2,13 @@
 //! [`LightTracing`], with what both do around one camera sample (the pixel's illuminance, the
 //! splats joined per pixel).
 
-use super::{BDPT_RR_THRESHOLD, Bidirectional, Eye, LightPicker, Splat, Strategies};
+use super::{BDPT_RR_THRESHOLD, Bidirectional, Eye, LightPicker, PathScatter, Splat, Strategies};
 use crate::geometry::Ray;
 use crate::integrator::{Integrator, IntegratorKind, IntegratorSettings, Sample, Want};
 use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
 use crate::scene::CameraBasis;
+use crate::shading::{Bsdf, Classic, needs_metal_rough};
 use glam::Vec3;
 
 /// Bidirectional path tracing: every (s, t) strategy, power-heuristic MIS.
@@ -20,6 +21,8 @@ pub struct BidirectionalPathTracing<'a> {
     pub strategies: Strategies,
     /// Lights by flux.
     lights: LightPicker,
+    /// Whether a material is metallic-roughness: the full [`Bsdf`], else [`Classic`] alone.
+    metal_rough: bool,
 }
 
 /// Light tracing: every light vertex joined to the eye (t = 1) at weight 1; eye subpaths go
@@ -34,12 +37,14 @@ pub struct LightTracing<'a> {
     /// Non-delta bounces allowed (None: unlimited).
     pub max_bounces: Option<u32>,
     lights: LightPicker,
+    metal_rough: bool,
 }
 
 impl<'a> BidirectionalPathTracing<'a> {
     pub fn new(lit: LitScene<'a>, settings: IntegratorSettings) -> Self {
         Self {
             lights: LightPicker::new(&lit),
+            metal_rough: needs_metal_rough(&lit),
             lit,
             max_bounces: settings.max_bounces,
             strategies: Strategies::All,
@@ -51,6 +56,7 @@ impl<'a> LightTracing<'a> {
     pub fn new(lit: LitScene<'a>, settings: IntegratorSettings) -> Self {
         Self {
             lights: LightPicker::with_environment(&lit),
+            metal_rough: needs_metal_rough(&lit),
             lit,
             max_bounces: settings.max_bounces,
         }
@@ -102,7 +108,11 @@ impl Integrator for BidirectionalPathTracing<'_> {
                 Eye::Camera(*basis),
             )
         };
-        camera_sample(&camera, want.illuminance, ray, rng, splats)
+        if self.metal_rough {
+            camera_sample::<Bsdf>(&camera, want.illuminance, ray, rng, splats)
+        } else {
+            camera_sample::<Classic>(&camera, want.illuminance, ray, rng, splats)
+        }
     }
 
     /// Bidirectional transport without the t = 1 strategies (the power heuristic renormalised
@@ -115,15 +125,13 @@ impl Integrator for BidirectionalPathTracing<'_> {
         rng: &mut SampleRng,
         illuminance: bool,
     ) -> Sample {
-        preview(
+        let camera = transport(
             &self.lit,
             &self.lights,
             self.max_bounces,
-            illuminance,
-            basis,
-            ray,
-            rng,
-        )
+            Eye::Camera(*basis),
+        );
+        preview(&camera, self.metal_rough, illuminance, ray, rng)
     }
 
     fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32) {
@@ -131,7 +139,11 @@ impl Integrator for BidirectionalPathTracing<'_> {
             strategies: self.strategies,
             ..transport(&self.lit, &self.lights, self.max_bounces, Eye::Sensor)
         };
-        sensor_illuminance(&sensor, p, n, rng)
+        if self.metal_rough {
+            sensor_illuminance::<Bsdf>(&sensor, p, n, rng)
+        } else {
+            sensor_illuminance::<Classic>(&sensor, p, n, rng)
+        }
     }
 }
 
@@ -161,7 +173,11 @@ impl Integrator for LightTracing<'_> {
                 Eye::Camera(*basis),
             )
         };
-        camera_sample(&camera, want.illuminance, ray, rng, splats)
+        if self.metal_rough {
+            camera_sample::<Bsdf>(&camera, want.illuminance, ray, rng, splats)
+        } else {
+            camera_sample::<Classic>(&camera, want.illuminance, ray, rng, splats)
+        }
     }
 
     /// Substitution: bidirectional transport without splats, as for
@@ -173,15 +189,13 @@ impl Integrator for LightTracing<'_> {
         rng: &mut SampleRng,
         illuminance: bool,
     ) -> Sample {
-        preview(
+        let camera = transport(
             &self.lit,
             &self.lights,
             self.max_bounces,
-            illuminance,
-            basis,
-            ray,
-            rng,
-        )
+            Eye::Camera(*basis),
+        );
+        preview(&camera, self.metal_rough, illuminance, ray, rng)
     }
 
     fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32) {
@@ -189,26 +203,32 @@ impl Integrator for LightTracing<'_> {
             light_tracing: true,
             ..transport(&self.lit, &self.lights, self.max_bounces, Eye::Sensor)
         };
-        sensor_illuminance(&sensor, p, n, rng)
+        if self.metal_rough {
+            sensor_illuminance::<Bsdf>(&sensor, p, n, rng)
+        } else {
+            sensor_illuminance::<Classic>(&sensor, p, n, rng)
+        }
     }
 }
 
 /// A preview sample: `camera`'s transport without the t = 1 strategies.
 fn preview(
-    lit: &LitScene<'_>,
-    lights: &LightPicker,
-    max_bounces: Option<u32>,
+    camera: &Bidirectional<'_, '_>,
+    metal_rough: bool,
     illuminance: bool,
-    basis: &CameraBasis,
     ray: &Ray,
     rng: &mut SampleRng,
 ) -> Sample {
     let camera = Bidirectional {
         splats: false,
-        ..transport(lit, lights, max_bounces, Eye::Camera(*basis))
+        ..*camera
     };
     let mut none = Vec::new();
-    let sample = camera_sample(&camera, illuminance, ray, rng, &mut none);
+    let sample = if metal_rough {
+        camera_sample::<Bsdf>(&camera, illuminance, ray, rng, &mut none)
+    } else {
+        camera_sample::<Classic>(&camera, illuminance, ray, rng, &mut none)
+    };
     debug_assert!(none.is_empty(), "a preview splatted");
     sample
 }
@@ -216,7 +236,7 @@ fn preview(
 /// One camera sample of `camera`, with the first surface's illuminance when asked for
 /// (bidirectional in both modes, reusing the sample's light subpath); its splats are joined
 /// per pixel.
-fn camera_sample(
+fn camera_sample<S: PathScatter>(
     camera: &Bidirectional<'_, '_>,
     illuminance: bool,
     ray: &Ray,
@@ -225,7 +245,7 @@ fn camera_sample(
 ) -> Sample {
     let first_splat = splats.len();
     let mut rays = 0;
-    let (estimate, first, illuminance_lx) = super::with_subpaths(|paths| {
+    let (estimate, first, illuminance_lx) = super::with_subpaths::<S, _>(|paths| {
         camera.light_subpath(&mut super::light_stream(rng), &mut rays, paths);
         let (estimate, first) = camera.camera_sample(ray, rng, paths, splats);
         let mut illuminance_lx = 0.0;
@@ -258,14 +278,14 @@ fn camera_sample(
 }
 
 /// One sensor estimate of `sensor` at `p` facing `n`: (lx, rays).
-fn sensor_illuminance(
+fn sensor_illuminance<S: PathScatter>(
     sensor: &Bidirectional<'_, '_>,
     p: Vec3,
     n: Vec3,
     rng: &mut SampleRng,
 ) -> (f32, u32) {
     let mut rays = 0;
-    let e = super::with_subpaths(|paths| {
+    let e = super::with_subpaths::<S, _>(|paths| {
         sensor.light_subpath(&mut super::light_stream(rng), &mut rays, paths);
         sensor.sensor_sample(p, n, rng, paths)
     });

@@ -28,25 +28,53 @@ use crate::geometry::Ray;
 use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
 use crate::scene::CameraBasis;
+use crate::shading::{Bsdf, Classic, Scatter};
 use glam::Vec3;
 use std::cell::RefCell;
 use vertex::Vertex;
 
-/// A sample's subpaths, reused from sample to sample (one set per thread): no allocation per
-/// sample.
-#[derive(Debug, Default)]
-pub struct Subpaths {
-    light: Vec<Vertex>,
-    eye: Vec<Vertex>,
+/// A sample's subpaths, reused from sample to sample (one set per thread and scattering
+/// model): no allocation per sample.
+#[derive(Debug)]
+pub struct Subpaths<S> {
+    light: Vec<Vertex<S>>,
+    eye: Vec<Vertex<S>>,
+}
+
+impl<S> Default for Subpaths<S> {
+    fn default() -> Self {
+        Self {
+            light: Vec::new(),
+            eye: Vec::new(),
+        }
+    }
+}
+
+/// A scattering model with subpath buffers of its own on each thread.
+pub trait PathScatter: Scatter + 'static {
+    fn buffers() -> &'static std::thread::LocalKey<RefCell<Subpaths<Self>>>;
 }
 
 thread_local! {
-    static SUBPATHS: RefCell<Subpaths> = RefCell::default();
+    static CLASSIC_SUBPATHS: RefCell<Subpaths<Classic>> = RefCell::default();
+    static BSDF_SUBPATHS: RefCell<Subpaths<Bsdf>> = RefCell::default();
+}
+
+impl PathScatter for Classic {
+    fn buffers() -> &'static std::thread::LocalKey<RefCell<Subpaths<Self>>> {
+        &CLASSIC_SUBPATHS
+    }
+}
+
+impl PathScatter for Bsdf {
+    fn buffers() -> &'static std::thread::LocalKey<RefCell<Subpaths<Self>>> {
+        &BSDF_SUBPATHS
+    }
 }
 
 /// Runs `f` with this thread's subpath buffers (fresh ones if they are in use).
-pub fn with_subpaths<R>(f: impl FnOnce(&mut Subpaths) -> R) -> R {
-    SUBPATHS.with(|cell| match cell.try_borrow_mut() {
+pub fn with_subpaths<S: PathScatter, R>(f: impl FnOnce(&mut Subpaths<S>) -> R) -> R {
+    S::buffers().with(|cell| match cell.try_borrow_mut() {
         Ok(mut paths) => f(&mut paths),
         Err(_) => f(&mut Subpaths::default()),
     })
@@ -168,7 +196,7 @@ impl Bidirectional<'_, '_> {
     }
 
     /// Importance of the eye vertex `eye` towards unit `w`.
-    fn eye_importance(&self, eye: &Vertex, w: Vec3) -> f32 {
+    fn eye_importance<S: Scatter>(&self, eye: &Vertex<S>, w: Vec3) -> f32 {
         match self.eye {
             Eye::Camera(_) => match self.film_position(w) {
                 Some((_, _, cos)) => 1.0 / (self.film_area() * cos.powi(4)),
@@ -185,7 +213,7 @@ impl Bidirectional<'_, '_> {
     }
 
     /// Density per sr with which the eye sends its subpath along unit `w`.
-    fn eye_direction_pdf(&self, eye: &Vertex, w: Vec3) -> f32 {
+    fn eye_direction_pdf<S: Scatter>(&self, eye: &Vertex<S>, w: Vec3) -> f32 {
         match self.eye {
             Eye::Camera(_) => match self.film_position(w) {
                 Some((_, _, cos)) => 1.0 / (self.film_area() * cos.powi(3)),
@@ -198,11 +226,11 @@ impl Bidirectional<'_, '_> {
     /// Luminance along the camera ray `ray` (unit direction) by every strategy, with the light
     /// subpath in `paths` ([`Bidirectional::light_subpath`]); light-tracing contributions to
     /// other pixels go to `splats`. Also returns the first surface vertex.
-    pub fn camera_sample(
+    pub fn camera_sample<S: Scatter>(
         &self,
         ray: &Ray,
         rng: &mut SampleRng,
-        paths: &mut Subpaths,
+        paths: &mut Subpaths<S>,
         splats: &mut Vec<Splat>,
     ) -> (EyeEstimate, Option<(Vec3, Vec3)>) {
         let mut rays = 0;
@@ -230,12 +258,12 @@ impl Bidirectional<'_, '_> {
 
     /// Irradiance per channel at `p` from the side of unit `n` (a sensor), by every strategy,
     /// with the light subpath in `paths`.
-    pub fn sensor_sample(
+    pub fn sensor_sample<S: Scatter>(
         &self,
         p: Vec3,
         n: Vec3,
         rng: &mut SampleRng,
-        paths: &mut Subpaths,
+        paths: &mut Subpaths<S>,
     ) -> EyeEstimate {
         let mut rays = 0;
         let eye = Vertex::new(vertex::Kind::Eye, p, n, Vec3::ONE, 1.0);

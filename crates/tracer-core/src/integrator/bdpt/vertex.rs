@@ -7,7 +7,7 @@
 use super::Bidirectional;
 use super::emit::{direction_pdf, emission_cosine, emitted};
 use crate::lit_scene::TreeLight;
-use crate::shading::Bsdf;
+use crate::shading::Scatter;
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -26,7 +26,7 @@ pub enum Kind {
 }
 
 #[derive(Clone, Copy, Debug)]
-pub struct Vertex {
+pub struct Vertex<S> {
     pub kind: Kind,
     pub p: Vec3,
     /// Unit geometric normal (surfaces, glowing triangles, the eye's axis); zero for point
@@ -54,10 +54,10 @@ pub struct Vertex {
     /// A delta lobe scattered the subpath here (mirror, glass): no connection can use it.
     pub delta: bool,
     /// The scattering at a surface vertex (its non-delta part does not depend on the side).
-    pub bsdf: Option<Bsdf>,
+    pub bsdf: Option<S>,
 }
 
-impl Vertex {
+impl<S: Scatter> Vertex<S> {
     pub fn new(kind: Kind, p: Vec3, n: Vec3, beta: Vec3, pdf_fwd: f32) -> Self {
         Self {
             kind,
@@ -194,7 +194,7 @@ impl Vertex {
 
     /// Density per unit area at `prev` (this vertex's predecessor, along `wo`) of a light
     /// subpath leaving this glowing point for it.
-    pub fn pdf_light_back(&self, bd: &Bidirectional<'_, '_>, prev: &Vertex) -> f32 {
+    pub fn pdf_light_back(&self, bd: &Bidirectional<'_, '_>, prev: &Vertex<S>) -> f32 {
         let light = match self.kind {
             Kind::Light(light) => light,
             Kind::Surface(prim) => TreeLight::Triangle(prim),

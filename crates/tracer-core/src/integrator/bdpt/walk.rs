@@ -6,13 +6,19 @@ use super::{Bidirectional, MAX_SUBPATH, Subpaths};
 use crate::geometry::Ray;
 use crate::light::{Emission, LightSource};
 use crate::sampling::SampleRng;
-use crate::shading::{Surface, bsdf_at};
+use crate::shading::Scatter;
+use crate::shading::{Surface, scatter_at};
 use glam::Vec3;
 
 impl Bidirectional<'_, '_> {
     /// A light subpath into `paths`: a light picked by flux, a direction, then a walk. Empty
     /// without lights.
-    pub fn light_subpath(&self, rng: &mut SampleRng, rays: &mut u32, paths: &mut Subpaths) {
+    pub fn light_subpath<S: Scatter>(
+        &self,
+        rng: &mut SampleRng,
+        rays: &mut u32,
+        paths: &mut Subpaths<S>,
+    ) {
         let path = &mut paths.light;
         path.clear();
         let (start, emission) = match self.lights.sample_start(self.lit, rng) {
@@ -60,13 +66,13 @@ impl Bidirectional<'_, '_> {
     /// A light subpath from the environment (the light tracer's): from a point on the disc
     /// across the bounding sphere, along a direction by the map, picked with `probability`.
     /// Its first vertex is not connectible: only its surface vertices are joined to the eye.
-    fn environment_subpath(
+    fn environment_subpath<S: Scatter>(
         &self,
         e: Emission,
         probability: f32,
         rng: &mut SampleRng,
         rays: &mut u32,
-        path: &mut Vec<Vertex>,
+        path: &mut Vec<Vertex<S>>,
     ) {
         let Some(env) = &self.lit.environment else {
             return;
@@ -95,14 +101,14 @@ impl Bidirectional<'_, '_> {
     /// `pdf_dir` per sr, carrying throughput `beta`. `importance`: a light subpath. Returns how
     /// the subpath left the scene, when it did.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn walk(
+    pub(super) fn walk<S: Scatter>(
         &self,
         mut ray: Ray,
         mut beta: Vec3,
         mut pdf_dir: f32,
         importance: bool,
         rng: &mut SampleRng,
-        path: &mut Vec<Vertex>,
+        path: &mut Vec<Vertex<S>>,
         rays: &mut u32,
     ) -> Option<Escape> {
         let lit = self.lit;
@@ -130,7 +136,7 @@ impl Bidirectional<'_, '_> {
             v.origin = surface.origin;
             v.adjoint = importance;
             v.wo = -ray.dir;
-            let bsdf = bsdf_at(lit, prim, v.wo, importance);
+            let bsdf = scatter_at::<S>(lit, prim, v.wo, importance);
             v.bsdf = Some(bsdf);
             let Some(prev) = path.last() else {
                 break;
