@@ -26,7 +26,7 @@ use crate::light::luminance;
 use crate::lit_scene::LitScene;
 use crate::sampling::{SampleRng, cosine_hemisphere, to_world};
 use crate::scene::CameraBasis;
-use crate::shading::{Bsdf, Surface, bsdf_at};
+use crate::shading::{Bsdf, Classic, Scatter, Surface, scatter_at};
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -334,13 +334,28 @@ impl<'p, 'a> PathTracer<'p, 'a> {
     /// Luminance reflected at `v` towards `v.wo`, by a path continued from it; `bounces` is the
     /// number of non-delta bounces before `v`.
     fn continue_at(&self, v: Vertex, bounces: u32, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
+        if self.lit.has_metal_rough() {
+            self.continue_with::<Bsdf>(v, bounces, rng, rays)
+        } else {
+            self.continue_with::<Classic>(v, bounces, rng, rays)
+        }
+    }
+
+    /// [`PathTracer::continue_at`] with the scattering model `S` (`shading::Scatter`).
+    fn continue_with<S: Scatter>(
+        &self,
+        v: Vertex,
+        bounces: u32,
+        rng: &mut SampleRng,
+        rays: &mut u32,
+    ) -> Vec3 {
         let lit = self.lit;
         let mut l = Vec3::ZERO;
         let mut beta = Vec3::ONE;
         let mut v = v;
         let mut bounces = bounces;
         for _ in 0..MAX_VERTICES {
-            let bsdf = bsdf_at(lit, v.prim, v.wo, false);
+            let bsdf: S = scatter_at(lit, v.prim, v.wo, false);
             if bsdf.is_black() {
                 break;
             }
@@ -396,7 +411,13 @@ impl<'p, 'a> PathTracer<'p, 'a> {
 
     /// Light sampled at `v` (one light, picked by the light tree) and reflected towards `v.wo`
     /// by the smooth lobes.
-    fn next_event(&self, bsdf: &Bsdf, v: &Vertex, rng: &mut SampleRng, rays: &mut u32) -> Vec3 {
+    fn next_event<S: Scatter>(
+        &self,
+        bsdf: &S,
+        v: &Vertex,
+        rng: &mut SampleRng,
+        rays: &mut u32,
+    ) -> Vec3 {
         let lit = self.lit;
         let mut l = Vec3::ZERO;
         self.incident(v.point, v.origin, v.n, rng, |s| {

@@ -39,6 +39,9 @@ pub struct LitScene<'a> {
     /// True when some slot is hidden (then hits on hidden slots are skipped).
     any_hidden: bool,
     hidden: Vec<bool>,
+    /// Whether some material is metallic-roughness (else the classic lobes are all the
+    /// integrators need: `shading::Scatter`).
+    metal_rough: bool,
 }
 
 impl<'a> LitScene<'a> {
@@ -92,6 +95,7 @@ impl<'a> LitScene<'a> {
                 }
                 EnvironmentLight::new(e, handedness_sign, centre, radius, mpu * mpu)
             });
+        let metal_rough = materials.iter().any(|m| m.pbr.is_some());
         LitScene {
             scene,
             lights,
@@ -106,7 +110,13 @@ impl<'a> LitScene<'a> {
             max_depth,
             any_hidden: hidden.iter().any(|&h| h),
             hidden,
+            metal_rough,
         }
+    }
+
+    /// Whether some material is metallic-roughness.
+    pub fn has_metal_rough(&self) -> bool {
+        self.metal_rough
     }
 
     /// The unit front normal of triangle `prim` (see `front_sign`).
