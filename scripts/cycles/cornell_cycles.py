@@ -57,6 +57,8 @@ from pathlib import Path
 
 import numpy as np
 
+from film import linear_exr_film  # noqa: E402 (this folder)
+
 HERE = Path(__file__).resolve().parent
 DEFAULT_SHP = HERE.parent.parent / "assets" / "scenes" / "cornell_box.shp"
 UNIT_M = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
@@ -263,31 +265,7 @@ def build_scene(args):
     scene.world = w
 
     # -- render settings
-    r = scene.render
-    r.engine = "CYCLES"
-    r.resolution_x, r.resolution_y, r.resolution_percentage = args.width, args.height, 100
-    r.pixel_aspect_x = r.pixel_aspect_y = 1.0
-    r.use_border = False
-    r.film_transparent = False
-    r.threads_mode = "FIXED"
-    r.threads = args.threads
-    r.use_compositing = False
-    r.use_sequencer = False
-    r.use_persistent_data = False
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_mode = "RGB"
-    r.image_settings.color_depth = "32"
-    r.image_settings.exr_codec = "ZIP"
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
-    scene.view_settings.exposure = 0.0
-    scene.view_settings.gamma = 1.0
-
-    c = scene.cycles
-    c.device = "CPU"
-    if hasattr(c, "feature_set"):
-        c.feature_set = "SUPPORTED"
-    c.use_adaptive_sampling = False
+    c = linear_exr_film(scene, args.width, args.height, args.threads)
     c.samples = args.samples if args.samples else 1 << 24
     c.time_limit = args.time if args.time else 0.0
     c.seed = args.seed
