@@ -5,6 +5,7 @@ use crate::cli::InfoArgs;
 use crate::cli_support::load_scene;
 use anyhow::Result;
 use serde_json::{Value, json};
+use tracer_core::light::daylight::Daylight;
 use tracer_core::scene::{LoadedScene, Material};
 
 pub fn run(args: &InfoArgs) -> Result<()> {
@@ -81,6 +82,26 @@ pub fn describe(loaded: &LoadedScene) -> Value {
             "resolution": scene.design.resolution,
         },
         "grids": setup.grids.iter().map(|g| json!({"name": g.name, "points": g.point_count()})).collect::<Vec<_>>(),
+        "daylight": setup.daylight.as_ref().map(|d| daylight_json(d, setup.handedness)),
+    })
+}
+
+/// The place and time of `[daylight]` and where the sun is then.
+fn daylight_json(d: &Daylight, handedness: tracer_core::scene::Handedness) -> Value {
+    let sun = d.sun();
+    let p = &d.place_time;
+    json!({
+        "latitude_deg": p.latitude_deg,
+        "longitude_east_deg": p.longitude_deg,
+        "date": p.date.to_string(),
+        "time": p.time.to_string(),
+        "timezone_h": p.timezone_h,
+        "daylight_saving": p.daylight_saving,
+        "sun_altitude_deg": sun.altitude_deg,
+        "sun_azimuth_deg": sun.azimuth_deg,
+        "sun_direction": d
+            .sun_direction(handedness == tracer_core::scene::Handedness::Right)
+            .to_array(),
     })
 }
 
@@ -176,6 +197,31 @@ fn print_text(v: &Value) {
     }
     for g in v["grids"].as_array().into_iter().flatten() {
         println!("grid {}: {} points", g["name"], g["points"]);
+    }
+    let d = &v["daylight"];
+    if !d.is_null() {
+        let f = |k: &str| d[k].as_f64().unwrap_or(f64::NAN);
+        let (lat, lon) = (f("latitude_deg"), f("longitude_east_deg"));
+        println!(
+            "daylight: {} {} (UTC{:+}{}), {:.4}° {}, {:.4}° {}: sun at altitude {:.2}° \
+             (refraction included), azimuth {:.2}° from north through east, towards {} in the \
+             scene",
+            d["date"].as_str().unwrap_or("?"),
+            d["time"].as_str().unwrap_or("?"),
+            f("timezone_h"),
+            if d["daylight_saving"].as_bool() == Some(true) {
+                ", summer time"
+            } else {
+                ""
+            },
+            lat.abs(),
+            if lat >= 0.0 { "N" } else { "S" },
+            lon.abs(),
+            if lon >= 0.0 { "E" } else { "W" },
+            f("sun_altitude_deg"),
+            f("sun_azimuth_deg"),
+            d["sun_direction"]
+        );
     }
 }
 

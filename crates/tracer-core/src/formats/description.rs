@@ -41,6 +41,9 @@ pub struct SceneDescription {
     /// default one), empty when the design has none lit.
     pub lights: Option<Vec<LightDescription>>,
     pub camera: Option<CameraDescription>,
+    /// Place, time and orientation for the sun, when the format gives them (Integra's
+    /// `Geography`), as the sidecar's `[daylight]` writes them.
+    pub daylight: Option<crate::light::daylight::DaylightSpec>,
     /// Length of one scene unit in metres, when the format states it (Integra: 1).
     pub metres_per_unit: Option<f32>,
     /// Non-fatal findings for the user: skipped blocks, features drawn without, clamped values.

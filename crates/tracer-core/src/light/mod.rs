@@ -11,6 +11,7 @@
 //! Photometric SI: intensity in candela, flux in lumen, luminance in cd/m². A light's colour is a
 //! tint normalised to Rec. 709 luminance 1, so its intensity stays in candela.
 
+pub mod daylight;
 mod emitters;
 mod environment;
 mod goniometric;

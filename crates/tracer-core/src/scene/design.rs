@@ -22,6 +22,8 @@ pub struct Design {
     pub handedness: Option<Handedness>,
     /// The image size the camera was designed for (width, height), pixels.
     pub resolution: Option<[u32; 2]>,
+    /// Place, time and orientation for the sun (Integra's `Geography`).
+    pub daylight: Option<crate::light::daylight::Daylight>,
     /// Non-fatal findings (the reader's and the mapping's), for the user.
     pub notes: Vec<String>,
 }
@@ -86,6 +88,10 @@ impl Design {
                 _ => None,
             },
             resolution: desc.camera.and_then(|c| c.resolution),
+            daylight: desc
+                .daylight
+                .as_ref()
+                .and_then(|d| d.to_model().map_err(|e| notes.push(e)).ok()),
             notes,
         }
     }

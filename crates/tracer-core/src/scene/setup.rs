@@ -25,6 +25,8 @@ pub struct Setup {
     pub maintenance_factor: f32,
     /// Light from every direction at infinity (None: none, as before).
     pub environment: Option<crate::light::Environment>,
+    /// The place, time and orientation of the sidecar's `[daylight]` (None: no daylight).
+    pub daylight: Option<crate::light::daylight::Daylight>,
 }
 
 impl Setup {
@@ -61,6 +63,7 @@ impl Setup {
             grids: Vec::new(),
             maintenance_factor: 1.0,
             environment: None,
+            daylight: design.daylight.clone(),
         }
     }
 

@@ -79,6 +79,9 @@ pub struct Sidecar {
     /// The environment as read by `parse` (its map loaded once), with its notes.
     #[serde(skip)]
     pub environment_model: Option<(crate::light::Environment, Vec<String>)>,
+    /// `[daylight]`: place, local time and orientation (the sun's position).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub daylight: Option<crate::light::daylight::DaylightSpec>,
     /// The sidecar's folder: luminaire files are relative to it (not part of the file).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -138,6 +141,9 @@ impl Sidecar {
         };
         sidecar.model_lights().map_err(invalid)?;
         sidecar.model_grids(None).map_err(invalid)?;
+        if let Some(spec) = &sidecar.daylight {
+            spec.to_model().map_err(invalid)?;
+        }
         if let Some(spec) = &sidecar.environment {
             let base = sidecar.base_dir.clone();
             sidecar.environment_model = Some(spec.to_model(base.as_deref()).map_err(invalid)?);
@@ -247,6 +253,12 @@ impl Sidecar {
             Ok(None) => {}
             Err(e) => warnings.push(format!("{e}; no environment")),
         }
+        // The sidecar's [daylight] replaces the file's (Integra's Geography).
+        match self.daylight.as_ref().map(|d| d.to_model()).transpose() {
+            Ok(Some(daylight)) => setup.daylight = Some(daylight),
+            Ok(None) => {}
+            Err(e) => warnings.push(format!("{e}; no daylight")),
+        }
         match self.model_grids(Some(context)) {
             Ok(grids) => setup.grids = grids,
             Err(e) => warnings.push(format!("{e}; grids ignored")),
@@ -339,6 +351,7 @@ impl Sidecar {
                 .then_some(setup.maintenance_factor),
             environment: setup.environment.as_ref().map(EnvironmentSpec::from_model),
             environment_model: None,
+            daylight: setup.daylight.as_ref().map(|d| d.spec.clone()),
             smooth_angle_deg: (scene.smooth_angle_deg
                 != super::smoothing::DEFAULT_SMOOTH_ANGLE_DEG)
                 .then_some(scene.smooth_angle_deg),

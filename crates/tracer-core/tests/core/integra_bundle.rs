@@ -293,3 +293,44 @@ fn truncated_real_files_never_panic() {
         }
     }
 }
+
+/// A `Geography` block becomes the setup's daylight: west-positive longitude, north = −south,
+/// the year 2025 (Integra gives month and day); the sidecar's `[daylight]` replaces it, and a
+/// block without its time is a note, not an error.
+#[test]
+fn geography_becomes_the_daylight() {
+    let geography = "Geography TokyoMidday\n  zenith 0 1 0\n  south 1 0 0\n  latitude 36.0\n  \
+                     longitude -140.0\n  month 6\n  date 21\n  time 12:00\n  GMT 9\n  \
+                     DaylightSaving off\nenddef\n";
+    let lgt = format!(
+        "Light L\n  TotalFlux 1000\nenddef\nFixture F\n  Light L\n  Switch on\n  Position 1 1 -1\nenddef\n{geography}"
+    );
+    let loaded = load(&bundle("geography", &lgt, None));
+    let d = loaded.setup.daylight.expect("daylight from Geography");
+    let p = d.place_time;
+    assert_eq!(
+        (p.latitude_deg, p.longitude_deg, p.timezone_h),
+        (36.0, 140.0, 9.0)
+    );
+    assert_eq!(
+        (p.date.to_string(), p.time.to_string()),
+        ("2025-06-21".into(), "12:00".into())
+    );
+    assert_eq!(d.north, glam::Vec3::NEG_X);
+    // A .shp room is left-handed: east = zenith × north = +Z; the sun just past south (+X)
+    // leans west (−Z).
+    let w = d.sun_direction(false);
+    assert!(w.y > 0.95 && w.x > 0.2 && w.z < 0.0, "{w}");
+
+    let no_time = lgt.replace("  time 12:00\n", "");
+    let loaded = load(&bundle("geography_no_time", &no_time, None));
+    assert!(loaded.setup.daylight.is_none());
+    assert!(
+        loaded
+            .warnings
+            .iter()
+            .any(|w| w.contains("Geography TokyoMidday has no time")),
+        "{:?}",
+        loaded.warnings
+    );
+}

@@ -76,7 +76,20 @@ fn room2_has_twenty_named_materials_in_metres() {
         "{:#?}",
         loaded.warnings
     );
-    assert_eq!(said("Geography TokyoMidday"), 1);
+    // Geography TokyoMidday is read (no longer skipped): the setup's daylight.
+    assert_eq!(said("Geography"), 0);
+    let d = loaded
+        .setup
+        .daylight
+        .as_ref()
+        .expect("daylight from Geography");
+    assert_eq!(
+        (d.place_time.latitude_deg, d.place_time.longitude_deg),
+        (36.0, 140.0)
+    );
+    let sun = d.sun();
+    assert!((sun.altitude_deg - 76.84).abs() < 0.01, "{sun:?}");
+    assert!((sun.azimuth_deg - 198.65).abs() < 0.01, "{sun:?}");
 }
 
 #[test]

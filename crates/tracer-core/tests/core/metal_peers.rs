@@ -177,6 +177,7 @@ fn render_case(area: bool, spp: u32) -> Film {
         grids: Vec::new(),
         maintenance_factor: 1.0,
         environment: None,
+        daylight: None,
     };
     let settings = RenderSettings {
         width: W,

@@ -38,6 +38,7 @@ fn setup(scene: &Scene, unit: LengthUnit, lights: Vec<Light>, mats: Vec<Material
         grids: Vec::new(),
         maintenance_factor: 1.0,
         environment: None,
+        daylight: None,
     }
 }
 

@@ -1,7 +1,8 @@
 //! `.lgt` luminaires, read as written: `Light` (what a lamp emits), `Fixture` (a placed,
 //! switched light), `Group` (fixtures switched and dimmed together) and `Diagram` (intensity
-//! tables) blocks. Other blocks (`Geography`: the sun) are skipped. The mapping to lights is in
-//! `luminaires.rs`.
+//! tables) blocks, and the first `Geography` (place, time and orientation for the sun). Other
+//! blocks are skipped. The mapping to lights is in `luminaires.rs`, to `[daylight]` in
+//! [`Geography::to_daylight`].
 
 use super::error::IntegraError;
 use super::lines::{self, Block, Line, numbers, switch, word};
@@ -25,6 +26,8 @@ pub struct Lgt {
     pub fixtures: Vec<Fixture>,
     pub groups: Vec<Group>,
     pub diagrams: Vec<Diagram>,
+    /// The first `Geography` block.
+    pub geography: Option<Geography>,
     /// Blocks not read (keyword, name, line).
     pub skipped: Vec<(String, String, usize)>,
 }
@@ -115,12 +118,120 @@ pub fn parse_lgt(bytes: &[u8], path: &Path) -> Result<Lgt, IntegraError> {
             "fixture" => lgt.fixtures.push(fixture(&block, path)?),
             "group" => lgt.groups.push(group(&block, path)?),
             "diagram" => lgt.diagrams.push(diagram(&block, path)?),
+            "geography" if lgt.geography.is_none() => {
+                lgt.geography = Some(geography(&block, path)?);
+            }
             _ => lgt
                 .skipped
                 .push((block.keyword.to_owned(), block.name.to_owned(), block.line)),
         }
     }
     Ok(lgt)
+}
+
+/// A `Geography` block: where and when, for the sun.
+///
+/// ```text
+/// Geography TokyoMidday
+///   zenith    0.0000 1.0000 0.0000
+///   south     1.0000 0.0000 0.0000
+///   latitude  36.0
+///   longitude -140.0          (west positive, as Radiance counts)
+///   month     6
+///   date      21
+///   time      12:00
+///   GMT       9
+///   DaylightSaving off
+/// enddef
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Geography {
+    pub name: String,
+    pub line: usize,
+    pub zenith: Option<[f64; 3]>,
+    pub south: Option<[f64; 3]>,
+    pub latitude: Option<f64>,
+    /// West positive.
+    pub longitude: Option<f64>,
+    pub month: Option<f64>,
+    pub date: Option<f64>,
+    pub time: Option<String>,
+    pub gmt: Option<f64>,
+    pub daylight_saving: Option<bool>,
+}
+
+/// The year a `Geography` date is taken in: Integra gives month and day only.
+pub const GEOGRAPHY_YEAR: i32 = 2025;
+
+impl Geography {
+    /// The sidecar's `[daylight]` this block means (the year [`GEOGRAPHY_YEAR`]; north is
+    /// −south); None with a note when a key it needs is missing.
+    pub fn to_daylight(
+        &self,
+        path: &Path,
+        notes: &mut Vec<String>,
+    ) -> Option<crate::light::daylight::DaylightSpec> {
+        let missing: Vec<&str> = [
+            ("latitude", self.latitude.is_none()),
+            ("longitude", self.longitude.is_none()),
+            ("month", self.month.is_none()),
+            ("date", self.date.is_none()),
+            ("time", self.time.is_none()),
+            ("GMT", self.gmt.is_none()),
+        ]
+        .iter()
+        .filter_map(|&(k, m)| m.then_some(k))
+        .collect();
+        if !missing.is_empty() {
+            notes.push(format!(
+                "{}:{}: Geography {} has no {}; no daylight",
+                path.display(),
+                self.line,
+                self.name,
+                missing.join(", ")
+            ));
+            return None;
+        }
+        let f = |v: Option<[f64; 3]>| v.map(|v| v.map(|c| c as f32));
+        Some(crate::light::daylight::DaylightSpec {
+            latitude: self.latitude.unwrap_or_default(),
+            longitude: self.longitude.unwrap_or_default(),
+            longitude_convention: Some("west".to_owned()),
+            date: format!(
+                "{GEOGRAPHY_YEAR}-{:02}-{:02}",
+                self.month.unwrap_or_default() as u32,
+                self.date.unwrap_or_default() as u32
+            ),
+            time: self.time.clone().unwrap_or_default(),
+            timezone: self.gmt.unwrap_or_default(),
+            daylight_saving: self.daylight_saving.unwrap_or(false),
+            north: f(self.south).map(|s| s.map(|c| -c)),
+            zenith: f(self.zenith),
+        })
+    }
+}
+
+fn geography(block: &Block, path: &Path) -> Result<Geography, IntegraError> {
+    let mut g = Geography {
+        name: block.name.to_owned(),
+        line: block.line,
+        ..Geography::default()
+    };
+    for line in &block.body {
+        match line.key().to_ascii_lowercase().as_str() {
+            "zenith" => g.zenith = Some(numbers::<3>(path, line)?),
+            "south" => g.south = Some(numbers::<3>(path, line)?),
+            "latitude" => g.latitude = Some(numbers::<1>(path, line)?[0]),
+            "longitude" => g.longitude = Some(numbers::<1>(path, line)?[0]),
+            "month" => g.month = Some(numbers::<1>(path, line)?[0]),
+            "date" => g.date = Some(numbers::<1>(path, line)?[0]),
+            "time" => g.time = Some(word(path, line)?.to_owned()),
+            "gmt" => g.gmt = Some(numbers::<1>(path, line)?[0]),
+            "daylightsaving" => g.daylight_saving = Some(switch(path, line)?),
+            _ => {}
+        }
+    }
+    Ok(g)
 }
 
 fn reference(path: &Path, line: &Line) -> Result<Reference, IntegraError> {

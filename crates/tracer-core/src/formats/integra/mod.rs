@@ -25,7 +25,7 @@ mod prb;
 pub use atr::{Attr, parse_atr};
 pub use cam::{Cam, parse_cam};
 pub use error::IntegraError;
-pub use lgt::{Diagram, Fixture, Group, Lgt, LgtLight, Reference, parse_lgt};
+pub use lgt::{Diagram, Fixture, Geography, Group, Lgt, LgtLight, Reference, parse_lgt};
 pub use luminaires::{diagram_photometry, lights_from_lgt};
 pub use material::{material_from_attr, srgb_to_linear, unit_tint};
 pub use prb::{Prb, PrbItem, parse_prb};
@@ -126,6 +126,10 @@ pub fn read_bundle(bundle: &Bundle, desc: &mut SceneDescription) -> Result<(), I
     if let Some(p) = &bundle.lgt {
         let lgt = parse_lgt(&read(p)?, p)?;
         desc.lights = Some(lights_from_lgt(&lgt, p, &mut desc.notes)?);
+        desc.daylight = lgt
+            .geography
+            .as_ref()
+            .and_then(|g| g.to_daylight(p, &mut desc.notes));
     }
     if let Some(p) = &bundle.cam
         && let Some(cam) = parse_cam(&read(p)?, p)?

@@ -119,6 +119,7 @@ pub fn setup(scene: &Scene, camera: Camera, lights: Vec<Light>, materials: Vec<M
         grids: Vec::new(),
         maintenance_factor: 1.0,
         environment: None,
+        daylight: None,
     }
 }
 

@@ -1,0 +1,200 @@
+//! The sidecar's `[daylight]`: the place, the local time and the scene's orientation.
+//!
+//! ```toml
+//! [daylight]
+//! latitude = 36.0               # degrees north
+//! longitude = -140.0            # degrees, east positive unless longitude_convention = "west"
+//! longitude_convention = "west" # Integra and Radiance count west positive (Tokyo: -140)
+//! date = "2026-06-21"           # local
+//! time = "12:00"                # local clock time
+//! timezone = 9.0                # hours east of UTC
+//! daylight_saving = false
+//! north = [0.0, 0.0, -1.0]      # the scene direction of north (default -Z)
+//! zenith = [0.0, 1.0, 0.0]      # default: the scene's up, +Y
+//! ```
+
+use super::sun::{ClockTime, Date, PlaceTime, SunPosition, sun_position};
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+
+/// `[daylight]` as written.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DaylightSpec {
+    pub latitude: f64,
+    pub longitude: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub longitude_convention: Option<String>,
+    pub date: String,
+    pub time: String,
+    pub timezone: f64,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub daylight_saving: bool,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub north: Option<[f32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub zenith: Option<[f32; 3]>,
+}
+
+/// The place, the time and the scene's orientation, checked.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Daylight {
+    /// As written (saved back as written).
+    pub spec: DaylightSpec,
+    pub place_time: PlaceTime,
+    /// Unit scene direction of north, horizontal (perpendicular to `zenith`).
+    pub north: Vec3,
+    /// Unit scene direction of the zenith.
+    pub zenith: Vec3,
+}
+
+impl DaylightSpec {
+    /// The checked model, or what is wrong, naming the key.
+    pub fn to_model(&self) -> Result<Daylight, String> {
+        let finite = |key: &str, v: f64, range: std::ops::RangeInclusive<f64>| {
+            if v.is_finite() && range.contains(&v) {
+                Ok(v)
+            } else {
+                Err(format!(
+                    "daylight: {key} = {v} is outside {}..{}",
+                    range.start(),
+                    range.end()
+                ))
+            }
+        };
+        let latitude_deg = finite("latitude", self.latitude, -90.0..=90.0)?;
+        let longitude = finite("longitude", self.longitude, -180.0..=180.0)?;
+        let longitude_deg = match self.longitude_convention.as_deref() {
+            None | Some("east") => longitude,
+            Some("west") => -longitude,
+            Some(other) => {
+                return Err(format!(
+                    "daylight: longitude_convention = \"{other}\": give \"east\" (east positive, \
+                     the default) or \"west\""
+                ));
+            }
+        };
+        let timezone_h = finite("timezone", self.timezone, -12.0..=14.0)?;
+        let date = Date::parse(&self.date).map_err(|e| format!("daylight: date: {e}"))?;
+        let time = ClockTime::parse(&self.time).map_err(|e| format!("daylight: time: {e}"))?;
+        let vector = |key: &str, v: Option<[f32; 3]>, default: Vec3| match v {
+            None => Ok(default),
+            Some(v) => Vec3::from(v)
+                .try_normalize()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("daylight: {key} = {v:?} is not a direction")),
+        };
+        let zenith = vector("zenith", self.zenith, Vec3::Y)?;
+        let north = vector("north", self.north, Vec3::NEG_Z)?;
+        // North is made horizontal; it must not point along the zenith.
+        let north = (north - zenith * north.dot(zenith))
+            .try_normalize()
+            .ok_or_else(|| "daylight: north points along the zenith".to_owned())?;
+        Ok(Daylight {
+            spec: self.clone(),
+            place_time: PlaceTime {
+                latitude_deg,
+                longitude_deg,
+                date,
+                time,
+                timezone_h,
+                daylight_saving: self.daylight_saving,
+            },
+            north,
+            zenith,
+        })
+    }
+}
+
+impl Daylight {
+    pub fn sun(&self) -> SunPosition {
+        sun_position(&self.place_time)
+    }
+
+    /// Unit scene direction towards the sun. East is where the sun rises: to the right of
+    /// north seen from above, `north × zenith` in a right-handed frame and `zenith × north` in
+    /// a left-handed one (`right_handed`), so that a mirrored `.shp` scene still has its
+    /// morning sun in the east.
+    pub fn sun_direction(&self, right_handed: bool) -> Vec3 {
+        let s = self.sun();
+        let east = if right_handed {
+            self.north.cross(self.zenith)
+        } else {
+            self.zenith.cross(self.north)
+        };
+        let (alt, az) = (
+            (s.altitude_deg as f32).to_radians(),
+            (s.azimuth_deg as f32).to_radians(),
+        );
+        let horizontal = self.north * az.cos() + east * az.sin();
+        (horizontal * alt.cos() + self.zenith * alt.sin()).normalize()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    fn spec(extra: &str) -> Result<Daylight, String> {
+        let text = format!(
+            "latitude = 36.0\nlongitude = -140.0\nlongitude_convention = \"west\"\n\
+             date = \"2026-06-21\"\ntime = \"12:00\"\ntimezone = 9.0\n{extra}"
+        );
+        let spec: DaylightSpec = toml::from_str(&text).map_err(|e| e.to_string())?;
+        spec.to_model()
+    }
+
+    /// The Integra room's `Geography TokyoMidday`: west-positive -140 is 140° E. 12:00 JST is
+    /// 18 minutes after solar noon there (the zone's meridian is 135° E, 20 minutes, and the
+    /// equation of time is −1.7 minutes), so the sun is just past the south (hour angle 4.5°,
+    /// which turns the azimuth fast so near the zenith), a little below its noon altitude
+    /// 90 − 36 + 23.44 = 77.4°.
+    #[test]
+    fn tokyo_midday() {
+        let d = spec("").unwrap();
+        assert_eq!(d.place_time.longitude_deg, 140.0);
+        let s = d.sun();
+        assert!(s.altitude_deg > 76.5 && s.altitude_deg < 77.4, "{s:?}");
+        assert!(s.azimuth_deg > 185.0 && s.azimuth_deg < 210.0, "{s:?}");
+        // North −Z, up +Y, right-handed: south is +Z, so the sun is towards +Z and up.
+        let w = d.sun_direction(true);
+        assert!(w.y > 0.97 && w.z > 0.2, "{w}");
+    }
+
+    /// The morning sun is in the east: +X in a right-handed frame with north −Z, −X in a
+    /// left-handed one.
+    #[test]
+    fn east_follows_the_handedness() {
+        let d = spec("").unwrap();
+        let morning = Daylight {
+            place_time: PlaceTime {
+                time: ClockTime {
+                    hour: 7,
+                    minute: 0,
+                    second: 0,
+                },
+                ..d.place_time
+            },
+            ..d.clone()
+        };
+        assert!(morning.sun_direction(true).x > 0.5);
+        assert!(morning.sun_direction(false).x < -0.5);
+    }
+
+    #[test]
+    fn bad_keys_are_named() {
+        assert!(spec("").is_ok());
+        let e = |extra: &str| spec(extra).unwrap_err();
+        assert!(e("north = [0.0, 1.0, 0.0]").contains("north points along the zenith"));
+        assert!(e("zenith = [0.0, 0.0, 0.0]").contains("zenith"));
+        let bad_lat = "latitude = 95.0\nlongitude = 0.0\ndate = \"2026-01-01\"\n\
+                       time = \"12:00\"\ntimezone = 0.0";
+        let s: DaylightSpec = toml::from_str(bad_lat).unwrap();
+        assert!(s.to_model().unwrap_err().contains("latitude = 95"));
+        let bad_date = "latitude = 5.0\nlongitude = 0.0\ndate = \"2026-02-30\"\n\
+                        time = \"12:00\"\ntimezone = 0.0";
+        let s: DaylightSpec = toml::from_str(bad_date).unwrap();
+        assert!(s.to_model().unwrap_err().contains("daylight: date"));
+    }
+}
