@@ -102,6 +102,12 @@ fn daylight_json(d: &Daylight, handedness: tracer_core::scene::Handedness) -> Va
         "sun_direction": d
             .sun_direction(handedness == tracer_core::scene::Handedness::Right)
             .to_array(),
+        "sky": d.sky.map(|s| json!({
+            "model": s.model.name(),
+            "zenith_luminance_cd_m2": s.zenith_luminance_cd_m2,
+            "horizontal_illuminance_lx": s.horizontal_illuminance(),
+            "ground_reflectance": s.ground_reflectance,
+        })),
     })
 }
 
@@ -222,6 +228,19 @@ fn print_text(v: &Value) {
             f("sun_azimuth_deg"),
             d["sun_direction"]
         );
+        let sky = &d["sky"];
+        if !sky.is_null() {
+            println!(
+                "sky: {} with zenith luminance {:.1} cd/m², unobstructed horizontal illuminance \
+                 {:.0} lx, ground reflectance {}",
+                sky["model"].as_str().unwrap_or("?"),
+                sky["zenith_luminance_cd_m2"].as_f64().unwrap_or(f64::NAN),
+                sky["horizontal_illuminance_lx"]
+                    .as_f64()
+                    .unwrap_or(f64::NAN),
+                sky["ground_reflectance"]
+            );
+        }
     }
 }
 

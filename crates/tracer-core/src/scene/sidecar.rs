@@ -142,7 +142,14 @@ impl Sidecar {
         sidecar.model_lights().map_err(invalid)?;
         sidecar.model_grids(None).map_err(invalid)?;
         if let Some(spec) = &sidecar.daylight {
-            spec.to_model().map_err(invalid)?;
+            let daylight = spec.to_model().map_err(invalid)?;
+            if daylight.sky.is_some() && sidecar.environment.is_some() {
+                return Err(invalid(
+                    "give [environment] or a [daylight] sky, not both: the sky is the \
+                     environment light"
+                        .into(),
+                ));
+            }
         }
         if let Some(spec) = &sidecar.environment {
             let base = sidecar.base_dir.clone();
@@ -255,7 +262,13 @@ impl Sidecar {
         }
         // The sidecar's [daylight] replaces the file's (Integra's Geography).
         match self.daylight.as_ref().map(|d| d.to_model()).transpose() {
-            Ok(Some(daylight)) => setup.daylight = Some(daylight),
+            Ok(Some(daylight)) => {
+                // A sky is the environment light.
+                if let Some(sky) = &daylight.sky {
+                    setup.environment = Some(sky.environment());
+                }
+                setup.daylight = Some(daylight);
+            }
             Ok(None) => {}
             Err(e) => warnings.push(format!("{e}; no daylight")),
         }
@@ -349,7 +362,12 @@ impl Sidecar {
             grids: setup.grids.iter().map(GridSpec::from_grid).collect(),
             maintenance_factor: (setup.maintenance_factor != 1.0)
                 .then_some(setup.maintenance_factor),
-            environment: setup.environment.as_ref().map(EnvironmentSpec::from_model),
+            // A [daylight] sky is written as the sky, not as a map.
+            environment: setup
+                .environment
+                .as_ref()
+                .filter(|_| setup.daylight.as_ref().is_none_or(|d| d.sky.is_none()))
+                .map(EnvironmentSpec::from_model),
             environment_model: None,
             daylight: setup.daylight.as_ref().map(|d| d.spec.clone()),
             smooth_angle_deg: (scene.smooth_angle_deg

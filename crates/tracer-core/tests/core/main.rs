@@ -13,6 +13,7 @@ mod bdpt_analytic;
 mod bvh_differential;
 mod bvh_speed;
 mod cornell_reference;
+mod daylight;
 mod default_setup;
 mod denoise;
 mod direct_wavefront;

@@ -207,6 +207,10 @@ impl Geography {
             daylight_saving: self.daylight_saving.unwrap_or(false),
             north: f(self.south).map(|s| s.map(|c| -c)),
             zenith: f(self.zenith),
+            sky: None,
+            zenith_luminance_cd_m2: None,
+            diffuse_horizontal_lx: None,
+            ground_reflectance: None,
         })
     }
 }

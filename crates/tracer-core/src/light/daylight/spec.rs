@@ -11,6 +11,9 @@
 //! daylight_saving = false
 //! north = [0.0, 0.0, -1.0]      # the scene direction of north (default -Z)
 //! zenith = [0.0, 1.0, 0.0]      # default: the scene's up, +Y
+//! sky = "cie-overcast"          # "none" (default), "uniform" or "cie-overcast"
+//! zenith_luminance_cd_m2 = 3000.0   # or diffuse_horizontal_lx = 7330.0, not both
+//! ground_reflectance = 0.2      # the ground below the horizon (default 0.2)
 //! ```
 
 use super::sun::{ClockTime, Date, PlaceTime, SunPosition, sun_position};
@@ -34,6 +37,30 @@ pub struct DaylightSpec {
     pub north: Option<[f32; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub zenith: Option<[f32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sky: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub zenith_luminance_cd_m2: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse_horizontal_lx: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground_reflectance: Option<f64>,
+}
+
+/// A sky's luminance distribution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SkyModel {
+    Uniform,
+    CieOvercast,
+}
+
+/// A sky with its scale and the ground below it (see `super::sky`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sky {
+    pub model: SkyModel,
+    pub zenith_luminance_cd_m2: f64,
+    /// Reflectance of the ground below the horizon, 0..=1.
+    pub ground_reflectance: f64,
 }
 
 /// The place, the time and the scene's orientation, checked.
@@ -46,6 +73,8 @@ pub struct Daylight {
     pub north: Vec3,
     /// Unit scene direction of the zenith.
     pub zenith: Vec3,
+    /// The sky, an environment light (None: `sky = "none"`).
+    pub sky: Option<Sky>,
 }
 
 impl DaylightSpec {
@@ -90,8 +119,10 @@ impl DaylightSpec {
         let north = (north - zenith * north.dot(zenith))
             .try_normalize()
             .ok_or_else(|| "daylight: north points along the zenith".to_owned())?;
+        let sky = self.sky_model(zenith)?;
         Ok(Daylight {
             spec: self.clone(),
+            sky,
             place_time: PlaceTime {
                 latitude_deg,
                 longitude_deg,
@@ -103,6 +134,88 @@ impl DaylightSpec {
             north,
             zenith,
         })
+    }
+}
+
+impl DaylightSpec {
+    /// The sky the keys give, checked.
+    fn sky_model(&self, zenith: Vec3) -> Result<Option<Sky>, String> {
+        let model = match self.sky.as_deref() {
+            None | Some("none") => {
+                let stray: Vec<&str> = [
+                    (
+                        "zenith_luminance_cd_m2",
+                        self.zenith_luminance_cd_m2.is_some(),
+                    ),
+                    (
+                        "diffuse_horizontal_lx",
+                        self.diffuse_horizontal_lx.is_some(),
+                    ),
+                    ("ground_reflectance", self.ground_reflectance.is_some()),
+                ]
+                .iter()
+                .filter_map(|&(k, given)| given.then_some(k))
+                .collect();
+                if !stray.is_empty() {
+                    return Err(format!(
+                        "daylight: {} without a sky (sky = \"uniform\" or \"cie-overcast\")",
+                        stray.join(", ")
+                    ));
+                }
+                return Ok(None);
+            }
+            Some("uniform") => SkyModel::Uniform,
+            Some("cie-overcast") => SkyModel::CieOvercast,
+            Some(other) => {
+                return Err(format!(
+                    "daylight: sky = \"{other}\": raygine draws \"none\", \"uniform\" and \
+                     \"cie-overcast\" so far (the CIE general skies and Perez are not built yet)"
+                ));
+            }
+        };
+        if zenith.dot(Vec3::Y) < 0.9999 {
+            return Err(
+                "daylight: a sky needs the zenith along +Y (the environment's up) for now".into(),
+            );
+        }
+        let positive = |key: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(v)
+            } else {
+                Err(format!("daylight: {key} = {v} must be above 0"))
+            }
+        };
+        let zenith_luminance_cd_m2 = match (self.zenith_luminance_cd_m2, self.diffuse_horizontal_lx)
+        {
+            (Some(lz), None) => positive("zenith_luminance_cd_m2", lz)?,
+            (None, Some(eh)) => {
+                positive("diffuse_horizontal_lx", eh)? / model.horizontal_over_zenith()
+            }
+            (Some(_), Some(_)) => {
+                return Err(
+                    "daylight: give zenith_luminance_cd_m2 or diffuse_horizontal_lx, not both"
+                        .into(),
+                );
+            }
+            (None, None) => {
+                return Err(format!(
+                    "daylight: sky = \"{}\" needs zenith_luminance_cd_m2 (cd/m²) or \
+                     diffuse_horizontal_lx (lx)",
+                    model.name()
+                ));
+            }
+        };
+        let ground_reflectance = self.ground_reflectance.unwrap_or(0.2);
+        if !(0.0..=1.0).contains(&ground_reflectance) {
+            return Err(format!(
+                "daylight: ground_reflectance = {ground_reflectance} is outside 0..1"
+            ));
+        }
+        Ok(Some(Sky {
+            model,
+            zenith_luminance_cd_m2,
+            ground_reflectance,
+        }))
     }
 }
 
@@ -180,6 +293,34 @@ mod tests {
         };
         assert!(morning.sun_direction(true).x > 0.5);
         assert!(morning.sun_direction(false).x < -0.5);
+    }
+
+    #[test]
+    fn sky_keys() {
+        let d = spec("sky = \"cie-overcast\"\ndiffuse_horizontal_lx = 7000.0").unwrap();
+        let sky = d.sky.unwrap();
+        assert_eq!(sky.model, SkyModel::CieOvercast);
+        // E_h = 7π/9 Lz.
+        assert!(
+            (sky.zenith_luminance_cd_m2 * 7.0 * std::f64::consts::PI / 9.0 - 7000.0).abs() < 1e-9
+        );
+        assert_eq!(sky.ground_reflectance, 0.2);
+        let e = |extra: &str| spec(extra).unwrap_err();
+        assert!(e("sky = \"perez\"").contains("not built yet"));
+        assert!(e("sky = \"uniform\"").contains("needs zenith_luminance_cd_m2"));
+        assert!(e("zenith_luminance_cd_m2 = 10.0").contains("without a sky"));
+        assert!(
+            e("sky = \"uniform\"\nzenith_luminance_cd_m2 = 1.0\ndiffuse_horizontal_lx = 2.0")
+                .contains("not both")
+        );
+        assert!(
+            e("sky = \"uniform\"\nzenith_luminance_cd_m2 = 1.0\nground_reflectance = 2.0")
+                .contains("ground_reflectance")
+        );
+        assert!(
+            e("sky = \"uniform\"\nzenith_luminance_cd_m2 = 1.0\nzenith = [0.0, 0.0, 1.0]\nnorth = [0.0, 1.0, 0.0]")
+                .contains("zenith along +Y")
+        );
     }
 
     #[test]
