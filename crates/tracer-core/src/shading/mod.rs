@@ -15,7 +15,7 @@ pub use dielectric::{fresnel, refract};
 pub use material::PreparedMaterial;
 pub use metal_rough::{MetalRough, MetalRoughSample, dielectric_f0};
 pub use microfacet::{Ggx, MIN_ALPHA};
-pub use scatter::{Scatter, needs_metal_rough, scatter_at};
+pub use scatter::{Scatter, scatter_at};
 pub use surface::Surface;
 
 use crate::lit_scene::LitScene;

@@ -34,14 +34,8 @@ pub fn scatter_at<S: Scatter>(lit: &LitScene<'_>, prim: u32, wo: Vec3, importanc
     S::at(lit.material_of(prim), inside, importance)
 }
 
-/// Whether any of `lit`'s materials is metallic-roughness (else [`Classic`] is all it needs).
-#[inline]
-pub fn needs_metal_rough(lit: &LitScene<'_>) -> bool {
-    lit.has_metal_rough()
-}
-
 impl Scatter for Classic {
-    /// Only for scenes without metallic-roughness materials ([`needs_metal_rough`]).
+    /// Only for scenes without metallic-roughness materials (`LitScene::has_metal_rough`).
     #[inline]
     fn at(m: &PreparedMaterial, inside: bool, importance: bool) -> Self {
         debug_assert!(m.pbr.is_none(), "a metallic-roughness material in Classic");

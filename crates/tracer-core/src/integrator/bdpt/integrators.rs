@@ -8,7 +8,7 @@ use crate::integrator::{Integrator, IntegratorKind, IntegratorSettings, Sample, 
 use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
 use crate::scene::CameraBasis;
-use crate::shading::{Bsdf, Classic, needs_metal_rough};
+use crate::shading::{Bsdf, Classic};
 use glam::Vec3;
 
 /// Bidirectional path tracing: every (s, t) strategy, power-heuristic MIS.
@@ -21,8 +21,6 @@ pub struct BidirectionalPathTracing<'a> {
     pub strategies: Strategies,
     /// Lights by flux.
     lights: LightPicker,
-    /// Whether a material is metallic-roughness: the full [`Bsdf`], else [`Classic`] alone.
-    metal_rough: bool,
 }
 
 /// Light tracing: every light vertex joined to the eye (t = 1) at weight 1; eye subpaths go
@@ -37,14 +35,12 @@ pub struct LightTracing<'a> {
     /// Non-delta bounces allowed (None: unlimited).
     pub max_bounces: Option<u32>,
     lights: LightPicker,
-    metal_rough: bool,
 }
 
 impl<'a> BidirectionalPathTracing<'a> {
     pub fn new(lit: LitScene<'a>, settings: IntegratorSettings) -> Self {
         Self {
             lights: LightPicker::new(&lit),
-            metal_rough: needs_metal_rough(&lit),
             lit,
             max_bounces: settings.max_bounces,
             strategies: Strategies::All,
@@ -56,7 +52,6 @@ impl<'a> LightTracing<'a> {
     pub fn new(lit: LitScene<'a>, settings: IntegratorSettings) -> Self {
         Self {
             lights: LightPicker::with_environment(&lit),
-            metal_rough: needs_metal_rough(&lit),
             lit,
             max_bounces: settings.max_bounces,
         }
@@ -108,7 +103,7 @@ impl Integrator for BidirectionalPathTracing<'_> {
                 Eye::Camera(*basis),
             )
         };
-        if self.metal_rough {
+        if self.lit.has_metal_rough() {
             camera_sample::<Bsdf>(&camera, want.illuminance, ray, rng, splats)
         } else {
             camera_sample::<Classic>(&camera, want.illuminance, ray, rng, splats)
@@ -131,7 +126,7 @@ impl Integrator for BidirectionalPathTracing<'_> {
             self.max_bounces,
             Eye::Camera(*basis),
         );
-        preview(&camera, self.metal_rough, illuminance, ray, rng)
+        preview(&camera, illuminance, ray, rng)
     }
 
     fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32) {
@@ -139,7 +134,7 @@ impl Integrator for BidirectionalPathTracing<'_> {
             strategies: self.strategies,
             ..transport(&self.lit, &self.lights, self.max_bounces, Eye::Sensor)
         };
-        if self.metal_rough {
+        if self.lit.has_metal_rough() {
             sensor_illuminance::<Bsdf>(&sensor, p, n, rng)
         } else {
             sensor_illuminance::<Classic>(&sensor, p, n, rng)
@@ -173,7 +168,7 @@ impl Integrator for LightTracing<'_> {
                 Eye::Camera(*basis),
             )
         };
-        if self.metal_rough {
+        if self.lit.has_metal_rough() {
             camera_sample::<Bsdf>(&camera, want.illuminance, ray, rng, splats)
         } else {
             camera_sample::<Classic>(&camera, want.illuminance, ray, rng, splats)
@@ -195,7 +190,7 @@ impl Integrator for LightTracing<'_> {
             self.max_bounces,
             Eye::Camera(*basis),
         );
-        preview(&camera, self.metal_rough, illuminance, ray, rng)
+        preview(&camera, illuminance, ray, rng)
     }
 
     fn illuminance(&self, p: Vec3, n: Vec3, rng: &mut SampleRng) -> (f32, u32) {
@@ -203,7 +198,7 @@ impl Integrator for LightTracing<'_> {
             light_tracing: true,
             ..transport(&self.lit, &self.lights, self.max_bounces, Eye::Sensor)
         };
-        if self.metal_rough {
+        if self.lit.has_metal_rough() {
             sensor_illuminance::<Bsdf>(&sensor, p, n, rng)
         } else {
             sensor_illuminance::<Classic>(&sensor, p, n, rng)
@@ -214,7 +209,6 @@ impl Integrator for LightTracing<'_> {
 /// A preview sample: `camera`'s transport without the t = 1 strategies.
 fn preview(
     camera: &Bidirectional<'_, '_>,
-    metal_rough: bool,
     illuminance: bool,
     ray: &Ray,
     rng: &mut SampleRng,
@@ -224,7 +218,8 @@ fn preview(
         ..*camera
     };
     let mut none = Vec::new();
-    let sample = if metal_rough {
+    // The full Bsdf only where a material needs it (`shading::Scatter`).
+    let sample = if camera.lit.has_metal_rough() {
         camera_sample::<Bsdf>(&camera, illuminance, ray, rng, &mut none)
     } else {
         camera_sample::<Classic>(&camera, illuminance, ray, rng, &mut none)
