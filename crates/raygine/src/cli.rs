@@ -70,6 +70,10 @@ pub struct MeasureArgs {
     /// grid), after at least 64 samples; --samples caps it (default 65536).
     #[arg(long, value_name = "PCT", value_parser = parse_percent)]
     pub target_error: Option<f64>,
+    /// Measure daylight factors: DF = E_in / E_out,h in %, under the CIE overcast sky without
+    /// sun, lights or glowing surfaces, whatever the sidecar's sky (E_out,h computed).
+    #[arg(long)]
+    pub daylight_factor: bool,
     #[command(flatten)]
     pub shard: crate::cli_shards::ShardArgs,
 }

@@ -102,6 +102,7 @@ fn daylight_json(d: &Daylight, handedness: tracer_core::scene::Handedness) -> Va
         "sun_direction": d
             .sun_direction(handedness == tracer_core::scene::Handedness::Right)
             .to_array(),
+        "sun_normal_illuminance_lx": d.sun_normal_illuminance_lx,
         "sky": d.sky.map(|s| json!({
             "model": s.model.name(),
             "zenith_luminance_cd_m2": s.zenith_luminance_cd_m2,
@@ -240,6 +241,17 @@ fn print_text(v: &Value) {
                     .unwrap_or(f64::NAN),
                 sky["ground_reflectance"]
             );
+        }
+        if let Some(e) = d["sun_normal_illuminance_lx"].as_f64() {
+            if f("sun_altitude_deg") > 0.0 {
+                println!(
+                    "sun: a 0.533° disc giving {e:.0} lx on a plane facing it, {:.0} lx on the \
+                     horizontal",
+                    e * f("sun_altitude_deg").to_radians().sin()
+                );
+            } else {
+                println!("sun: below the horizon, so it lights nothing");
+            }
         }
     }
 }

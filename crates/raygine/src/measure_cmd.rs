@@ -1,5 +1,5 @@
 //! `raygine measure`: the illuminance on every grid of the sidecar, with its statistics, written
-//! as CSV and JSON.
+//! as CSV and JSON; with `--daylight-factor`, the daylight factor too.
 
 use crate::cli::MeasureArgs;
 use crate::cli_support::{load_scene, thread_pool};
@@ -8,10 +8,15 @@ use serde_json::json;
 use std::fmt::Write as _;
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
-use tracer_core::measure::{GridResult, MeasureSettings, measure_grids_with_progress};
+use tracer_core::measure::{
+    DaylightFactorSetup, GridResult, MeasureSettings, measure_grids_with_progress,
+};
 
 /// The CSV header, exactly.
 pub const CSV_HEADER: &str = "grid,i,j,x,y,z,illuminance_lx,std_error_lx";
+
+/// The columns `--daylight-factor` adds to the CSV.
+pub const CSV_DF_COLUMNS: &str = ",daylight_factor_pct,daylight_factor_std_error_pct";
 
 /// The sample cap of `--target-error` when `--samples` is not given.
 pub const TARGET_ERROR_CAP: u32 = 65_536;
@@ -40,14 +45,23 @@ pub fn run(args: &MeasureArgs) -> Result<()> {
         time_limit: args.scene.time_limit.map(Duration::from_secs_f64),
         target_error: args.target_error.map(|pct| pct / 100.0),
     };
+    let df = if args.daylight_factor {
+        if args.shard.partial.is_some() {
+            bail!("--daylight-factor is not measured in shards yet: measure it on one machine");
+        }
+        Some(DaylightFactorSetup::new(&loaded.setup).map_err(anyhow::Error::msg)?)
+    } else {
+        None
+    };
     if args.shard.partial.is_some() {
         return crate::shard_cmd::measure_part(args, &loaded, &settings);
     }
+    let setup = df.as_ref().map_or(&loaded.setup, |d| &d.setup);
     let pool = thread_pool(&args.scene)?;
     let bar = progress_bar(samples);
     let measured_at = Instant::now();
     let results = pool.install(|| {
-        measure_grids_with_progress(&loaded.scene, &loaded.setup, &settings, &mut |p| {
+        measure_grids_with_progress(&loaded.scene, setup, &settings, &mut |p| {
             bar.set_position(u64::from(p.samples_done));
             if let Some(w) = p.worst_relative_error {
                 bar.set_message(format!("worst point at {:.2}x the target error", w));
@@ -57,7 +71,13 @@ pub fn run(args: &MeasureArgs) -> Result<()> {
     });
     bar.finish_and_clear();
     let secs = measured_at.elapsed().as_secs_f64();
-    let mf = f64::from(loaded.setup.maintenance_factor);
+    // A daylight factor is a ratio of the room's geometry and surfaces: no maintenance factor.
+    let mf = if df.is_some() {
+        1.0
+    } else {
+        f64::from(loaded.setup.maintenance_factor)
+    };
+    let outdoor = df.as_ref().map(|d| d.outdoor_lx);
     let results: Vec<GridResult> = results.into_iter().map(|r| r.scaled(mf)).collect();
     let unit = loaded.setup.unit.symbol();
     let done = results.first().map_or(0, |r| r.samples);
@@ -68,12 +88,22 @@ pub fn run(args: &MeasureArgs) -> Result<()> {
         done,
         args.csv.as_deref(),
         args.json.as_deref(),
+        outdoor,
     )?;
     if mf != 1.0 {
         println!("maintenance factor {mf}: maintained illuminance");
     }
+    if let Some(e) = outdoor {
+        println!(
+            "daylight factor: CIE overcast sky without sun, E_out,h {e:.0} lx on the open \
+             horizontal; illuminances below are under that sky"
+        );
+    }
     for r in &results {
         println!("{}", summary_line(r));
+        if let Some(e) = outdoor {
+            println!("{}", df_summary_line(r, e));
+        }
     }
     let rays: u64 = results.iter().map(|r| r.rays).sum();
     println!(
@@ -98,13 +128,14 @@ pub fn write_readings(
     samples: u32,
     csv_path: Option<&std::path::Path>,
     json_path: Option<&std::path::Path>,
+    df_outdoor_lx: Option<f64>,
 ) -> Result<()> {
     if let Some(path) = csv_path {
-        tracer_core::export::write_text(path, &csv(results))
+        tracer_core::export::write_text(path, &csv(results, df_outdoor_lx))
             .with_context(|| format!("{}: cannot write the CSV", path.display()))?;
     }
     if let Some(path) = json_path {
-        let text = json_report(results, unit, integrator, samples);
+        let text = json_report(results, unit, integrator, samples, df_outdoor_lx);
         tracer_core::export::write_text(path, &text)
             .with_context(|| format!("{}: cannot write the JSON", path.display()))?;
     }
@@ -152,14 +183,33 @@ pub fn summary_line(r: &GridResult) -> String {
     )
 }
 
-/// The CSV text: the header, then one line a point (i along u, j along v, 0-based).
-pub fn csv(results: &[GridResult]) -> String {
+/// `grid floor: DF min 0.85 %, avg 2.10 %, max 6.01 %, uniformity (min/avg) 0.40`, for readings
+/// under an overcast sky of `outdoor_lx` on the open horizontal.
+pub fn df_summary_line(r: &GridResult, outdoor_lx: f64) -> String {
+    let s = r.statistics();
+    let pct = |e: f64| 100.0 * e / outdoor_lx;
+    format!(
+        "grid {}: DF min {:.2} %, avg {:.2} %, max {:.2} %, uniformity (min/avg) {:.2}",
+        r.name,
+        pct(s.e_min_lx),
+        pct(s.e_avg_lx),
+        pct(s.e_max_lx),
+        s.u0
+    )
+}
+
+/// The CSV text: the header, then one line a point (i along u, j along v, 0-based); with
+/// `df_outdoor_lx`, each point's daylight factor and its standard error in % too.
+pub fn csv(results: &[GridResult], df_outdoor_lx: Option<f64>) -> String {
     let mut out = String::with_capacity(64 * results.len());
     out.push_str(CSV_HEADER);
+    if df_outdoor_lx.is_some() {
+        out.push_str(CSV_DF_COLUMNS);
+    }
     out.push('\n');
     for r in results {
         for p in &r.points {
-            let _ = writeln!(
+            let _ = write!(
                 out,
                 "{},{},{},{},{},{},{},{}",
                 r.name,
@@ -171,18 +221,35 @@ pub fn csv(results: &[GridResult]) -> String {
                 p.illuminance_lx,
                 p.std_error_lx
             );
+            if let Some(e) = df_outdoor_lx {
+                let _ = write!(
+                    out,
+                    ",{},{}",
+                    100.0 * p.illuminance_lx / e,
+                    100.0 * p.std_error_lx / e
+                );
+            }
+            out.push('\n');
         }
     }
     out
 }
 
-/// The JSON report: unit, integrator, samples and per grid its statistics and points.
-pub fn json_report(results: &[GridResult], unit: &str, integrator: &str, samples: u32) -> String {
+/// The JSON report: unit, integrator, samples and per grid its statistics and points; with
+/// `df_outdoor_lx`, daylight factors (`df_*_pct`, per point `daylight_factor_pct`) too.
+pub fn json_report(
+    results: &[GridResult],
+    unit: &str,
+    integrator: &str,
+    samples: u32,
+    df_outdoor_lx: Option<f64>,
+) -> String {
+    let pct = |e: f64| df_outdoor_lx.map(|out| 100.0 * e / out);
     let grids: Vec<_> = results
         .iter()
         .map(|r| {
             let s = r.statistics();
-            json!({
+            let mut grid = json!({
                 "name": r.name,
                 "normal": r.normal.to_array(),
                 "e_min_lx": s.e_min_lx,
@@ -191,7 +258,8 @@ pub fn json_report(results: &[GridResult], unit: &str, integrator: &str, samples
                 "u0": s.u0,
                 "emin_over_emax": s.emin_over_emax,
                 "points_inside_objects": r.buried_count(),
-                "points": r.points.iter().map(|p| json!({
+                "points": r.points.iter().map(|p| {
+                    let mut point = json!({
                     "i": p.i,
                     "j": p.j,
                     "x": p.position.x,
@@ -200,15 +268,34 @@ pub fn json_report(results: &[GridResult], unit: &str, integrator: &str, samples
                     "illuminance_lx": p.illuminance_lx,
                     "std_error_lx": p.std_error_lx,
                     "inside_object": p.buried,
-                })).collect::<Vec<_>>(),
-            })
+                    });
+                    if let (Some(df), Some(se)) = (pct(p.illuminance_lx), pct(p.std_error_lx)) {
+                        point["daylight_factor_pct"] = json!(df);
+                        point["daylight_factor_std_error_pct"] = json!(se);
+                    }
+                    point
+                }).collect::<Vec<_>>(),
+            });
+            if df_outdoor_lx.is_some() {
+                grid["df_min_pct"] = json!(pct(s.e_min_lx));
+                grid["df_avg_pct"] = json!(pct(s.e_avg_lx));
+                grid["df_max_pct"] = json!(pct(s.e_max_lx));
+                grid["df_uniformity"] = json!(s.u0);
+            }
+            grid
         })
         .collect();
-    let doc = json!({
+    let mut doc = json!({
         "unit": unit,
         "integrator": integrator,
         "samples": samples,
         "grids": grids,
     });
+    if let Some(e) = df_outdoor_lx {
+        doc["daylight_factor"] = json!({
+            "sky": "cie-overcast",
+            "outdoor_horizontal_lx": e,
+        });
+    }
     serde_json::to_string_pretty(&doc).unwrap_or_default() + "\n"
 }

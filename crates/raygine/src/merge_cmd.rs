@@ -226,6 +226,7 @@ fn merge_measure(args: &MergeArgs, first: &PartHeader, started: Instant) -> Resu
         first.samples,
         args.csv.as_deref(),
         args.json.as_deref(),
+        None,
     )?;
     if mf != 1.0 {
         println!("maintenance factor {mf}: maintained illuminance");

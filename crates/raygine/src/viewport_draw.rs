@@ -170,7 +170,8 @@ pub fn seen_from(scene: &tracer_core::scene::Scene, hidden: &[bool], eye: Vec3, 
 }
 
 /// X (red), Y (green), Z (blue) in the bottom-left corner, drawn with the camera's basis so the
-/// triad agrees with the picture (mirrored for left-handed scenes).
+/// triad agrees with the picture (mirrored for left-handed scenes); with daylight, the sun's
+/// direction in yellow.
 pub fn draw_axis_triad(ui: &egui::Ui, setup: &Setup, rect: Rect) {
     let basis = setup.camera.basis(setup.handedness, 1, 1);
     let origin = Pos2::new(rect.min.x + 40.0, rect.max.y - 40.0);
@@ -187,6 +188,30 @@ pub fn draw_axis_triad(ui: &egui::Ui, setup: &Setup, rect: Rect) {
             Align2::CENTER_CENTER,
             name,
             FontId::proportional(12.0),
+            colour,
+        );
+    }
+    // Daylight: where the sun is, in yellow (dashed below the horizon).
+    if let Some(d) = &setup.daylight {
+        let sun = d.sun_direction(setup.handedness == tracer_core::scene::Handedness::Right);
+        let v = Vec2::new(sun.dot(basis.right), -sun.dot(basis.up)) * 28.0;
+        let colour = Color32::from_rgb(255, 210, 60);
+        if d.sun().altitude_deg > 0.0 {
+            painter.line_segment([origin, origin + v], Stroke::new(2.0, colour));
+        } else {
+            painter.add(egui::Shape::dashed_line(
+                &[origin, origin + v],
+                Stroke::new(1.5, colour),
+                3.0,
+                3.0,
+            ));
+        }
+        painter.circle_filled(origin + v * 1.25, 4.0, colour);
+        painter.text(
+            origin + v * 1.25 + Vec2::new(8.0, -8.0),
+            Align2::LEFT_CENTER,
+            "sun",
+            FontId::proportional(11.0),
             colour,
         );
     }

@@ -436,3 +436,74 @@ fn a_target_error_is_rendered_to_and_reported() {
     assert!(!both.success());
     assert!(both.stderr.contains("--no-adaptive"), "{}", both.stderr);
 }
+
+/// `--daylight-factor`: the open floor under the CIE overcast sky has DF = 100 % (E_in is
+/// E_out,h), whatever the sidecar's lights, its sky (here none) and its maintenance factor;
+/// the CSV gains `daylight_factor_pct`, the JSON the DF statistics, stdout a DF line.
+#[test]
+fn measure_gives_daylight_factors() {
+    let dir = temp_dir();
+    let shp = floor_scene(dir.path(), GRID);
+    let side = dir.path().join("floor.raygine.toml");
+    let text = std::fs::read_to_string(&side).unwrap();
+    std::fs::write(&side, format!("maintenance_factor = 0.5\n{text}")).unwrap();
+    let (csv, json) = (dir.path().join("df.csv"), dir.path().join("df.json"));
+    let run = raygine_in(
+        dir.path(),
+        [
+            "measure".as_ref(),
+            "-S".as_ref(),
+            shp.as_os_str(),
+            "--gi".as_ref(),
+            "path".as_ref(),
+            "--samples".as_ref(),
+            "2048".as_ref(),
+            "--daylight-factor".as_ref(),
+            "--csv".as_ref(),
+            csv.as_os_str(),
+            "--json".as_ref(),
+            json.as_os_str(),
+        ],
+    );
+    run.assert_ok();
+    assert!(
+        run.stdout
+            .contains("CIE overcast sky without sun, E_out,h 10000 lx"),
+        "{}",
+        run.stdout
+    );
+    assert!(!run.stdout.contains("maintenance factor"), "{}", run.stdout);
+    let line = run
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("grid floor: DF min "))
+        .unwrap_or_else(|| panic!("{}", run.stdout));
+    assert!(
+        line.contains(" %, avg ") && line.contains("uniformity (min/avg)"),
+        "{line}"
+    );
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some(
+            "grid,i,j,x,y,z,illuminance_lx,std_error_lx,daylight_factor_pct,\
+             daylight_factor_std_error_pct"
+        )
+    );
+    for l in lines {
+        let r: Vec<f64> = l.split(',').skip(1).map(|c| c.parse().unwrap()).collect();
+        let (e, df) = (r[5], r[7]);
+        assert!((df - 100.0).abs() < 2.0, "{l}");
+        assert!((df - e / 100.0).abs() < 1e-9, "{l}");
+    }
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["daylight_factor"]["sky"], "cie-overcast");
+    let g = &v["grids"][0];
+    for key in ["df_min_pct", "df_avg_pct", "df_max_pct"] {
+        let df = g[key].as_f64().unwrap();
+        assert!((df - 100.0).abs() < 2.0, "{key} {df}");
+    }
+    assert!(g["points"][0]["daylight_factor_pct"].as_f64().is_some());
+}

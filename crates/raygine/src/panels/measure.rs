@@ -135,13 +135,14 @@ pub fn measure_ui(
                 if ui.button("Export CSV").clicked()
                     && let Some(r) = &readings
                 {
-                    out.push(export(doc, "grids.csv", csv(&r.results)));
+                    out.push(export(doc, "grids.csv", csv(&r.results, None)));
                 }
                 if ui.button("Export JSON").clicked()
                     && let Some(r) = &readings
                 {
                     let unit = doc.setup.unit.symbol();
-                    let text = json_report(&r.results, unit, view.integrator.name(), r.samples);
+                    let text =
+                        json_report(&r.results, unit, view.integrator.name(), r.samples, None);
                     out.push(export(doc, "grids.json", text));
                 }
             });
@@ -157,7 +158,7 @@ pub fn measure_ui(
                 out.push(Command::SaveReport {
                     png: report_path(doc, "report.png"),
                     csv: report_path(doc, "grids.csv"),
-                    csv_text: csv(&r.results),
+                    csv_text: csv(&r.results, None),
                 });
             }
         },

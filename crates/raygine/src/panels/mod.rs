@@ -3,6 +3,7 @@
 //! everything else the user asked for as [`Command`]s, which the app applies.
 
 mod camera;
+mod daylight;
 mod environment;
 mod frame;
 mod lights;
@@ -47,6 +48,8 @@ pub struct PanelState {
     pub part_filter: String,
     /// The Environment section's last sky of each kind.
     pub environment: EnvironmentMemory,
+    /// The Daylight section's draft of `[daylight]`.
+    pub daylight: daylight::DaylightDraft,
 }
 
 /// What the side panel shows and edits: the document (its setup edited in place; the app makes
@@ -123,6 +126,12 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
                 thumbnail: environment_thumbnail,
             };
             environment::environment_ui(ui, &mut doc.setup, view, &mut state.environment, out);
+        });
+    egui::CollapsingHeader::new("Daylight")
+        .id_salt(("daylight", doc.path.clone()))
+        .default_open(doc.setup.daylight.is_some())
+        .show(ui, |ui| {
+            daylight::daylight_ui(ui, &mut doc.setup, &mut state.daylight)
         });
     egui::CollapsingHeader::new("Camera")
         .default_open(true)

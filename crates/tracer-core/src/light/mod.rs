@@ -26,7 +26,9 @@ mod tree;
 mod triangle;
 
 pub use emitters::{EmissionSides, EmissiveTriangle, EmitterSample, EmitterTable};
-pub use environment::{Environment, EnvironmentLight, EnvironmentMap, EnvironmentSource};
+pub use environment::{
+    Environment, EnvironmentLight, EnvironmentMap, EnvironmentSource, SunDisc, map_direction,
+};
 pub use goniometric::{Photometry, PhotometryError, Plane, cosine_flux};
 pub use handle::LightHandle;
 pub use luminaire::{GoniometricLight, Luminaire, LuminaireFrame};

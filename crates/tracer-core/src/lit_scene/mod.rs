@@ -9,7 +9,10 @@ mod visibility;
 
 pub use light_sampler::{LightSampler, TreeLight};
 
-use crate::light::{EmitterTable, EnvironmentLight, LightHandle, LightSource, PlacedLight};
+use crate::light::daylight::SUN_DIAMETER_DEG;
+use crate::light::{
+    EmitterTable, EnvironmentLight, LightHandle, LightSource, PlacedLight, SunDisc,
+};
 use crate::scene::{Handedness, Scene, Setup};
 use crate::shading::PreparedMaterial;
 use glam::Vec3;
@@ -81,20 +84,27 @@ impl<'a> LitScene<'a> {
             lights.iter().map(PlacedLight::bounds).collect(),
             emitters.light_bounds(mpu),
         );
+        let b = scene.bounds;
+        let (mut centre, mut radius) = ((b.min + b.max) * 0.5, (b.max - b.min).length() * 0.5);
+        if !(centre.is_finite() && radius.is_finite() && radius > 0.0) {
+            // An empty scene.
+            (centre, radius) = (Vec3::ZERO, 1.0);
+        }
         let environment = setup
             .environment
             .as_ref()
             .filter(|e| e.is_valid())
-            .map(|e| {
-                let b = scene.bounds;
-                let (mut centre, mut radius) =
-                    ((b.min + b.max) * 0.5, (b.max - b.min).length() * 0.5);
-                if !(centre.is_finite() && radius.is_finite() && radius > 0.0) {
-                    // An empty scene.
-                    (centre, radius) = (Vec3::ZERO, 1.0);
-                }
-                EnvironmentLight::new(e, handedness_sign, centre, radius, mpu * mpu)
-            });
+            .map(|e| EnvironmentLight::new(e, handedness_sign, centre, radius, mpu * mpu));
+        // Daylight's sun joins the environment (or is all of it).
+        let sun = setup.daylight.as_ref().and_then(|d| {
+            let (dir, e_n) = d.sun_disc(setup.handedness == Handedness::Right)?;
+            Some(SunDisc::new(dir, SUN_DIAMETER_DEG, e_n))
+        });
+        let environment = match (environment, sun) {
+            (Some(env), Some(sun)) => Some(env.with_sun(sun)),
+            (None, Some(sun)) => Some(EnvironmentLight::sun_only(sun, centre, radius, mpu * mpu)),
+            (env, None) => env,
+        };
         let metal_rough = materials.iter().any(|m| m.pbr.is_some());
         LitScene {
             scene,

@@ -3,12 +3,14 @@
 //! estimator, sampled with streams keyed by (grid, point, sample index).
 
 mod buried;
+mod daylight_factor;
 mod grid;
 pub mod partial;
 pub mod placement;
 mod sensors;
 
 pub use buried::{buried_points, front_winding, is_buried, mark_buried};
+pub use daylight_factor::{DF_OUTDOOR_LX, DaylightFactorSetup};
 pub use grid::{Grid, GridError, SensorPoint};
 pub use sensors::{
     GridResult, GridStatistics, MeasureProgress, MeasureSettings, PointResult, TARGET_MIN_SAMPLES,

@@ -264,8 +264,19 @@ impl Sidecar {
         match self.daylight.as_ref().map(|d| d.to_model()).transpose() {
             Ok(Some(daylight)) => {
                 // A sky is the environment light.
-                if let Some(sky) = &daylight.sky {
-                    setup.environment = Some(sky.environment());
+                let right_handed = setup.handedness == Handedness::Right;
+                if let Some(env) = daylight.sky_environment(right_handed) {
+                    setup.environment = Some(env);
+                }
+                if daylight.sun_normal_illuminance_lx.is_some()
+                    && daylight.sun_disc(right_handed).is_none()
+                {
+                    warnings.push(format!(
+                        "daylight: the sun is below the horizon at {} {} (altitude {:.1}°)",
+                        daylight.place_time.date,
+                        daylight.place_time.time,
+                        daylight.sun().altitude_deg
+                    ));
                 }
                 setup.daylight = Some(daylight);
             }

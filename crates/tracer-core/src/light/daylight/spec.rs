@@ -11,9 +11,11 @@
 //! daylight_saving = false
 //! north = [0.0, 0.0, -1.0]      # the scene direction of north (default -Z)
 //! zenith = [0.0, 1.0, 0.0]      # default: the scene's up, +Y
-//! sky = "cie-overcast"          # "none" (default), "uniform" or "cie-overcast"
+//! sky = "cie-overcast"          # "none" (default), "uniform", "cie-overcast", "cie:1".."cie:15"
 //! zenith_luminance_cd_m2 = 3000.0   # or diffuse_horizontal_lx = 7330.0, not both
 //! ground_reflectance = 0.2      # the ground below the horizon (default 0.2)
+//! sun = true                    # a disc 0.533° across (default false)
+//! sun_normal_illuminance_lx = 80000.0   # its illuminance on a plane facing it
 //! ```
 
 use super::sun::{ClockTime, Date, PlaceTime, SunPosition, sun_position};
@@ -45,6 +47,10 @@ pub struct DaylightSpec {
     pub diffuse_horizontal_lx: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ground_reflectance: Option<f64>,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub sun: bool,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sun_normal_illuminance_lx: Option<f64>,
 }
 
 /// A sky's luminance distribution.
@@ -52,6 +58,8 @@ pub struct DaylightSpec {
 pub enum SkyModel {
     Uniform,
     CieOvercast,
+    /// ISO 15469 / CIE S 011 general sky of type 1..=15.
+    CieGeneral(u8),
 }
 
 /// A sky with its scale and the ground below it (see `super::sky`).
@@ -61,6 +69,8 @@ pub struct Sky {
     pub zenith_luminance_cd_m2: f64,
     /// Reflectance of the ground below the horizon, 0..=1.
     pub ground_reflectance: f64,
+    /// The sun's zenith angle (radians), which shapes the general skies.
+    pub sun_zenith_rad: f64,
 }
 
 /// The place, the time and the scene's orientation, checked.
@@ -75,6 +85,8 @@ pub struct Daylight {
     pub zenith: Vec3,
     /// The sky, an environment light (None: `sky = "none"`).
     pub sky: Option<Sky>,
+    /// The sun's illuminance on a plane facing it (lx) when the sun is on.
+    pub sun_normal_illuminance_lx: Option<f64>,
 }
 
 impl DaylightSpec {
@@ -119,27 +131,49 @@ impl DaylightSpec {
         let north = (north - zenith * north.dot(zenith))
             .try_normalize()
             .ok_or_else(|| "daylight: north points along the zenith".to_owned())?;
-        let sky = self.sky_model(zenith)?;
+        let place_time = PlaceTime {
+            latitude_deg,
+            longitude_deg,
+            date,
+            time,
+            timezone_h,
+            daylight_saving: self.daylight_saving,
+        };
+        let sun_zenith_rad = sun_position(&place_time).zenith_deg().to_radians();
+        let sky = self.sky_model(zenith, sun_zenith_rad)?;
+        let sun_normal_illuminance_lx = match (self.sun, self.sun_normal_illuminance_lx) {
+            (true, Some(e)) if e.is_finite() && e >= 0.0 => Some(e),
+            (true, Some(e)) => {
+                return Err(format!(
+                    "daylight: sun_normal_illuminance_lx = {e} must be 0 or more"
+                ));
+            }
+            (true, None) => {
+                return Err(
+                    "daylight: sun = true needs sun_normal_illuminance_lx (lx on a \
+                            plane facing the sun; a clear day: 70000-100000)"
+                        .into(),
+                );
+            }
+            (false, Some(_)) => {
+                return Err("daylight: sun_normal_illuminance_lx without sun = true".into());
+            }
+            (false, None) => None,
+        };
         Ok(Daylight {
             spec: self.clone(),
             sky,
-            place_time: PlaceTime {
-                latitude_deg,
-                longitude_deg,
-                date,
-                time,
-                timezone_h,
-                daylight_saving: self.daylight_saving,
-            },
+            place_time,
             north,
             zenith,
+            sun_normal_illuminance_lx,
         })
     }
 }
 
 impl DaylightSpec {
     /// The sky the keys give, checked.
-    fn sky_model(&self, zenith: Vec3) -> Result<Option<Sky>, String> {
+    fn sky_model(&self, zenith: Vec3, sun_zenith_rad: f64) -> Result<Option<Sky>, String> {
         let model = match self.sky.as_deref() {
             None | Some("none") => {
                 let stray: Vec<&str> = [
@@ -158,7 +192,8 @@ impl DaylightSpec {
                 .collect();
                 if !stray.is_empty() {
                     return Err(format!(
-                        "daylight: {} without a sky (sky = \"uniform\" or \"cie-overcast\")",
+                        "daylight: {} without a sky (sky = \"uniform\", \"cie-overcast\" or \
+                         \"cie:1\"..\"cie:15\")",
                         stray.join(", ")
                     ));
                 }
@@ -166,12 +201,16 @@ impl DaylightSpec {
             }
             Some("uniform") => SkyModel::Uniform,
             Some("cie-overcast") => SkyModel::CieOvercast,
-            Some(other) => {
-                return Err(format!(
-                    "daylight: sky = \"{other}\": raygine draws \"none\", \"uniform\" and \
-                     \"cie-overcast\" so far (the CIE general skies and Perez are not built yet)"
-                ));
-            }
+            Some(other) => match other.strip_prefix("cie:").map(str::parse::<u8>) {
+                Some(Ok(t)) if (1..=15).contains(&t) => SkyModel::CieGeneral(t),
+                _ => {
+                    return Err(format!(
+                        "daylight: sky = \"{other}\": raygine draws \"none\", \"uniform\", \
+                         \"cie-overcast\" and the general skies \"cie:1\" to \"cie:15\" (Perez \
+                         is not built yet)"
+                    ));
+                }
+            },
         };
         if zenith.dot(Vec3::Y) < 0.9999 {
             return Err(
@@ -189,7 +228,8 @@ impl DaylightSpec {
         {
             (Some(lz), None) => positive("zenith_luminance_cd_m2", lz)?,
             (None, Some(eh)) => {
-                positive("diffuse_horizontal_lx", eh)? / model.horizontal_over_zenith()
+                positive("diffuse_horizontal_lx", eh)?
+                    / model.horizontal_over_zenith(sun_zenith_rad)
             }
             (Some(_), Some(_)) => {
                 return Err(
@@ -215,6 +255,7 @@ impl DaylightSpec {
             model,
             zenith_luminance_cd_m2,
             ground_reflectance,
+            sun_zenith_rad,
         }))
     }
 }
@@ -241,6 +282,30 @@ impl Daylight {
         );
         let horizontal = self.north * az.cos() + east * az.sin();
         (horizontal * alt.cos() + self.zenith * alt.sin()).normalize()
+    }
+
+    /// The sun's disc when it is on and above the horizon: its unit scene direction and its
+    /// illuminance on a plane facing it (lx).
+    pub fn sun_disc(&self, right_handed: bool) -> Option<(Vec3, f64)> {
+        let e = self.sun_normal_illuminance_lx?;
+        (self.sun().altitude_deg > 0.0 && e > 0.0).then(|| (self.sun_direction(right_handed), e))
+    }
+
+    /// The sun's illuminance on the unobstructed horizontal plane (lx).
+    pub fn sun_horizontal_illuminance(&self) -> f64 {
+        self.sun_disc(true)
+            .map_or(0.0, |(_, e)| e * self.sun().altitude_deg.to_radians().sin())
+    }
+
+    /// The sky with its ground (lit by the sky and the sun) as the environment light, None
+    /// without a sky.
+    pub fn sky_environment(&self, right_handed: bool) -> Option<crate::light::Environment> {
+        let sky = self.sky.as_ref()?;
+        Some(sky.environment(
+            self.sun_direction(right_handed),
+            self.sun_horizontal_illuminance(),
+            if right_handed { 1.0 } else { -1.0 },
+        ))
     }
 }
 
@@ -307,6 +372,18 @@ mod tests {
         assert_eq!(sky.ground_reflectance, 0.2);
         let e = |extra: &str| spec(extra).unwrap_err();
         assert!(e("sky = \"perez\"").contains("not built yet"));
+        assert!(e("sky = \"cie:16\"").contains("cie:15"));
+        assert!(e("sun = true").contains("needs sun_normal_illuminance_lx"));
+        assert!(e("sun_normal_illuminance_lx = 5.0").contains("without sun = true"));
+        let d = spec(
+            "sky = \"cie:12\"\ndiffuse_horizontal_lx = 10000.0\nsun = true\n\
+                      sun_normal_illuminance_lx = 80000.0",
+        )
+        .unwrap();
+        let sky = d.sky.unwrap();
+        assert_eq!(sky.model, SkyModel::CieGeneral(12));
+        assert!((sky.horizontal_illuminance() - 10000.0).abs() < 1e-6);
+        assert_eq!(d.sun_normal_illuminance_lx, Some(80000.0));
         assert!(e("sky = \"uniform\"").contains("needs zenith_luminance_cd_m2"));
         assert!(e("zenith_luminance_cd_m2 = 10.0").contains("without a sky"));
         assert!(

@@ -13,8 +13,10 @@
 
 mod distribution;
 mod map;
+mod sun_disc;
 
 pub use map::EnvironmentMap;
+pub use sun_disc::SunDisc;
 
 use super::{Emission, Incident, LightBounds, LightSource, Receiver, luminance};
 use crate::sampling::{frame_from_normal, uniform_sphere};
@@ -84,6 +86,19 @@ impl Environment {
     }
 }
 
+/// The unit scene direction of an unturned map's point `uv` ∈ [0, 1)² in a scene of
+/// `handedness_sign` (see the module's note on directions).
+pub fn map_direction(uv: [f32; 2], handedness_sign: f32) -> Vec3 {
+    let phi = (uv[0] - 0.5) * 2.0 * PI;
+    let theta = uv[1] * PI;
+    let (sin_t, cos_t) = theta.sin_cos();
+    Vec3::new(
+        handedness_sign * sin_t * phi.sin(),
+        cos_t,
+        -sin_t * phi.cos(),
+    )
+}
+
 /// An environment as a render uses it: around the scene's bounding sphere (centre, radius in
 /// scene units), for a scene of `handedness_sign` and `metres_per_unit_sq`.
 #[derive(Clone, Debug)]
@@ -96,6 +111,8 @@ pub struct EnvironmentLight {
     radius: f32,
     metres_per_unit_sq: f32,
     pub background: bool,
+    /// The sun's disc (daylight), and the chance that a sampled direction is drawn from it.
+    sun: Option<(SunDisc, f32)>,
 }
 
 #[derive(Clone, Debug)]
@@ -135,7 +152,42 @@ impl EnvironmentLight {
             radius: radius.max(1e-6),
             metres_per_unit_sq,
             background: env.background,
+            sun: None,
         }
+    }
+
+    /// This environment with the sun's disc added. Directions are drawn from the disc with a
+    /// chance in proportion to its share of ∫ L dω, kept within 5-95 % (all of them when the
+    /// rest is black).
+    pub fn with_sun(mut self, sun: SunDisc) -> Self {
+        let rest = self.integral();
+        let pick = if rest > 0.0 {
+            (sun.integral() / (sun.integral() + rest)).clamp(0.05, 0.95) as f32
+        } else {
+            1.0
+        };
+        self.sun = Some((sun, pick));
+        self
+    }
+
+    /// A black environment that only holds the sun (daylight without a sky). It is not the
+    /// background: camera rays that leave the scene keep the backdrop.
+    pub fn sun_only(sun: SunDisc, centre: Vec3, radius: f32, metres_per_unit_sq: f32) -> Self {
+        let black = Environment {
+            source: EnvironmentSource::Uniform {
+                luminance_cd_m2: 0.0,
+                color: [1.0; 3],
+            },
+            scale: 1.0,
+            rotation_deg: 0.0,
+            background: false,
+        };
+        Self::new(&black, 1.0, centre, radius, metres_per_unit_sq).with_sun(sun)
+    }
+
+    /// The sun's disc, when there is one.
+    pub fn sun(&self) -> Option<&SunDisc> {
+        self.sun.as_ref().map(|(s, _)| s)
     }
 
     /// The map's point [0, 1)² for unit direction `w` (towards the sky), and sin θ there.
@@ -153,25 +205,49 @@ impl EnvironmentLight {
 
     /// The unit direction of the map's point `uv`, and sin θ there.
     fn dir_of(&self, uv: [f32; 2]) -> (Vec3, f32) {
-        let phi = (uv[0] - 0.5) * 2.0 * PI;
-        let theta = uv[1] * PI;
-        let (sin_t, cos_t) = theta.sin_cos();
-        let x = self.handedness_sign * sin_t * phi.sin();
-        let z = -sin_t * phi.cos();
+        let d = map_direction(uv, self.handedness_sign);
         let (s, c) = self.turn;
-        (Vec3::new(c * x + s * z, cos_t, -s * x + c * z), sin_t)
+        let sin_t = (uv[1] * PI).sin();
+        (Vec3::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z), sin_t)
     }
 
     /// Luminance per channel arriving from unit direction `w` (pointing at the sky).
     pub fn radiance(&self, w: Vec3) -> Vec3 {
-        match &self.source {
+        let rest = match &self.source {
             Source::Uniform(l) => *l,
             Source::Map { map, scale } => map.texel(self.uv_of(w).0) * *scale,
+        };
+        match &self.sun {
+            Some((sun, _)) => rest + Vec3::splat(sun.radiance(w)),
+            None => rest,
         }
     }
 
     /// Density (1/sr) with which [`EnvironmentLight::sample_dir`] gives `w`.
     pub fn dir_pdf(&self, w: Vec3) -> f32 {
+        match &self.sun {
+            Some((sun, pick)) => pick * sun.pdf(w) + (1.0 - pick) * self.rest_pdf(w),
+            None => self.rest_pdf(w),
+        }
+    }
+
+    /// A direction towards the sky from `u`, and its density (1/sr).
+    pub fn sample_dir(&self, u: [f32; 2]) -> Option<(Vec3, f32)> {
+        let Some((sun, pick)) = &self.sun else {
+            return self.sample_rest(u);
+        };
+        let w = if u[0] < *pick {
+            sun.sample([u[0] / pick, u[1]])
+        } else {
+            self.sample_rest([((u[0] - pick) / (1.0 - pick)).min(1.0 - f32::EPSILON), u[1]])?
+                .0
+        };
+        let pdf = self.dir_pdf(w);
+        (pdf.is_finite() && pdf > 0.0).then_some((w, pdf))
+    }
+
+    /// [`EnvironmentLight::dir_pdf`] without the sun.
+    fn rest_pdf(&self, w: Vec3) -> f32 {
         match &self.source {
             Source::Uniform(_) => 1.0 / (4.0 * PI),
             Source::Map { map, .. } => {
@@ -184,8 +260,8 @@ impl EnvironmentLight {
         }
     }
 
-    /// A direction towards the sky from `u`, and its density (1/sr).
-    pub fn sample_dir(&self, u: [f32; 2]) -> Option<(Vec3, f32)> {
+    /// [`EnvironmentLight::sample_dir`] without the sun.
+    fn sample_rest(&self, u: [f32; 2]) -> Option<(Vec3, f32)> {
         match &self.source {
             Source::Uniform(l) => {
                 (l.max_element() > 0.0).then(|| (uniform_sphere(u[0], u[1]), 1.0 / (4.0 * PI)))
@@ -205,10 +281,11 @@ impl EnvironmentLight {
 
     /// ∫ Y dω over the sphere (cd/m² sr).
     fn integral(&self) -> f64 {
-        match &self.source {
+        let rest = match &self.source {
             Source::Uniform(l) => f64::from(luminance(*l)) * 4.0 * std::f64::consts::PI,
             Source::Map { map, scale } => map.integral * f64::from(*scale),
-        }
+        };
+        rest + self.sun.as_ref().map_or(0.0, |(s, _)| s.integral())
     }
 }
 
