@@ -115,10 +115,10 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
                 out,
             );
         });
-    // Open where the scene has a sky; each scene keeps its own fold.
+    // Open where the scene has a sky or daylight; each scene keeps its own fold.
     egui::CollapsingHeader::new("Environment")
         .id_salt(("environment", doc.path.clone()))
-        .default_open(doc.setup.environment.is_some())
+        .default_open(doc.setup.environment.is_some() || doc.setup.daylight.is_some())
         .show(ui, |ui| {
             let view = environment::EnvironmentView {
                 exposure_stops: display.exposure_stops,
@@ -126,12 +126,11 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
                 thumbnail: environment_thumbnail,
             };
             environment::environment_ui(ui, &mut doc.setup, view, &mut state.environment, out);
-        });
-    egui::CollapsingHeader::new("Daylight")
-        .id_salt(("daylight", doc.path.clone()))
-        .default_open(doc.setup.daylight.is_some())
-        .show(ui, |ui| {
-            daylight::daylight_ui(ui, &mut doc.setup, &mut state.daylight)
+            // Daylight (a sky and the sun for a place and time) is part of it: a daylight sky
+            // is the environment.
+            ui.separator();
+            ui.strong("Daylight");
+            daylight::daylight_ui(ui, &mut doc.setup, &mut state.daylight);
         });
     egui::CollapsingHeader::new("Camera")
         .default_open(true)

@@ -184,3 +184,59 @@ fn a_map_is_read_in_the_background_and_a_bad_one_keeps_the_sky() {
     h.step();
     assert_eq!(sky_cd_m2(h.state()), Some(new_sky));
 }
+
+/// Daylight, in the Environment section: "Add daylight" puts an overcast sky of 10,000 lx for a
+/// place and time into the scene (the render restarts); the time-of-day slider moves the sun
+/// (07:30 puts it in the south-east, low); a date that does not exist is shown in red and the
+/// scene keeps its daylight; the sidecar saves `[daylight]`; "Remove daylight" takes the sky
+/// away and undo brings it back.
+#[test]
+fn daylight_is_added_its_sun_moves_and_it_is_saved() {
+    let mut h = viewer();
+    assert!(h.state().document().setup.daylight.is_none());
+    let generation = h.state().worker().generation();
+    h.get_by_role_and_label(Role::Button, "Add daylight")
+        .click();
+    h.run_steps(2);
+    let setup = &h.state().document().setup;
+    let d = setup.daylight.as_ref().expect("daylight added");
+    assert_eq!(d.spec.sky.as_deref(), Some("cie-overcast"));
+    assert!(matches!(
+        setup.environment.as_ref().map(|e| &e.source),
+        Some(EnvironmentSource::Map(_))
+    ));
+    assert!(h.state().worker().generation() > generation, "no restart");
+    let noon = d.sun();
+
+    h.get_by_role_and_label(Role::Slider, "local time")
+        .set_value_accesskit(450.0);
+    h.run_steps(2);
+    let d = h.state().document().setup.daylight.clone().unwrap();
+    assert_eq!(d.spec.time, "07:30");
+    let morning = d.sun();
+    assert!(
+        morning.altitude_deg < noon.altitude_deg - 30.0 && morning.azimuth_deg < 120.0,
+        "{morning:?} vs {noon:?}"
+    );
+
+    let path = scratch_dir("daylight").join("box.raygine.toml");
+    let ctx = h.state().context().clone();
+    h.state_mut().save_sidecar(&ctx, path.clone());
+    step_until(&mut h, "the sidecar write", |app| !app.writing());
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        text.contains("[daylight]")
+            && text.contains("time = \"07:30\"")
+            && !text.contains("[environment]"),
+        "{text}"
+    );
+
+    h.get_by_role_and_label(Role::Button, "Remove daylight")
+        .click();
+    h.run_steps(2);
+    assert!(h.state().document().setup.daylight.is_none());
+    assert_eq!(h.state().document().setup.environment, None);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert!(h.state().document().setup.daylight.is_some(), "undo");
+}

@@ -175,23 +175,32 @@ impl<'p, 'a> PathTracer<'p, 'a> {
     pub fn trace(&self, ray: &Ray, rng: &mut SampleRng, illuminance: bool) -> Sample {
         let mut sample = Sample::default();
         let mut rays = 0u32;
-        let Some((v, le)) = self.arrive(ray, Came::Delta, &mut rays) else {
+        // Seen through thin panes, everything is weighted by what they let through (the
+        // illuminance is the surface's own).
+        let (arrival, through) = self.arrive(ray, Came::Delta, rng, &mut rays);
+        let Some((v, le)) = arrival else {
             sample.rays = rays;
             match &self.lit.environment {
                 // The environment is the background.
-                Some(env) if env.background => sample.rgb = env.radiance(ray.dir.normalize()),
+                Some(env) if env.background => {
+                    sample.rgb = env.radiance(ray.dir.normalize()) * through;
+                }
                 _ => sample.missed = true,
             }
             return sample;
         };
         let mat = self.lit.material_of(v.prim);
         if self.max_bounces == 0 {
-            sample.rgb = le;
+            sample.rgb = le * through;
             sample.rays = rays;
             return sample;
         }
         let p = v.point;
-        if mat.ks.max_element() <= 0.0 && mat.kt.max_element() <= 0.0 && mat.pbr.is_none() {
+        if mat.ks.max_element() <= 0.0
+            && mat.kt.max_element() <= 0.0
+            && mat.pbr.is_none()
+            && mat.pane.is_none()
+        {
             let e = self.irradiance_from(p, v.n, v.ng, v.origin, rng, &mut rays);
             sample.rgb = le + mat.kd_over_pi * e;
             sample.illuminance_lx = luminance(e);
@@ -204,6 +213,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
                 sample.illuminance_lx = luminance(e);
             }
         }
+        sample.rgb *= through;
         sample.rays = rays;
         sample
     }
@@ -239,13 +249,14 @@ impl<'p, 'a> PathTracer<'p, 'a> {
             let cos = n.dot(s.wi);
             if cos > 0.0 && s.tint.max_element() > 0.0 && s.level > 0.0 {
                 *rays += 1;
-                if !lit.occluded(origin, s.target - origin) {
+                let through = lit.transmittance(origin, s.target - origin);
+                if through > 0.0 {
                     let w = if s.delta {
                         1.0
                     } else {
                         power_heuristic(s.pdf, cos / PI)
                     };
-                    e += s.tint * (s.level * cos * w / s.pdf);
+                    e += s.tint * (s.level * cos * w * through / s.pdf);
                 }
             }
         });
@@ -271,9 +282,9 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         rng: &mut SampleRng,
         rays: &mut u32,
     ) -> Vec3 {
-        match self.arrive(ray, came, rays) {
-            Some((v, le)) => le + self.continue_at(v, bounces, rng, rays),
-            None => self.escaped(ray.dir.normalize(), came),
+        match self.arrive(ray, came, rng, rays) {
+            (Some((v, le)), w) => (le + self.continue_at(v, bounces, rng, rays)) * w,
+            (None, w) => self.escaped(ray.dir.normalize(), came) * w,
         }
     }
 
@@ -292,12 +303,27 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         env.radiance(dir) * w
     }
 
-    /// Traces `ray` to the next drawn surface; returns the vertex and the MIS-weighted emission
-    /// seen there.
-    fn arrive(&self, ray: &Ray, came: Came, rays: &mut u32) -> Option<(Vertex, Vec3)> {
-        let lit = self.lit;
+    /// Traces `ray` to the next drawn surface the walk stops at (thin panes on the way may be
+    /// passed: `LitScene::closest_through_panes`); returns the vertex and the MIS-weighted
+    /// emission seen there, and the weight of the panes passed or stopped at, which multiplies
+    /// everything found from here on (the environment too, when the ray leaves).
+    fn arrive(
+        &self,
+        ray: &Ray,
+        came: Came,
+        rng: &mut SampleRng,
+        rays: &mut u32,
+    ) -> (Option<(Vertex, Vec3)>, f32) {
         *rays += 1;
-        let hit = lit.closest_visible(ray)?;
+        match self.lit.closest_through_panes(ray, rng) {
+            (Some(hit), w) => (Some(self.vertex_at(ray, hit, came)), w),
+            (None, w) => (None, w),
+        }
+    }
+
+    /// The vertex `hit` along `ray`, with the MIS-weighted emission seen there.
+    fn vertex_at(&self, ray: &Ray, hit: crate::bvh::Hit, came: Came) -> (Vertex, Vec3) {
+        let lit = self.lit;
         let dir = ray.dir.normalize();
         let p = ray.at(hit.t);
         let surface = Surface::at(lit, &hit, p, dir);
@@ -328,7 +354,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
             ng: surface.ng,
             wo,
         };
-        Some((v, le))
+        (v, le)
     }
 
     /// Luminance reflected at `v` towards `v.wo`, by a path continued from it; `bounces` is the
@@ -399,7 +425,9 @@ impl<'p, 'a> PathTracer<'p, 'a> {
             } else {
                 v.point - v.ng * lit.epsilon
             };
-            let Some((next, le)) = self.arrive(&Ray::new(origin, s.wi), came, rays) else {
+            let (arrival, through) = self.arrive(&Ray::new(origin, s.wi), came, rng, rays);
+            beta *= through;
+            let Some((next, le)) = arrival else {
                 l += beta * self.escaped(s.wi.normalize(), came);
                 break;
             };
@@ -430,7 +458,8 @@ impl<'p, 'a> PathTracer<'p, 'a> {
                 return;
             }
             *rays += 1;
-            if lit.occluded(v.origin, s.target - v.origin) {
+            let through = lit.transmittance(v.origin, s.target - v.origin);
+            if through <= 0.0 {
                 return;
             }
             let w = if s.delta {
@@ -438,7 +467,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
             } else {
                 power_heuristic(s.pdf, bsdf.pdf(v.n, v.wo, s.wi))
             };
-            l += f * s.tint * (s.level * cos * w / s.pdf);
+            l += f * s.tint * (s.level * cos * w * through / s.pdf);
         });
         l
     }

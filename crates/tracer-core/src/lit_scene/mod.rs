@@ -42,9 +42,11 @@ pub struct LitScene<'a> {
     /// True when some slot is hidden (then hits on hidden slots are skipped).
     any_hidden: bool,
     hidden: Vec<bool>,
-    /// Whether some material is metallic-roughness (else the classic lobes are all the
-    /// integrators need: `shading::Scatter`).
+    /// Whether some material is metallic-roughness or a pane (else the classic lobes are all
+    /// the integrators need: `shading::Scatter`).
     metal_rough: bool,
+    /// Whether some material is a pane (shadow rays then pass panes, weighted).
+    panes: bool,
 }
 
 impl<'a> LitScene<'a> {
@@ -105,7 +107,8 @@ impl<'a> LitScene<'a> {
             (None, Some(sun)) => Some(EnvironmentLight::sun_only(sun, centre, radius, mpu * mpu)),
             (env, None) => env,
         };
-        let metal_rough = materials.iter().any(|m| m.pbr.is_some());
+        let panes = materials.iter().any(|m| m.pane.is_some());
+        let metal_rough = panes || materials.iter().any(|m| m.pbr.is_some());
         LitScene {
             scene,
             lights,
@@ -121,12 +124,19 @@ impl<'a> LitScene<'a> {
             any_hidden: hidden.iter().any(|&h| h),
             hidden,
             metal_rough,
+            panes,
         }
     }
 
-    /// Whether some material is metallic-roughness.
+    /// Whether some material needs the full [`crate::shading::Bsdf`]: metallic-roughness or a
+    /// pane.
     pub fn has_metal_rough(&self) -> bool {
         self.metal_rough
+    }
+
+    /// Whether some material is a thin pane.
+    pub fn has_panes(&self) -> bool {
+        self.panes
     }
 
     /// The unit front normal of triangle `prim` (see `front_sign`).

@@ -4,6 +4,7 @@
 use super::LitScene;
 use crate::bvh::{Hit, PACKET};
 use crate::geometry::Ray;
+use crate::sampling::SampleRng;
 use glam::Vec3;
 
 /// Fewer rays than this go one by one: a packet's set-up and lanes cost more than it saves on
@@ -77,5 +78,105 @@ impl LitScene<'_> {
         }
         // With hidden breps, walk the closest hits and ignore hidden ones.
         self.closest_visible(&ray).is_some()
+    }
+
+    /// The share of light that crosses the segment `origin .. origin + to_target` (exclusive of
+    /// the end point): 0 when an opaque surface blocks it, else the product of the
+    /// transmittances of the thin panes on it (1 without any). A pane does not deviate light,
+    /// so the segment stays straight.
+    pub fn transmittance(&self, origin: Vec3, to_target: Vec3) -> f32 {
+        let ray = Self::shadow_ray(origin, to_target);
+        if !self.panes {
+            return if self.occluded(origin, to_target) {
+                0.0
+            } else {
+                1.0
+            };
+        }
+        self.through_panes(ray)
+    }
+
+    /// [`LitScene::occluded_many`], then for scenes with panes the share each blocked ray gets
+    /// through them (`through`, as long as `rays`; 1 where nothing blocks, and where a pane
+    /// lets light on, `blocked` turns false).
+    pub fn shadow_pass_many(&self, rays: &[Ray], blocked: &mut [bool], through: &mut Vec<f32>) {
+        self.occluded_many(rays, blocked);
+        through.clear();
+        through.resize(rays.len(), 1.0);
+        if !self.panes {
+            return;
+        }
+        for ((ray, b), t) in rays.iter().zip(blocked.iter_mut()).zip(through.iter_mut()) {
+            if *b {
+                *t = self.through_panes(*ray);
+                *b = *t <= 0.0;
+            }
+        }
+    }
+
+    /// The next drawn surface along `ray` that the walk stops at, and the weight the walk
+    /// carries. A thin pane on the way is passed with probability T / (T + R) (the walk goes on
+    /// along the same ray, so distances and densities stay those from the ray's origin, with
+    /// weight T + R), else it is where the walk stops, with weight (T + R) / R; its scattering
+    /// then reflects with R ([`crate::shading::Bsdf`]), so that either way the expected weight
+    /// is the pane's T and R. Without panes: [`LitScene::closest_visible`] and weight 1, and no
+    /// random number is drawn.
+    pub fn closest_through_panes(&self, ray: &Ray, rng: &mut SampleRng) -> (Option<Hit>, f32) {
+        if !self.panes {
+            return (self.closest_visible(ray), 1.0);
+        }
+        let mut ray = *ray;
+        let length = ray.dir.length();
+        let mut weight = 1.0;
+        for _ in 0..32 {
+            let Some(hit) = self.closest_visible(&ray) else {
+                return (None, weight);
+            };
+            let Some(pane) = self.material_of(hit.prim).pane else {
+                return (Some(hit), weight);
+            };
+            let cos = self.scene.normals[hit.prim as usize].dot(ray.dir) / length;
+            let (t, r) = pane.transmit_reflect(cos.abs());
+            if t + r <= 0.0 {
+                return (Some(hit), 0.0);
+            }
+            if rng.next_f32() * (t + r) >= r {
+                weight *= t + r;
+                ray.t_min = hit.t + self.epsilon / length;
+                continue;
+            }
+            return (Some(hit), weight * (t + r) / r);
+        }
+        (None, 0.0)
+    }
+
+    /// Walks `ray`'s hits: the product of the panes' transmittances, 0 at the first opaque
+    /// surface.
+    fn through_panes(&self, mut ray: Ray) -> f32 {
+        let length = ray.dir.length();
+        if length <= 0.0 {
+            return 1.0;
+        }
+        let step = self.epsilon / length;
+        let mut through = 1.0;
+        // A ray through more than 32 panes carries nothing worth the walk.
+        for _ in 0..32 {
+            let Some(hit) = self.closest_visible(&ray) else {
+                return through;
+            };
+            let Some(pane) = self.material_of(hit.prim).pane else {
+                return 0.0;
+            };
+            let cos = self.scene.normals[hit.prim as usize].dot(ray.dir) / length;
+            through *= pane.transmittance(cos.abs());
+            if through <= 0.0 {
+                return 0.0;
+            }
+            ray.t_min = hit.t + step;
+            if ray.t_min >= ray.t_max {
+                return through;
+            }
+        }
+        0.0
     }
 }

@@ -17,6 +17,9 @@ use serde::{Deserialize, Serialize};
 /// total internal reflection, both times `kt`. `Kd + Ks + Kt <= 1` per channel. The direct
 /// (coursework) integrator does not trace glass: there `kt` is absorbed.
 ///
+/// Pane (`kind = "pane"`): a window as one polygon, see `crate::shading::Pane`; it has no other
+/// lobe, and the direct (coursework) integrator lets light through it to shadow rays only.
+///
 /// Metallic-roughness (glTF 2.0 Appendix B): [`Material::pbr`] replaces Kd, Ks and glossiness
 /// with a base colour, metallic and roughness (see `crate::shading::MetalRough`); `ior` then sets
 /// the dielectric layer's F0.
@@ -45,7 +48,19 @@ pub struct Material {
     pub emission_sides: EmissionSides,
     /// Metallic-roughness instead of Kd, Ks and glossiness.
     pub pbr: Option<Pbr>,
+    /// A thin glass pane (a window as one polygon) of index `ior` instead of every lobe.
+    pub pane: Option<Glazing>,
 }
+
+/// A thin pane's glazing (see `crate::shading::Pane`): its index is the material's `ior`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Glazing {
+    /// Transmittance at normal incidence of an absorbing pane (None: clear glass).
+    pub transmittance: Option<f32>,
+}
+
+/// A pane's refractive index unless given: soda-lime float glass.
+pub const PANE_IOR: f32 = 1.52;
 
 /// glTF's metallic-roughness parameters (its defaults: white, metallic 1, roughness 1, no
 /// transmission).
@@ -85,6 +100,7 @@ impl Default for Material {
             emission_color: [1.0; 3],
             emission_sides: EmissionSides::Both,
             pbr: None,
+            pane: None,
         }
     }
 }
@@ -174,6 +190,12 @@ impl Material {
             emission_color,
             emission_sides: self.emission_sides,
             pbr,
+            pane: self.pane.map(|g| Glazing {
+                transmittance: g
+                    .transmittance
+                    .filter(|t| t.is_finite())
+                    .map(|t| t.clamp(1e-4, 1.0)),
+            }),
         };
         (out, out != *self)
     }

@@ -12,15 +12,23 @@
 //! roughness = 0.3
 //! ior = 1.5                   # F0 of the dielectric layer (0.04 at 1.5)
 //! transmission = 0.0          # glTF's thin-walled transmission (metallic-roughness only)
+//! [materials.window]          # a thin glass pane: a window as one polygon
+//! kind = "pane"
+//! ior = 1.52                  # default 1.52
+//! transmittance = 0.80        # at normal incidence, for absorbing glazing (default: clear)
 //! ```
 
-use super::material::{GLASS_IOR, Material, Pbr};
+use super::material::{GLASS_IOR, Glazing, Material, PANE_IOR, Pbr};
 use crate::light::EmissionSides;
 use serde::{Deserialize, Serialize};
 
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialKeys {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transmittance: Option<f32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kd: Option<[f32; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -51,6 +59,19 @@ impl TryFrom<MaterialKeys> for Material {
     type Error = String;
 
     fn try_from(k: MaterialKeys) -> Result<Self, String> {
+        match k.kind.as_deref() {
+            None => {}
+            Some("pane") => return pane_from(&k),
+            Some(other) => {
+                return Err(format!(
+                    "kind = \"{other}\": the only kind is \"pane\" (a thin glass window); other \
+                     materials are told apart by their keys"
+                ));
+            }
+        }
+        if k.transmittance.is_some() {
+            return Err("transmittance is a pane's (kind = \"pane\")".into());
+        }
         let classic: Vec<&str> = [
             ("kd", k.kd.is_some()),
             ("ks", k.ks.is_some()),
@@ -113,19 +134,66 @@ impl TryFrom<MaterialKeys> for Material {
             emission_color: k.emission_color.unwrap_or([1.0; 3]),
             emission_sides: k.emission_sides.unwrap_or_default(),
             pbr,
+            pane: None,
         })
     }
+}
+
+/// A pane takes `ior` and `transmittance` only.
+fn pane_from(k: &MaterialKeys) -> Result<Material, String> {
+    let stray: Vec<&str> = [
+        ("kd", k.kd.is_some()),
+        ("ks", k.ks.is_some()),
+        ("glossiness", k.glossiness.is_some()),
+        ("base_color", k.base_color.is_some()),
+        ("metallic", k.metallic.is_some()),
+        ("roughness", k.roughness.is_some()),
+        ("transmission", k.transmission.is_some()),
+        ("kt", k.kt.is_some()),
+        ("emission_cd_m2", k.emission_cd_m2.is_some()),
+        ("emission_color", k.emission_color.is_some()),
+        ("emission_sides", k.emission_sides.is_some()),
+    ]
+    .iter()
+    .filter_map(|&(name, given)| given.then_some(name))
+    .collect();
+    if !stray.is_empty() {
+        return Err(format!(
+            "a pane (kind = \"pane\") takes ior and transmittance only, not {}",
+            stray.join(", ")
+        ));
+    }
+    let ior = k.ior.unwrap_or(PANE_IOR);
+    crate::shading::Pane::new(ior, k.transmittance)?;
+    Ok(Material {
+        kd: [0.0; 3],
+        ior,
+        pane: Some(Glazing {
+            transmittance: k.transmittance,
+        }),
+        ..Material::default()
+    })
 }
 
 impl From<Material> for MaterialKeys {
     /// The keys that give `m` back: kd, ks and glossiness always for a Blinn-Phong material,
     /// the others when they differ from their defaults.
     fn from(m: Material) -> Self {
+        if let Some(g) = m.pane {
+            return MaterialKeys {
+                kind: Some("pane".into()),
+                ior: (m.ior != PANE_IOR).then_some(m.ior),
+                transmittance: g.transmittance,
+                ..MaterialKeys::default()
+            };
+        }
         let (kd, ks, glossiness) = match m.pbr {
             None => (Some(m.kd), Some(m.ks), Some(m.glossiness)),
             Some(_) => (None, None, None),
         };
         MaterialKeys {
+            kind: None,
+            transmittance: None,
             kd,
             ks,
             glossiness,
@@ -178,5 +246,20 @@ mod tests {
             .to_string();
         assert!(none.contains("give kd"), "{none}");
         assert!(toml::from_str::<Material>("kd = [0.5, 0.5, 0.5]\nshine = 1.0").is_err());
+
+        let pane: Material = toml::from_str("kind = \"pane\"\ntransmittance = 0.8").unwrap();
+        assert_eq!(pane.ior, PANE_IOR);
+        assert_eq!(pane.pane.unwrap().transmittance, Some(0.8));
+        let text = toml::to_string(&pane).unwrap();
+        assert!(
+            text.contains("kind = \"pane\"") && !text.contains("kd"),
+            "{text}"
+        );
+        assert_eq!(toml::from_str::<Material>(&text).unwrap(), pane);
+        let e = |t: &str| toml::from_str::<Material>(t).unwrap_err().to_string();
+        assert!(e("kind = \"pane\"\nkd = [0.5, 0.5, 0.5]").contains("ior and transmittance only"));
+        assert!(e("kind = \"mirror\"").contains("the only kind is"));
+        assert!(e("kd = [0.5, 0.5, 0.5]\ntransmittance = 0.5").contains("pane's"));
+        assert!(e("kind = \"pane\"\ntransmittance = 0.99").contains("at most 0.9183"));
     }
 }

@@ -36,7 +36,7 @@ pub use light::{
     Spot, luminance,
 };
 pub use light_spec::{GridContext, GridSpec, LightKindSpec, LightSpec, en12464_spacing_m};
-pub use material::{Material, Pbr};
+pub use material::{Glazing, Material, PANE_IOR, Pbr};
 pub use material_keys::MaterialKeys;
 pub use notes::{SourceText, luminaire_near_surface, luminaire_shape, relative_below};
 pub use setup::Setup;

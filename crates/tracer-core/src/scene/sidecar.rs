@@ -268,6 +268,12 @@ impl Sidecar {
                 if let Some(env) = daylight.sky_environment(right_handed) {
                     setup.environment = Some(env);
                 }
+                // A daylit scene without lights of its own is lit by the daylight alone, not by
+                // the default light a scene without lights gets.
+                let daylit = daylight.sky.is_some() || daylight.sun_normal_illuminance_lx.is_some();
+                if daylit && self.lights.is_none() && scene.design.lights.is_none() {
+                    setup.lights.clear();
+                }
                 if daylight.sun_normal_illuminance_lx.is_some()
                     && daylight.sun_disc(right_handed).is_none()
                 {

@@ -9,7 +9,9 @@
 //! stays unbiased whichever lobe was picked.
 //!
 //! A metallic-roughness material ([`MetalRough`]: GGX over a Lambertian base, glTF 2.0) is
-//! one smooth lobe instead, evaluated and sampled in the normal's frame.
+//! one smooth lobe instead, evaluated and sampled in the normal's frame. A thin pane
+//! ([`Pane`]) is its mirror lobe R(θ) here; what it lets through, T(θ), the walks pass along
+//! their rays.
 //!
 //! The non-delta part is symmetric in (wo, wi), so light paths use the same `eval` and `pdf`.
 //! Refraction is not symmetric: camera paths (radiance) scale a refracted sample by
@@ -17,7 +19,7 @@
 
 use super::dielectric::{fresnel, refract};
 use super::material::PreparedMaterial;
-use super::{MetalRough, MetalRoughSample};
+use super::{MetalRough, MetalRoughSample, Pane};
 use crate::light::luminance;
 use crate::sampling::{SampleRng, cosine_hemisphere, frame_from_normal, to_world};
 use glam::Vec3;
@@ -42,6 +44,7 @@ pub struct BsdfSample {
 pub enum Bsdf {
     Classic(Classic),
     MetalRough(MetalRough),
+    Pane(Pane),
 }
 
 /// Lambert, Blinn-Phong or mirror, and glass, with lobe selection probabilities.
@@ -79,6 +82,10 @@ impl Bsdf {
     /// bdpt builds one per vertex.
     #[inline]
     pub fn at(m: &PreparedMaterial, inside: bool, importance: bool) -> Self {
+        if let Some(pane) = m.pane {
+            // A pane does not deviate what it lets through: nothing to scale.
+            return Bsdf::Pane(pane);
+        }
         match m.pbr {
             // Metallic-roughness is symmetric and has no refraction.
             Some(pbr) => Bsdf::MetalRough(pbr),
@@ -89,7 +96,7 @@ impl Bsdf {
     pub fn is_black(&self) -> bool {
         match self {
             Bsdf::Classic(c) => c.is_black(),
-            Bsdf::MetalRough(_) => false,
+            Bsdf::MetalRough(_) | Bsdf::Pane(_) => false,
         }
     }
 
@@ -98,6 +105,7 @@ impl Bsdf {
         match self {
             Bsdf::Classic(c) => c.has_smooth_lobe(),
             Bsdf::MetalRough(_) => true,
+            Bsdf::Pane(_) => false,
         }
     }
 
@@ -107,6 +115,7 @@ impl Bsdf {
         match self {
             Bsdf::Classic(c) => c.eval(n, wo, wi),
             Bsdf::MetalRough(m) => metal_rough_eval(m, n, wo, wi),
+            Bsdf::Pane(_) => Vec3::ZERO,
         }
     }
 
@@ -116,6 +125,7 @@ impl Bsdf {
         match self {
             Bsdf::Classic(c) => c.pdf(n, wo, wi),
             Bsdf::MetalRough(m) => metal_rough_pdf(m, n, wo, wi),
+            Bsdf::Pane(_) => 0.0,
         }
     }
 
@@ -124,8 +134,26 @@ impl Bsdf {
         match self {
             Bsdf::Classic(c) => c.sample(n, wo, rng),
             Bsdf::MetalRough(m) => metal_rough_sample(m, n, wo, rng),
+            Bsdf::Pane(p) => pane_sample(p, n, wo),
         }
     }
+}
+
+/// The mirror direction with the pane's reflectance R(θ). What a pane lets through is not
+/// scattered here: the walks pass it along their rays
+/// (`crate::lit_scene::LitScene::closest_through_panes`), and shadow rays through it
+/// (`LitScene::transmittance`).
+#[inline(never)]
+#[cold]
+fn pane_sample(p: &Pane, n: Vec3, wo: Vec3) -> Option<BsdfSample> {
+    let cos_o = n.dot(wo);
+    let (_, r) = p.transmit_reflect(cos_o);
+    (r > 0.0).then(|| BsdfSample {
+        wi: n * (2.0 * cos_o) - wo,
+        weight: Vec3::splat(r),
+        pdf: 0.0,
+        delta: true,
+    })
 }
 
 // The metallic-roughness arms stay out of line and cold, so the classic lobes' hot loops keep
@@ -352,6 +380,7 @@ mod tests {
             ior: 1.5,
             emission: Vec3::ZERO,
             pbr: None,
+            pane: None,
         }
     }
 

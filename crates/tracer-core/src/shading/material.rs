@@ -1,7 +1,7 @@
 //! A material's per-render constants: Kd / π, the highlight's normalisation, glass, emission and
 //! the metallic-roughness model, so the per-ray code does no conversions.
 
-use super::MetalRough;
+use super::{MetalRough, Pane};
 use crate::scene::Material;
 use glam::Vec3;
 
@@ -19,6 +19,8 @@ pub struct PreparedMaterial {
     pub emission: Vec3,
     /// Metallic-roughness instead of Kd, Ks and glossiness.
     pub pbr: Option<MetalRough>,
+    /// A thin pane instead of every lobe.
+    pub pane: Option<Pane>,
 }
 
 impl PreparedMaterial {
@@ -36,6 +38,10 @@ impl PreparedMaterial {
                 MetalRough::new(Vec3::from(p.base_color), p.metallic, p.roughness, m.ior)
                     .with_transmission(p.transmission)
             }),
+            // A clamped material's index is at least 1; a pane needs more.
+            pane: m
+                .pane
+                .and_then(|g| Pane::new(m.ior.max(1.0001), g.transmittance).ok()),
         }
     }
 }

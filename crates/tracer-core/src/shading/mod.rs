@@ -7,6 +7,7 @@ mod dielectric;
 mod material;
 mod metal_rough;
 mod microfacet;
+mod pane;
 mod scatter;
 mod surface;
 
@@ -15,6 +16,7 @@ pub use dielectric::{fresnel, refract};
 pub use material::PreparedMaterial;
 pub use metal_rough::{MetalRough, MetalRoughSample, dielectric_f0};
 pub use microfacet::{Ggx, MIN_ALPHA};
+pub use pane::Pane;
 pub use scatter::{Scatter, scatter_at};
 pub use surface::Surface;
 

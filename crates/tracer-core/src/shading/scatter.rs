@@ -35,10 +35,14 @@ pub fn scatter_at<S: Scatter>(lit: &LitScene<'_>, prim: u32, wo: Vec3, importanc
 }
 
 impl Scatter for Classic {
-    /// Only for scenes without metallic-roughness materials (`LitScene::has_metal_rough`).
+    /// Only for scenes without metallic-roughness materials or panes
+    /// (`LitScene::has_metal_rough`).
     #[inline]
     fn at(m: &PreparedMaterial, inside: bool, importance: bool) -> Self {
-        debug_assert!(m.pbr.is_none(), "a metallic-roughness material in Classic");
+        debug_assert!(
+            m.pbr.is_none() && m.pane.is_none(),
+            "a metallic-roughness material or a pane in Classic"
+        );
         Classic::at(m, inside, importance)
     }
     #[inline]

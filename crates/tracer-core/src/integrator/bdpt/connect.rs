@@ -138,8 +138,9 @@ impl Bidirectional<'_, '_> {
         c * self.mis_weight(eye, &[], None, 0, t, None)
     }
 
-    /// Whether the segment between two vertices is clear.
-    fn visible<S: Scatter>(&self, a: &Vertex<S>, b: &Vertex<S>, rays: &mut u32) -> bool {
+    /// The share of light that crosses the segment between two vertices: 0 when it is blocked,
+    /// the thin panes' transmittance on it, 1 when it is clear.
+    fn visible<S: Scatter>(&self, a: &Vertex<S>, b: &Vertex<S>, rays: &mut u32) -> f32 {
         let d = b.p - a.p;
         let lift = |v: &Vertex<S>, towards: Vec3| match v.kind {
             // Towards the side the subpath arrived on, by the shading normal (as next-event
@@ -159,7 +160,7 @@ impl Bidirectional<'_, '_> {
         // From the eye side towards the light side, like next-event estimation: a point light
         // on a surface (a lamp on the ceiling) does not shadow itself, since the ray stops
         // short of its end.
-        !self.lit.occluded(on_b, on_a - on_b)
+        self.lit.transmittance(on_b, on_a - on_b)
     }
 
     /// The unweighted contribution of joining light-side `a` to eye-side `b` over `link`
@@ -199,10 +200,15 @@ impl Bidirectional<'_, '_> {
             );
         }
         let link = Link::between(qs, e)?;
-        let c = self.join(qs, e, link);
-        if c.max_element() <= 0.0 || !self.visible(qs, e, rays) {
+        let mut c = self.join(qs, e, link);
+        if c.max_element() <= 0.0 {
             return None;
         }
+        let through = self.visible(qs, e, rays);
+        if through <= 0.0 {
+            return None;
+        }
+        c *= through;
         let w = if self.light_tracing {
             1.0
         } else {
@@ -253,9 +259,14 @@ impl Bidirectional<'_, '_> {
             return Vec3::ZERO;
         };
         let c = self.join(&sampled, pt, link);
-        if c.max_element() <= 0.0 || !self.visible(&sampled, pt, rays) {
+        if c.max_element() <= 0.0 {
             return Vec3::ZERO;
         }
+        let through = self.visible(&sampled, pt, rays);
+        if through <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let c = c * through;
         c * self.mis_weight(eye, light, Some(&sampled), 1, t, Some(link))
     }
 
@@ -276,9 +287,14 @@ impl Bidirectional<'_, '_> {
             return Vec3::ZERO;
         };
         let c = self.join(qs, pt, link);
-        if c.max_element() <= 0.0 || !self.visible(qs, pt, rays) {
+        if c.max_element() <= 0.0 {
             return Vec3::ZERO;
         }
+        let through = self.visible(qs, pt, rays);
+        if through <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let c = c * through;
         c * self.mis_weight(eye, light, None, s, t, Some(link))
     }
 

@@ -77,11 +77,15 @@ impl Bidirectional<'_, '_> {
             return Vec3::ZERO;
         }
         *rays += 1;
-        if self.lit.occluded(origin, s.target - origin) {
+        let through = self.lit.transmittance(origin, s.target - origin);
+        if through <= 0.0 {
             return Vec3::ZERO;
         }
         // Importance 1 over the hemisphere: E = ∫ L cos θ dω.
-        s.tint * (cos / s.pdf) * power_heuristic(s.pdf, super::vertex::cosine_pdf(eye0.n, s.wi))
+        s.tint
+            * (cos / s.pdf)
+            * power_heuristic(s.pdf, super::vertex::cosine_pdf(eye0.n, s.wi))
+            * through
     }
 
     /// s = 1 on the environment: a direction sampled for eye vertex `pt`, the environment
@@ -121,9 +125,10 @@ impl Bidirectional<'_, '_> {
             pt.p + pt.facing(w) * self.lit.epsilon
         };
         *rays += 1;
-        if self.lit.occluded(origin, s.target - origin) {
+        let through = self.lit.transmittance(origin, s.target - origin);
+        if through <= 0.0 {
             return Vec3::ZERO;
         }
-        c * power_heuristic(pdf, pt.pdf_dir(self, pt.wo, w))
+        c * power_heuristic(pdf, pt.pdf_dir(self, pt.wo, w)) * through
     }
 }

@@ -115,7 +115,11 @@ impl Bidirectional<'_, '_> {
         let mut relative = Vec3::ONE;
         while path.len() < MAX_SUBPATH {
             *rays += 1;
-            let Some(hit) = lit.closest_visible(&ray) else {
+            // Thin panes on the way are passed or stopped at, weighted (`closest_through_panes`):
+            // a passed pane is no vertex, so the densities stay those from the last one.
+            let (hit, through) = lit.closest_through_panes(&ray, rng);
+            beta *= through;
+            let Some(hit) = hit else {
                 return Some(Escape {
                     dir: ray.dir.normalize(),
                     beta,

@@ -23,6 +23,8 @@ pub struct DirectBatch {
     shadows: Vec<Ray>,
     contributions: Vec<Contribution>,
     blocked: Vec<bool>,
+    /// What thin panes let through on each shadow ray (1 without panes).
+    through: Vec<f32>,
     matte: MatteScratch,
 }
 
@@ -113,10 +115,10 @@ pub(super) fn trace_batch_with(
         }
         batch.blocked.clear();
         batch.blocked.resize(batch.shadows.len(), false);
-        lit.occluded_many(&batch.shadows, &mut batch.blocked);
+        lit.shadow_pass_many(&batch.shadows, &mut batch.blocked, &mut batch.through);
         batch.active.retain(|&i| {
             let walk = &mut walks[i as usize];
-            walk.resolve(&batch.contributions, &batch.blocked);
+            walk.resolve(&batch.contributions, &batch.blocked, &batch.through);
             walk.advance()
         });
         batch.rays.clear();

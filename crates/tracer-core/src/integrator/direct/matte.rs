@@ -49,6 +49,8 @@ pub(super) struct MatteScratch {
     /// The sample each shadow ray belongs to.
     owners: Vec<u32>,
     blocked: Vec<bool>,
+    /// What thin panes let through on each shadow ray (1 without panes).
+    through: Vec<f32>,
 }
 
 /// Whether a first hit on `mat` takes the lanes: no emission to add, no highlight (it needs
@@ -59,7 +61,7 @@ fn is_matte(mat: &PreparedMaterial, max_depth: u32) -> bool {
     // The walk ends at depth 0 or where `ks.max_element() <= 0.0` (not for NaN).
     let ends = mat.ks.max_element() <= 0.0;
     let mirrors = max_depth > 0 && !ends;
-    !glows && !glossy && !mirrors && mat.pbr.is_none()
+    !glows && !glossy && !mirrors && mat.pbr.is_none() && mat.pane.is_none()
 }
 
 /// Shades the first hits `hits` of the camera rays `rays` where the sample ends (misses, and
@@ -110,14 +112,15 @@ pub(super) fn shade_first_hits(
     // sample in the order the lights were visited (as the walk adds them).
     scratch.blocked.clear();
     scratch.blocked.resize(scratch.shadows.len(), false);
-    lit.occluded_many(&scratch.shadows, &mut scratch.blocked);
+    lit.shadow_pass_many(&scratch.shadows, &mut scratch.blocked, &mut scratch.through);
     let entries = scratch.contributions.iter().zip(&scratch.owners);
-    for ((c, &owner), &blocked) in entries.zip(&scratch.blocked) {
+    let passes = scratch.blocked.iter().zip(&scratch.through);
+    for ((c, &owner), (&blocked, &through)) in entries.zip(passes) {
         let sample = &mut out[owner as usize];
         sample.rays += 1;
         if !blocked {
-            sample.illuminance_lx += c.illuminance_lx;
-            sample.rgb += c.rgb;
+            sample.illuminance_lx += c.illuminance_lx * through;
+            sample.rgb += c.rgb * through;
         }
     }
 }

@@ -31,6 +31,10 @@ pub struct Walk {
     next_weight: Vec3,
     continues: bool,
     depth: u32,
+    /// Thin panes passed since the last hit that counted as a step of the chain, and whether
+    /// the ray to follow goes on through one.
+    panes_passed: u8,
+    passing: bool,
     /// The contributions of the current hit: `pending .. pending + pending_len` of the batch's
     /// shadow rays.
     pub pending: u32,
@@ -47,6 +51,8 @@ impl Default for Walk {
             next_weight: Vec3::ZERO,
             continues: false,
             depth: 0,
+            panes_passed: 0,
+            passing: false,
             pending: 0,
             pending_len: 0,
         }
@@ -62,6 +68,8 @@ impl Walk {
         self.sample = Sample::default();
         self.weight = Vec3::ONE;
         self.depth = 0;
+        self.panes_passed = 0;
+        self.passing = false;
     }
 
     /// Shades the closest hit `hit` of the walk's current ray `ray` (None: a miss): emission
@@ -97,6 +105,25 @@ impl Walk {
         let surface = Surface::at(lit, &hit, p, ray.dir);
         let n = surface.ns;
         let mat = lit.material_of(hit.prim);
+        if let Some(pane) = &mat.pane {
+            // A window is looked through: the ray goes on along its line, weighted by T(θ),
+            // without counting as a step of the mirror chain (direct mode leaves the pane's
+            // reflection out).
+            let length = ray.dir.length();
+            let t = pane.transmittance(surface.ng.dot(ray.dir).abs() / length);
+            let weight = self.weight * t;
+            if weight.max_element() > 0.0 && self.panes_passed < 32 {
+                self.next_ray = Ray {
+                    t_min: hit.t + lit.epsilon / length,
+                    ..ray
+                };
+                self.next_weight = weight;
+                self.continues = true;
+                self.panes_passed += 1;
+                self.passing = true;
+            }
+            return;
+        }
         // Towards the viewer; only emission and highlights need it (a square root and a
         // division per hit saved on matte surfaces).
         let view = || -ray.dir.normalize();
@@ -139,16 +166,18 @@ impl Walk {
         self.continues = true;
     }
 
-    /// Adds the contributions of the current hit whose shadow rays were not `blocked` (both
-    /// indexed like the batch's shadow rays), in the order the lights were visited.
-    pub fn resolve(&mut self, contributions: &[Contribution], blocked: &[bool]) {
+    /// Adds the contributions of the current hit whose shadow rays were not `blocked`, times
+    /// what thin panes let `through` (all indexed like the batch's shadow rays), in the order
+    /// the lights were visited.
+    pub fn resolve(&mut self, contributions: &[Contribution], blocked: &[bool], through: &[f32]) {
         let range = self.pending as usize..(self.pending + self.pending_len) as usize;
         let mut direct = Vec3::ZERO;
         let mut e_total = 0.0;
-        for (c, &b) in contributions[range.clone()].iter().zip(&blocked[range]) {
+        let passes = blocked[range.clone()].iter().zip(&through[range.clone()]);
+        for (c, (&b, &t)) in contributions[range].iter().zip(passes) {
             if !b {
-                e_total += c.illuminance_lx;
-                direct += c.rgb;
+                e_total += c.illuminance_lx * t;
+                direct += c.rgb * t;
             }
         }
         if self.depth == 0 {
@@ -164,7 +193,13 @@ impl Walk {
             return false;
         }
         self.weight = self.next_weight;
-        self.depth += 1;
+        if self.passing {
+            // Through a pane: the same step of the chain.
+            self.passing = false;
+        } else {
+            self.depth += 1;
+            self.panes_passed = 0;
+        }
         true
     }
 }
