@@ -66,12 +66,14 @@ pub fn isolux_segments(values: &[f64], nu: usize, nv: usize, level: f64) -> Vec<
 /// Draws one grid's readings; `to_screen` projects scene points (None behind the camera) and
 /// `visible` says whether the camera sees a point (no surface in front of it): cells and
 /// isolux lines behind objects are not drawn. Points inside objects are hatched, unlabelled.
+/// `daylight_factor`: the readings are daylight factors in %, labelled to 0.1 %.
 pub fn draw(
     painter: &egui::Painter,
     grid: &Grid,
     r: &GridResult,
     to_screen: &dyn Fn(Vec3) -> Option<Pos2>,
     visible: &dyn Fn(Vec3) -> bool,
+    daylight_factor: bool,
 ) {
     let s = r.statistics();
     let max = s.e_max_lx.max(1e-6) as f32;
@@ -113,7 +115,11 @@ pub fn draw(
             painter.text(
                 c,
                 Align2::CENTER_CENTER,
-                format!("{:.0}", p.illuminance_lx),
+                if daylight_factor {
+                    format!("{:.1}", p.illuminance_lx)
+                } else {
+                    format!("{:.0}", p.illuminance_lx)
+                },
                 FontId::proportional(10.0),
                 Color32::WHITE,
             );
@@ -168,14 +174,26 @@ pub fn draw_statistics(
     viewport: egui::Rect,
     results: &[GridResult],
     samples: u32,
+    daylight_factor: bool,
 ) {
-    let mut lines = vec![format!("grids, {samples} samples a point")];
+    let mut lines = vec![if daylight_factor {
+        format!("grids, {samples} samples a point, daylight factor (CIE overcast)")
+    } else {
+        format!("grids, {samples} samples a point")
+    }];
     for r in results {
         let s = r.statistics();
-        lines.push(format!(
-            "{}: Emin {:.1} · Eavg {:.1} · Emax {:.1} lx · U0 {:.2} · Emin/Emax {:.2}",
-            r.name, s.e_min_lx, s.e_avg_lx, s.e_max_lx, s.u0, s.emin_over_emax
-        ));
+        lines.push(if daylight_factor {
+            format!(
+                "{}: DF min {:.2} % · avg {:.2} % · max {:.2} % · min/avg {:.2}",
+                r.name, s.e_min_lx, s.e_avg_lx, s.e_max_lx, s.u0
+            )
+        } else {
+            format!(
+                "{}: Emin {:.1} · Eavg {:.1} · Emax {:.1} lx · U0 {:.2} · Emin/Emax {:.2}",
+                r.name, s.e_min_lx, s.e_avg_lx, s.e_max_lx, s.u0, s.emin_over_emax
+            )
+        });
     }
     let galley = painter.layout(
         lines.join("\n"),

@@ -1,12 +1,16 @@
 //! The viewer's measurements: the scene's grids measured on a background thread, refined
 //! progressively (16, 64, 256, 1024, 4096 samples a point, each a complete deterministic
 //! measurement, as `raygine measure --samples N` would give), restarted when the scene, its setup
-//! or the integrator changes. The UI thread never waits: it polls the latest results.
+//! or the integrator changes. The UI thread never waits: it polls the latest results. With the
+//! daylight factor asked for, the grids are measured under the CIE overcast sky alone
+//! (`tracer_core::measure::DaylightFactorSetup`) and read in % of the open horizontal.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use tracer_core::integrator::IntegratorKind;
-use tracer_core::measure::{GridResult, MeasureSettings, measure_grids_with_progress};
+use tracer_core::measure::{
+    DaylightFactorSetup, GridResult, MeasureSettings, measure_grids_with_progress,
+};
 use tracer_core::scene::{Scene, Setup};
 
 /// Samples a point of the successive refinements.
@@ -18,6 +22,7 @@ struct Key {
     scene: usize,
     setup: Setup,
     integrator: IntegratorKind,
+    daylight_factor: bool,
 }
 
 /// The latest finished refinement of the current job.
@@ -28,6 +33,10 @@ pub struct Readings {
     pub samples: u32,
     /// Whether the last refinement is done.
     pub finished: bool,
+    /// Daylight factors: the readings are in % of the open horizontal (no maintenance factor).
+    pub daylight_factor: bool,
+    /// Why there are no readings (a daylight factor the scene cannot give).
+    pub error: Option<String>,
 }
 
 /// Background measurement of the current document's grids.
@@ -45,6 +54,7 @@ impl MeasureWorker {
         scene: &Arc<Scene>,
         setup: &Setup,
         integrator: IntegratorKind,
+        daylight_factor: bool,
         ctx: &egui::Context,
     ) {
         // Sensors do not depend on the camera: orbiting must not restart the measurement.
@@ -59,6 +69,7 @@ impl MeasureWorker {
             scene: Arc::as_ptr(scene) as usize,
             setup: without_camera,
             integrator,
+            daylight_factor,
         };
         if self.key.as_ref() == Some(&key) {
             return;
@@ -71,13 +82,35 @@ impl MeasureWorker {
         if setup.grids.is_empty() {
             return;
         }
+        // What is measured: the setup, or its daylight-factor setup (% of E_out,h).
+        let (setup, df_scale) = if daylight_factor {
+            match DaylightFactorSetup::new(setup) {
+                Ok(df) => (df.setup, Some(100.0 / df.outdoor_lx)),
+                Err(e) => {
+                    if let Ok(mut l) = self.latest.lock() {
+                        *l = Some(Readings {
+                            error: Some(e),
+                            daylight_factor: true,
+                            ..Readings::default()
+                        });
+                    }
+                    return;
+                }
+            }
+        } else {
+            (setup.clone(), None)
+        };
         let cancel = Arc::new(AtomicBool::new(false));
         self.cancel = Some(Arc::clone(&cancel));
         let latest = Arc::clone(&self.latest);
-        let (scene, setup, ctx) = (Arc::clone(scene), setup.clone(), ctx.clone());
+        let (scene, ctx) = (Arc::clone(scene), ctx.clone());
+        let job = Job {
+            integrator,
+            df_scale,
+        };
         let spawned = std::thread::Builder::new()
             .name("raygine-measure".into())
-            .spawn(move || run(&scene, &setup, integrator, &cancel, &latest, &ctx));
+            .spawn(move || run(&scene, &setup, job, &cancel, &latest, &ctx));
         if let Err(e) = spawned {
             // Shown in the panel instead of readings.
             if let Ok(mut l) = self.latest.lock() {
@@ -101,10 +134,17 @@ impl Drop for MeasureWorker {
     }
 }
 
+/// How a job measures: its integrator, and for daylight factors the scale from lx to %.
+#[derive(Clone, Copy, Debug)]
+struct Job {
+    integrator: IntegratorKind,
+    df_scale: Option<f64>,
+}
+
 fn run(
     scene: &Scene,
     setup: &Setup,
-    integrator: IntegratorKind,
+    job: Job,
     cancel: &AtomicBool,
     latest: &Mutex<Option<Readings>>,
     ctx: &egui::Context,
@@ -115,7 +155,7 @@ fn run(
     };
     for (k, &samples) in REFINEMENTS.iter().enumerate() {
         let settings = MeasureSettings {
-            integrator,
+            integrator: job.integrator,
             max_bounces: None,
             samples,
             time_limit: None,
@@ -129,12 +169,15 @@ fn run(
         if cancel.load(Ordering::Acquire) {
             return;
         }
-        let mf = f64::from(setup.maintenance_factor);
+        // Maintained illuminance, or daylight factors in %.
+        let scale = job.df_scale.unwrap_or(f64::from(setup.maintenance_factor));
         if let Ok(mut l) = latest.lock() {
             *l = Some(Readings {
-                results: results.into_iter().map(|r| r.scaled(mf)).collect(),
+                results: results.into_iter().map(|r| r.scaled(scale)).collect(),
                 samples,
                 finished: k + 1 == REFINEMENTS.len(),
+                daylight_factor: job.df_scale.is_some(),
+                error: None,
             });
         }
         ctx.request_repaint();

@@ -149,10 +149,23 @@ pub fn draw_grid_readings(
     let visible = |p: Vec3| seen_from(&doc.scene, &doc.setup.hidden, basis.origin, p);
     for r in &readings.results {
         if let Some(grid) = doc.setup.grids.iter().find(|g| g.name == r.name) {
-            crate::grid_overlay::draw(&painter, grid, r, &project, &visible);
+            crate::grid_overlay::draw(
+                &painter,
+                grid,
+                r,
+                &project,
+                &visible,
+                readings.daylight_factor,
+            );
         }
     }
-    crate::grid_overlay::draw_statistics(&painter, rect, &readings.results, readings.samples);
+    crate::grid_overlay::draw_statistics(
+        &painter,
+        rect,
+        &readings.results,
+        readings.samples,
+        readings.daylight_factor,
+    );
 }
 
 /// Whether `p` is seen from `eye`: no drawn surface lies between them (within twice the ray

@@ -3,6 +3,7 @@
 
 mod builtin_scene;
 mod course_scene;
+mod daylight;
 mod denoise;
 mod errors;
 mod exr_and_units;

@@ -111,6 +111,7 @@ impl RaygineApp {
             &self.doc.scene,
             &self.doc.setup,
             self.render.integrator,
+            self.daylight_factor,
             &ctx,
         );
         self.poll_report();
@@ -259,6 +260,7 @@ impl RaygineApp {
             false_colour: &mut self.false_colour,
             denoise: &mut self.denoise,
             show_grids: &mut self.show_grids,
+            daylight_factor: &mut self.daylight_factor,
             measure,
             state: &mut self.panels,
             adding_luminaire: self.adding_luminaire.is_some(),

@@ -101,6 +101,8 @@ pub struct RaygineApp {
     pub(crate) measure: crate::measure_worker::MeasureWorker,
     /// Whether grid readings are drawn over the picture.
     pub(crate) show_grids: bool,
+    /// The Measure section reads daylight factors instead of illuminance.
+    pub(crate) daylight_factor: bool,
     /// The luminance meter's rectangle (Ctrl+drag over the picture), film pixels.
     pub(crate) meter: Option<crate::luminance_meter::Meter>,
     /// Where the current Ctrl+drag started (film position).
@@ -208,6 +210,7 @@ impl RaygineApp {
             focus_asked: false,
             measure: crate::measure_worker::MeasureWorker::default(),
             show_grids: true,
+            daylight_factor: false,
             meter: None,
             meter_anchor: None,
             orbit_pivot: None,

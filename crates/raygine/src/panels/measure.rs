@@ -23,9 +23,19 @@ pub fn measure_ui(
     doc: &mut Document,
     view: MeasureView,
     show_grids: &mut bool,
+    daylight_factor: &mut bool,
     out: &mut Commands,
 ) {
     let readings = view.readings;
+    ui.checkbox(daylight_factor, "daylight factor (%)")
+        .on_hover_text(
+            "Measure DF = E_in / E_out,h under the CIE overcast sky without sun, lights or glowing \
+         surfaces, whatever the scene's sky (E_out,h computed)",
+        );
+    if let Some(e) = readings.as_ref().and_then(|r| r.error.as_ref()) {
+        ui.colored_label(egui::Color32::from_rgb(255, 120, 100), e);
+    }
+    let df = readings.as_ref().is_some_and(|r| r.daylight_factor);
     let unit = doc.setup.unit.symbol();
     let mut remove = None;
     if doc.setup.grids.is_empty() {
@@ -51,6 +61,14 @@ pub fn measure_ui(
                 .as_ref()
                 .and_then(|r| r.results.iter().find(|g| g.name == grid.name));
             match result {
+                Some(r) if df => {
+                    let s = r.statistics();
+                    ui.label(format!(
+                        "DF min {:.2} % · avg {:.2} % · max {:.2} %",
+                        s.e_min_lx, s.e_avg_lx, s.e_max_lx
+                    ));
+                    ui.label(format!("uniformity (min/avg) {:.2}", s.u0));
+                }
                 Some(r) => {
                     let s = r.statistics();
                     ui.label(format!(

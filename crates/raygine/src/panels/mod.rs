@@ -64,6 +64,8 @@ pub struct SidePanel<'a> {
     pub false_colour: &'a mut FalseColourUi,
     pub denoise: &'a mut crate::denoise_view::DenoiseView,
     pub show_grids: &'a mut bool,
+    /// The grids read daylight factors.
+    pub daylight_factor: &'a mut bool,
     pub measure: MeasureView,
     pub state: &'a mut PanelState,
     /// A luminaire file is being read ("Add luminaire").
@@ -84,6 +86,7 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         false_colour,
         denoise,
         show_grids,
+        daylight_factor,
         measure,
         state,
         adding_luminaire,
@@ -143,7 +146,7 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
     egui::CollapsingHeader::new("Measure")
         .default_open(false)
         .show(ui, |ui| {
-            measure::measure_ui(ui, doc, measure, show_grids, out)
+            measure::measure_ui(ui, doc, measure, show_grids, daylight_factor, out)
         });
     egui::CollapsingHeader::new("Render")
         .default_open(true)

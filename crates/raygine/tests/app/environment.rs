@@ -240,3 +240,37 @@ fn daylight_is_added_its_sun_moves_and_it_is_saved() {
     h.step();
     assert!(h.state().document().setup.daylight.is_some(), "undo");
 }
+
+/// The Measure section's "daylight factor (%)": the grids are measured under the overcast sky
+/// alone and read in %. The built-in box is open at the front, so some daylight gets in: DF
+/// between 0 and 100 %, more near the opening than at the back wall.
+#[test]
+fn grids_read_daylight_factors_when_asked() {
+    let mut h = viewer();
+    h.get_by_label("Measure").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Add work plane")
+        .click();
+    h.step();
+    step_until(&mut h, "the first refinement", |app| {
+        app.measure().readings().is_some_and(|r| r.samples >= 16)
+    });
+    let lit = h.state().measure().readings().unwrap();
+    assert!(!lit.daylight_factor);
+    assert!(lit.results[0].statistics().e_avg_lx > 0.0);
+    h.get_by_role_and_label(Role::CheckBox, "daylight factor (%)")
+        .click();
+    h.step();
+    step_until(&mut h, "the daylight factors", |app| {
+        app.measure()
+            .readings()
+            .is_some_and(|r| r.daylight_factor && r.samples >= 16)
+    });
+    let df = h.state().measure().readings().unwrap();
+    let s = df.results[0].statistics();
+    assert!(
+        s.e_min_lx >= 0.0 && s.e_max_lx > 0.0 && s.e_max_lx < 100.0,
+        "{s:?}"
+    );
+    assert!(s.e_max_lx > 2.0 * s.e_min_lx, "{s:?}");
+}
