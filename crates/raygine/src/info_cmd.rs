@@ -108,6 +108,11 @@ fn daylight_json(d: &Daylight, handedness: tracer_core::scene::Handedness) -> Va
             "zenith_luminance_cd_m2": s.zenith_luminance_cd_m2,
             "horizontal_illuminance_lx": s.horizontal_illuminance(),
             "ground_reflectance": s.ground_reflectance,
+            "perez": s.perez.map(|p| json!({
+                "epsilon": p.epsilon,
+                "delta": p.delta,
+                "coefficients": p.coefficients,
+            })),
         })),
     })
 }
@@ -241,6 +246,15 @@ fn print_text(v: &Value) {
                     .unwrap_or(f64::NAN),
                 sky["ground_reflectance"]
             );
+            let p = &sky["perez"];
+            if !p.is_null() {
+                println!(
+                    "perez: clearness ε {:.4}, brightness Δ {:.4}, coefficients a-e {}",
+                    p["epsilon"].as_f64().unwrap_or(f64::NAN),
+                    p["delta"].as_f64().unwrap_or(f64::NAN),
+                    p["coefficients"]
+                );
+            }
         }
         if let Some(e) = d["sun_normal_illuminance_lx"].as_f64() {
             if f("sun_altitude_deg") > 0.0 {

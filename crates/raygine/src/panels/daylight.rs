@@ -7,7 +7,7 @@ use tracer_core::light::daylight::{Daylight, DaylightSpec};
 use tracer_core::scene::{Handedness, Setup};
 
 /// The skies the menu offers, by their sidecar names.
-const SKIES: [(&str, &str); 5] = [
+const SKIES: [(&str, &str); 6] = [
     ("none", "No sky (the sun alone, if it is on)"),
     (
         "cie-overcast",
@@ -16,6 +16,10 @@ const SKIES: [(&str, &str); 5] = [
     ("uniform", "The same luminance everywhere above the horizon"),
     ("cie:12", "CIE clear sky (ISO 15469 type 12)"),
     ("cie:1", "ISO 15469 type 1: overcast, steep gradation"),
+    (
+        "perez",
+        "Perez all-weather sky from the direct normal and diffuse horizontal illuminances",
+    ),
 ];
 
 /// The draft being edited, and why it does not check (when it does not).
@@ -42,6 +46,7 @@ fn first_daylight() -> DaylightSpec {
         zenith_luminance_cd_m2: None,
         diffuse_horizontal_lx: Some(10_000.0),
         ground_reflectance: None,
+        direct_normal_lx: None,
         sun: false,
         sun_normal_illuminance_lx: None,
     }
@@ -232,7 +237,33 @@ fn sky_ui(ui: &mut egui::Ui, spec: &mut DaylightSpec) {
                 }
             });
     });
-    if spec.sky.as_deref().is_some_and(|s| s != "none") {
+    if spec.sky.as_deref() == Some("perez") {
+        for (label, value, hint) in [
+            (
+                "direct normal",
+                &mut spec.direct_normal_lx,
+                "The sun's illuminance on a plane facing it, lx",
+            ),
+            (
+                "diffuse horizontal",
+                &mut spec.diffuse_horizontal_lx,
+                "The sky's illuminance on the open horizontal, lx",
+            ),
+        ] {
+            ui.horizontal(|ui| {
+                ui.label(label);
+                let v = value.get_or_insert(10_000.0);
+                let speed = v.abs().max(1.0) * 0.005;
+                ui.add(
+                    egui::DragValue::new(v)
+                        .speed(speed)
+                        .range(0.0..=150_000.0)
+                        .suffix(" lx"),
+                )
+                .on_hover_text(hint);
+            });
+        }
+    } else if spec.sky.as_deref().is_some_and(|s| s != "none") {
         ui.horizontal(|ui| {
             let lz = spec.zenith_luminance_cd_m2.is_some();
             let (label, value, hint) = if lz {
@@ -267,16 +298,35 @@ fn set_sky(spec: &mut DaylightSpec, sky: &str) {
         spec.sky = None;
         spec.zenith_luminance_cd_m2 = None;
         spec.diffuse_horizontal_lx = None;
+        spec.direct_normal_lx = None;
         spec.ground_reflectance = None;
         return;
     }
     spec.sky = Some(sky.to_owned());
+    if sky == "perez" {
+        // Perez gives the sun its own illuminance, and takes no zenith luminance.
+        spec.zenith_luminance_cd_m2 = None;
+        spec.sun_normal_illuminance_lx = None;
+        spec.direct_normal_lx.get_or_insert(60_000.0);
+        spec.diffuse_horizontal_lx.get_or_insert(15_000.0);
+        return;
+    }
+    spec.direct_normal_lx = None;
+    if spec.sun && spec.sun_normal_illuminance_lx.is_none() {
+        spec.sun_normal_illuminance_lx = Some(80_000.0);
+    }
     if spec.zenith_luminance_cd_m2.is_none() && spec.diffuse_horizontal_lx.is_none() {
         spec.diffuse_horizontal_lx = Some(10_000.0);
     }
 }
 
 fn sun_ui(ui: &mut egui::Ui, spec: &mut DaylightSpec) {
+    if spec.sky.as_deref() == Some("perez") {
+        ui.checkbox(&mut spec.sun, "sun").on_hover_text(
+            "A disc 0.533° across; the Perez sky gives it its direct normal illuminance",
+        );
+        return;
+    }
     ui.horizontal(|ui| {
         if ui
             .checkbox(&mut spec.sun, "sun")

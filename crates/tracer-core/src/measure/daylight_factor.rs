@@ -43,6 +43,7 @@ impl DaylightFactorSetup {
             zenith_luminance_cd_m2: DF_OUTDOOR_LX / (7.0 * PI / 9.0),
             ground_reflectance,
             sun_zenith_rad: 0.0,
+            perez: None,
         };
         let sign = match setup.handedness {
             Handedness::Right => 1.0,

@@ -7,17 +7,20 @@
 //!   pane (Radiance's `glass`, index 1.52, whose transmission equals raygine's pane formula to
 //!   six digits);
 //! - the CIE clear sky (gensky -s, ISO 15469 type 12) of 10,000 lx with a 0.533° sun of
-//!   80,000 lx at 30.36° altitude through the open window; four points are in full sun.
+//!   80,000 lx at 30.36° altitude through the open window; four points are in full sun;
+//! - the Perez all-weather sky (gendaylit -L 60000 15000) with its sun.
 //!
 //! Radiance's lux is 179 (0.265 R + 0.670 G + 0.065 B) of grey sources: equal to raygine's lx.
-//! Each point is checked within 4 joint standard errors and, on average over the room, within
+//! The daylight factor of the clear-sky sidecar is checked against the overcast room (DF is
+//! always measured under the overcast sky). Each point is checked within 4 joint standard errors and, on average over the room, within
 //! 2 %; the run prints every point.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
+// Measured values that happen to look like π or e are not those constants.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::approx_constant)]
 
 use crate::gi_support::*;
 use std::path::Path;
 use tracer_core::integrator::IntegratorKind;
-use tracer_core::measure::{MeasureSettings, measure_grids};
+use tracer_core::measure::{DaylightFactorSetup, MeasureSettings, measure_grids};
 use tracer_core::scene::Sidecar;
 
 // (lux, standard error) at x = 1, 2, 3 for z = 1, then z = 2, 3, 4 (y = 0.8, raygine's frame).
@@ -64,6 +67,21 @@ const CLEAR_SUN_OPEN: [(f64, f64); 12] = [
     (44354.26, 1.817),
 ];
 
+const PEREZ_OPEN: [(f64, f64); 12] = [
+    (1645.89, 2.781),
+    (1858.23, 2.718),
+    (1813.41, 2.853),
+    (2043.98, 3.330),
+    (2492.20, 4.159),
+    (2344.87, 4.413),
+    (2846.40, 3.829),
+    (34525.93, 4.638),
+    (33838.96, 3.372),
+    (4176.77, 2.593),
+    (37862.56, 3.960),
+    (35660.52, 3.679),
+];
+
 /// The room, with a pane in its window when `pane`.
 fn room(pane: bool) -> tracer_core::scene::Scene {
     let mut quads: Vec<Quad> = box_faces(4.0, 3.0, 5.0)
@@ -96,7 +114,14 @@ fn room(pane: bool) -> tracer_core::scene::Scene {
 }
 
 /// The 12 points' illuminance and standard error (lx) under the `[daylight]` keys `sky`.
-fn measure_room(pane: bool, sky: &str, samples: u32) -> Vec<([f32; 3], f64, f64)> {
+/// With `daylight_factor`, under `measure`'s daylight-factor setup instead, in lx of its
+/// 10,000 lx overcast sky (DF = E / 100 %).
+fn measure_room(
+    pane: bool,
+    sky: &str,
+    samples: u32,
+    daylight_factor: bool,
+) -> Vec<([f32; 3], f64, f64)> {
     let sc = room(pane);
     let text = format!(
         "unit = \"m\"\nhandedness = \"right\"\n\
@@ -120,6 +145,13 @@ fn measure_room(pane: bool, sky: &str, samples: u32) -> Vec<([f32; 3], f64, f64)
         time_limit: None,
         target_error: None,
     };
+    let st = if daylight_factor {
+        let df = DaylightFactorSetup::new(&st).unwrap();
+        assert_eq!(df.outdoor_lx, 10_000.0);
+        df.setup
+    } else {
+        st
+    };
     let r = &measure_grids(&sc, &st, &settings)[0];
     r.points
         .iter()
@@ -128,7 +160,11 @@ fn measure_room(pane: bool, sky: &str, samples: u32) -> Vec<([f32; 3], f64, f64)
 }
 
 fn compare(case: &str, pane: bool, sky: &str, reference: &[(f64, f64); 12], samples: u32) {
-    let ours = measure_room(pane, sky, samples);
+    let ours = measure_room(pane, sky, samples, false);
+    check(case, &ours, reference);
+}
+
+fn check(case: &str, ours: &[([f32; 3], f64, f64)], reference: &[(f64, f64); 12]) {
     let mut sum_rel = 0.0;
     for (k, &(lux, se)) in reference.iter().enumerate() {
         let (x, z) = ((k % 3 + 1) as f32, (k / 3 + 1) as f32);
@@ -167,6 +203,20 @@ fn clear_sky_and_sun_room_matches_radiance() {
     let sky = "sky = \"cie:12\"\ndiffuse_horizontal_lx = 10000.0\nsun = true\n\
                sun_normal_illuminance_lx = 80000.0";
     compare("clear + sun, open", false, sky, &CLEAR_SUN_OPEN, samples());
+    // The daylight factor of the same sidecar is measured under the overcast sky whatever its
+    // sky: Radiance's overcast room at 10,000 lx, DF = E / 100.
+    let df = measure_room(false, sky, samples(), true);
+    check("daylight factor (x 100 lx)", &df, &OVERCAST_OPEN);
+}
+
+/// The Perez all-weather sky of 60,000 lx direct normal and 15,000 lx diffuse horizontal
+/// (`gendaylit -L`, its sun included). gendaylit with `-ang` takes the eccentricity of day 1;
+/// raygine takes the date's (21 December: Δ 0.13653 against 0.13638).
+#[test]
+fn perez_sky_room_matches_radiance() {
+    let sky = "sky = \"perez\"\ndirect_normal_lx = 60000.0\ndiffuse_horizontal_lx = 15000.0\n\
+               sun = true";
+    compare("perez + sun, open", false, sky, &PEREZ_OPEN, samples());
 }
 
 /// Samples a point: the room's back points see the sky through the window alone, so the

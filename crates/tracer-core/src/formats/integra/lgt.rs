@@ -211,6 +211,7 @@ impl Geography {
             zenith_luminance_cd_m2: None,
             diffuse_horizontal_lx: None,
             ground_reflectance: None,
+            direct_normal_lx: None,
             sun: false,
             sun_normal_illuminance_lx: None,
         })

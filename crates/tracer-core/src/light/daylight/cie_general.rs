@@ -103,24 +103,31 @@ impl GeneralSky {
     }
 
     /// E_h / Lz, the unobstructed horizontal illuminance over the zenith luminance, for the sun
-    /// at `sun_zenith` radians: ∫ L/Lz cos Z dω by the midpoint rule in (cos Z, azimuth), fine
-    /// enough for 1e-5.
+    /// at `sun_zenith` radians.
     pub fn horizontal_over_zenith(&self, sun_zenith: f64) -> f64 {
-        let (n_mu, n_phi) = (400, 720);
-        let (sin_s, cos_s) = sun_zenith.sin_cos();
-        let mut sum = 0.0;
-        for i in 0..n_mu {
-            let mu = (i as f64 + 0.5) / n_mu as f64;
-            let sin_z = (1.0 - mu * mu).sqrt();
-            for j in 0..n_phi {
-                // The sun at azimuth 0: cos χ = cos Z cos Zs + sin Z sin Zs cos φ.
-                let phi = (j as f64 + 0.5) / n_phi as f64 * 2.0 * PI;
-                let cos_chi = (mu * cos_s + sin_z * sin_s * phi.cos()).clamp(-1.0, 1.0);
-                sum += self.relative_luminance(mu, cos_chi.acos(), sun_zenith) * mu;
-            }
-        }
-        sum * (1.0 / n_mu as f64) * (2.0 * PI / n_phi as f64)
+        horizontal_integral(sun_zenith, |mu, chi| {
+            self.relative_luminance(mu, chi, sun_zenith)
+        })
     }
+}
+
+/// ∫ l(cos Z, χ) cos Z dω over the sky for the sun at `sun_zenith` radians, by the midpoint
+/// rule in (cos Z, azimuth), fine enough for 1e-5 on smooth skies.
+pub fn horizontal_integral(sun_zenith: f64, l: impl Fn(f64, f64) -> f64) -> f64 {
+    let (n_mu, n_phi) = (400, 720);
+    let (sin_s, cos_s) = sun_zenith.sin_cos();
+    let mut sum = 0.0;
+    for i in 0..n_mu {
+        let mu = (i as f64 + 0.5) / n_mu as f64;
+        let sin_z = (1.0 - mu * mu).sqrt();
+        for j in 0..n_phi {
+            // The sun at azimuth 0: cos χ = cos Z cos Zs + sin Z sin Zs cos φ.
+            let phi = (j as f64 + 0.5) / n_phi as f64 * 2.0 * PI;
+            let cos_chi = (mu * cos_s + sin_z * sin_s * phi.cos()).clamp(-1.0, 1.0);
+            sum += l(mu, cos_chi.acos()) * mu;
+        }
+    }
+    sum * (1.0 / n_mu as f64) * (2.0 * PI / n_phi as f64)
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@
 //! (L is linear in cos θ), within 1e-4 of the closed forms with 256 rows. A general sky's texel
 //! is the mean of 4 x 4 points spread over its solid angle.
 
-use super::cie_general::GeneralSky;
+use super::cie_general::{GeneralSky, horizontal_integral};
 use super::spec::{Sky, SkyModel};
 use crate::light::{Environment, EnvironmentMap, EnvironmentSource, map_direction};
 use glam::{DVec3, Vec3};
@@ -43,12 +43,29 @@ impl Sky {
                 }
                 None => 0.0,
             },
+            SkyModel::Perez => match &self.perez {
+                Some(p) => {
+                    let chi = 2.0 * ((w - sun).length() * 0.5).min(1.0).asin();
+                    lz * p.over_zenith(w.y, chi)
+                }
+                None => 0.0,
+            },
         }
     }
 
     /// Unobstructed horizontal illuminance (lx) from the sky.
     pub fn horizontal_illuminance(&self) -> f64 {
-        self.zenith_luminance_cd_m2 * self.model.horizontal_over_zenith(self.sun_zenith_rad)
+        self.zenith_luminance_cd_m2 * self.horizontal_over_zenith()
+    }
+
+    /// E_h / Lz of this sky.
+    pub fn horizontal_over_zenith(&self) -> f64 {
+        match (&self.model, &self.perez) {
+            (SkyModel::Perez, Some(p)) => {
+                horizontal_integral(self.sun_zenith_rad, |mu, chi| p.over_zenith(mu, chi))
+            }
+            (model, _) => model.horizontal_over_zenith(self.sun_zenith_rad),
+        }
     }
 
     /// The ground's luminance (cd/m²): ρ_g (E_h + `sun_horizontal_lx`) / π.
@@ -84,7 +101,7 @@ impl Sky {
                     let l = self.luminance(DVec3::new(0.0, mean_cos, 0.0), sun);
                     texels.extend(std::iter::repeat_n(Vec3::splat(l as f32), w));
                 }
-                SkyModel::CieGeneral(_) => {
+                SkyModel::CieGeneral(_) | SkyModel::Perez => {
                     for col in 0..w {
                         let l = self.texel_mean(row, col, w, h, sun, handedness_sign);
                         texels.push(Vec3::splat(l as f32));
@@ -144,6 +161,8 @@ impl SkyModel {
             SkyModel::CieGeneral(t) => {
                 GeneralSky::new(t).map_or(0.0, |g| g.horizontal_over_zenith(sun_zenith))
             }
+            // Its coefficients are the sky's own: `Sky::horizontal_over_zenith`.
+            SkyModel::Perez => 0.0,
         }
     }
 
@@ -153,12 +172,13 @@ impl SkyModel {
             SkyModel::Uniform => "uniform".into(),
             SkyModel::CieOvercast => "cie-overcast".into(),
             SkyModel::CieGeneral(t) => format!("cie:{t}"),
+            SkyModel::Perez => "perez".into(),
         }
     }
 
     /// Whether the sky's shape depends on where the sun is.
     pub fn follows_the_sun(self) -> bool {
-        matches!(self, SkyModel::CieGeneral(_))
+        matches!(self, SkyModel::CieGeneral(_) | SkyModel::Perez)
     }
 }
 
@@ -177,6 +197,7 @@ mod tests {
                 zenith_luminance_cd_m2: 1000.0,
                 ground_reflectance: 0.2,
                 sun_zenith_rad: 0.5,
+                perez: None,
             };
             let Environment {
                 source: EnvironmentSource::Map(map),
@@ -210,6 +231,7 @@ mod tests {
                 zenith_luminance_cd_m2: 1000.0,
                 ground_reflectance: 0.2,
                 sun_zenith_rad: f64::from(sun.y).acos(),
+                perez: None,
             };
             let Environment {
                 source: EnvironmentSource::Map(map),

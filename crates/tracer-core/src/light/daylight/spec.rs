@@ -12,6 +12,7 @@
 //! north = [0.0, 0.0, -1.0]      # the scene direction of north (default -Z)
 //! zenith = [0.0, 1.0, 0.0]      # default: the scene's up, +Y
 //! sky = "cie-overcast"          # "none" (default), "uniform", "cie-overcast", "cie:1".."cie:15"
+//!                               # or "perez" (with direct_normal_lx and diffuse_horizontal_lx)
 //! zenith_luminance_cd_m2 = 3000.0   # or diffuse_horizontal_lx = 7330.0, not both
 //! ground_reflectance = 0.2      # the ground below the horizon (default 0.2)
 //! sun = true                    # a disc 0.533° across (default false)
@@ -47,6 +48,8 @@ pub struct DaylightSpec {
     pub diffuse_horizontal_lx: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ground_reflectance: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub direct_normal_lx: Option<f64>,
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub sun: bool,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -60,6 +63,8 @@ pub enum SkyModel {
     CieOvercast,
     /// ISO 15469 / CIE S 011 general sky of type 1..=15.
     CieGeneral(u8),
+    /// Perez all-weather sky (its coefficients are the `Sky`'s).
+    Perez,
 }
 
 /// A sky with its scale and the ground below it (see `super::sky`).
@@ -71,6 +76,8 @@ pub struct Sky {
     pub ground_reflectance: f64,
     /// The sun's zenith angle (radians), which shapes the general skies.
     pub sun_zenith_rad: f64,
+    /// The Perez sky's coefficients (`SkyModel::Perez`).
+    pub perez: Option<super::PerezSky>,
 }
 
 /// The place, the time and the scene's orientation, checked.
@@ -140,8 +147,21 @@ impl DaylightSpec {
             daylight_saving: self.daylight_saving,
         };
         let sun_zenith_rad = sun_position(&place_time).zenith_deg().to_radians();
-        let sky = self.sky_model(zenith, sun_zenith_rad)?;
-        let sun_normal_illuminance_lx = match (self.sun, self.sun_normal_illuminance_lx) {
+        let sky = self.sky_model(zenith, sun_zenith_rad, date.day_of_year())?;
+        let perez = sky.is_some_and(|s| s.model == SkyModel::Perez);
+        let sun_keys = match (perez, self.sun_normal_illuminance_lx) {
+            // The Perez sky gives the sun its direct normal illuminance.
+            (true, Some(_)) => {
+                return Err(
+                    "daylight: the Perez sky's sun is its direct_normal_lx; leave \
+                     sun_normal_illuminance_lx out"
+                        .into(),
+                );
+            }
+            (true, None) if self.sun => (true, self.direct_normal_lx),
+            (_, given) => (self.sun, given),
+        };
+        let sun_normal_illuminance_lx = match sun_keys {
             (true, Some(e)) if e.is_finite() && e >= 0.0 => Some(e),
             (true, Some(e)) => {
                 return Err(format!(
@@ -173,7 +193,12 @@ impl DaylightSpec {
 
 impl DaylightSpec {
     /// The sky the keys give, checked.
-    fn sky_model(&self, zenith: Vec3, sun_zenith_rad: f64) -> Result<Option<Sky>, String> {
+    fn sky_model(
+        &self,
+        zenith: Vec3,
+        sun_zenith_rad: f64,
+        day_of_year: u32,
+    ) -> Result<Option<Sky>, String> {
         let model = match self.sky.as_deref() {
             None | Some("none") => {
                 let stray: Vec<&str> = [
@@ -186,6 +211,7 @@ impl DaylightSpec {
                         self.diffuse_horizontal_lx.is_some(),
                     ),
                     ("ground_reflectance", self.ground_reflectance.is_some()),
+                    ("direct_normal_lx", self.direct_normal_lx.is_some()),
                 ]
                 .iter()
                 .filter_map(|&(k, given)| given.then_some(k))
@@ -201,16 +227,43 @@ impl DaylightSpec {
             }
             Some("uniform") => SkyModel::Uniform,
             Some("cie-overcast") => SkyModel::CieOvercast,
+            Some("perez") => SkyModel::Perez,
             Some(other) => match other.strip_prefix("cie:").map(str::parse::<u8>) {
                 Some(Ok(t)) if (1..=15).contains(&t) => SkyModel::CieGeneral(t),
                 _ => {
                     return Err(format!(
-                        "daylight: sky = \"{other}\": raygine draws \"none\", \"uniform\", \
-                         \"cie-overcast\" and the general skies \"cie:1\" to \"cie:15\" (Perez \
-                         is not built yet)"
+                        "daylight: sky = \"{other}\": give \"none\", \"uniform\", \
+                         \"cie-overcast\", a general sky \"cie:1\" to \"cie:15\" or \"perez\""
                     ));
                 }
             },
+        };
+        let perez = match (model, self.direct_normal_lx) {
+            (SkyModel::Perez, Some(dn)) => {
+                let (Some(dh), None) = (self.diffuse_horizontal_lx, self.zenith_luminance_cd_m2)
+                else {
+                    return Err("daylight: sky = \"perez\" takes direct_normal_lx and \
+                         diffuse_horizontal_lx (lx), not zenith_luminance_cd_m2"
+                        .into());
+                };
+                Some(
+                    super::PerezSky::from_illuminances(dn, dh, sun_zenith_rad, day_of_year)
+                        .map_err(|e| format!("daylight: {e}"))?,
+                )
+            }
+            (SkyModel::Perez, None) => {
+                return Err(
+                    "daylight: sky = \"perez\" needs direct_normal_lx and diffuse_horizontal_lx \
+                     (lx)"
+                        .into(),
+                );
+            }
+            (_, Some(_)) => {
+                return Err(
+                    "daylight: direct_normal_lx is the Perez sky's (sky = \"perez\")".into(),
+                );
+            }
+            (_, None) => None,
         };
         if zenith.dot(Vec3::Y) < 0.9999 {
             return Err(
@@ -228,8 +281,15 @@ impl DaylightSpec {
         {
             (Some(lz), None) => positive("zenith_luminance_cd_m2", lz)?,
             (None, Some(eh)) => {
-                positive("diffuse_horizontal_lx", eh)?
-                    / model.horizontal_over_zenith(sun_zenith_rad)
+                let ratio = match &perez {
+                    Some(p) => {
+                        super::cie_general::horizontal_integral(sun_zenith_rad, |mu, chi| {
+                            p.over_zenith(mu, chi)
+                        })
+                    }
+                    None => model.horizontal_over_zenith(sun_zenith_rad),
+                };
+                positive("diffuse_horizontal_lx", eh)? / ratio
             }
             (Some(_), Some(_)) => {
                 return Err(
@@ -256,6 +316,7 @@ impl DaylightSpec {
             zenith_luminance_cd_m2,
             ground_reflectance,
             sun_zenith_rad,
+            perez,
         }))
     }
 }
@@ -371,7 +432,19 @@ mod tests {
         );
         assert_eq!(sky.ground_reflectance, 0.2);
         let e = |extra: &str| spec(extra).unwrap_err();
-        assert!(e("sky = \"perez\"").contains("not built yet"));
+        assert!(e("sky = \"perez\"").contains("needs direct_normal_lx"));
+        assert!(
+            e("sky = \"uniform\"\nzenith_luminance_cd_m2 = 1.0\ndirect_normal_lx = 5.0")
+                .contains("Perez sky's")
+        );
+        let p = spec(
+            "sky = \"perez\"\ndirect_normal_lx = 60000.0\ndiffuse_horizontal_lx = 15000.0\n\
+                      sun = true",
+        )
+        .unwrap();
+        let sky = p.sky.unwrap();
+        assert!((sky.horizontal_illuminance() - 15000.0).abs() < 1e-6);
+        assert_eq!(p.sun_normal_illuminance_lx, Some(60000.0));
         assert!(e("sky = \"cie:16\"").contains("cie:15"));
         assert!(e("sun = true").contains("needs sun_normal_illuminance_lx"));
         assert!(e("sun_normal_illuminance_lx = 5.0").contains("without sun = true"));

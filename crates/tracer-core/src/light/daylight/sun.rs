@@ -49,6 +49,30 @@ impl Date {
     }
 }
 
+impl Date {
+    /// The day of the year, 1 on 1 January.
+    pub fn day_of_year(&self) -> u32 {
+        let leap = (self.year % 4 == 0 && self.year % 100 != 0) || self.year % 400 == 0;
+        let before: u32 = [
+            31,
+            if leap { 29 } else { 28 },
+            31,
+            30,
+            31,
+            30,
+            31,
+            31,
+            30,
+            31,
+            30,
+        ]
+        .iter()
+        .take(self.month.saturating_sub(1) as usize)
+        .sum();
+        before + self.day
+    }
+}
+
 impl std::fmt::Display for Date {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{:04}-{:02}-{:02}", self.year, self.month, self.day)
