@@ -27,11 +27,6 @@ pub fn measure_ui(
     out: &mut Commands,
 ) {
     let readings = view.readings;
-    ui.checkbox(daylight_factor, "daylight factor (%)")
-        .on_hover_text(
-            "Measure DF = E_in / E_out,h under the CIE overcast sky without sun, lights or glowing \
-         surfaces, whatever the scene's sky (E_out,h computed)",
-        );
     if let Some(e) = readings.as_ref().and_then(|r| r.error.as_ref()) {
         ui.colored_label(egui::Color32::from_rgb(255, 120, 100), e);
     }
@@ -133,6 +128,10 @@ pub fn measure_ui(
             out.push(Command::Edit(Edit::AddWorkPlane));
         }
         ui.checkbox(show_grids, "show on picture");
+        ui.checkbox(daylight_factor, "DF (%)").on_hover_text(
+            "Daylight factor: measure DF = E_in / E_out,h under the CIE overcast sky without \
+             sun, lights or glowing surfaces, whatever the scene's sky (E_out,h computed)",
+        );
     });
     let selected = view.selected_slot;
     if ui

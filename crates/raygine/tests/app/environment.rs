@@ -241,7 +241,7 @@ fn daylight_is_added_its_sun_moves_and_it_is_saved() {
     assert!(h.state().document().setup.daylight.is_some(), "undo");
 }
 
-/// The Measure section's "daylight factor (%)": the grids are measured under the overcast sky
+/// The Measure section's "DF (%)" (daylight factor): the grids are measured under the overcast sky
 /// alone and read in %. The built-in box is open at the front, so some daylight gets in: DF
 /// between 0 and 100 %, more near the opening than at the back wall.
 #[test]
@@ -258,8 +258,21 @@ fn grids_read_daylight_factors_when_asked() {
     let lit = h.state().measure().readings().unwrap();
     assert!(!lit.daylight_factor);
     assert!(lit.results[0].statistics().e_avg_lx > 0.0);
-    h.get_by_role_and_label(Role::CheckBox, "daylight factor (%)")
-        .click();
+    // Scroll the side panel down to the row under the grid (wheel over the panel).
+    let panel = h.get_by_label("Measure").rect().center();
+    h.hover_at(panel);
+    for _ in 0..4 {
+        h.event(egui::Event::MouseWheel {
+            unit: egui::MouseWheelUnit::Point,
+            delta: Vec2::new(0.0, -120.0),
+            phase: egui::TouchPhase::Move,
+            source: egui::MouseWheelSource::Unknown,
+            modifiers: Modifiers::NONE,
+        });
+        h.step();
+    }
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::CheckBox, "DF (%)").click();
     h.step();
     step_until(&mut h, "the daylight factors", |app| {
         app.measure()
