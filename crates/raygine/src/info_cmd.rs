@@ -30,15 +30,20 @@ fn material_json(name: &str, m: &Material) -> Value {
         "emission_color": m.emission_color,
         "emission_sides": m.emission_sides,
     });
-    let model = match &m.pbr {
-        Some(p) => json!({
+    let model = match (&m.pbr, &m.pane) {
+        (_, Some(g)) => json!({
+            "kind": "pane",
+            "ior": m.ior,
+            "transmittance": g.transmittance,
+        }),
+        (Some(p), None) => json!({
             "base_color": p.base_color,
             "metallic": p.metallic,
             "roughness": p.roughness,
             "transmission": p.transmission,
             "ior": m.ior,
         }),
-        None => json!({"kd": m.kd, "ks": m.ks, "glossiness": m.glossiness}),
+        (None, None) => json!({"kd": m.kd, "ks": m.ks, "glossiness": m.glossiness}),
     };
     if let (Some(v), Value::Object(model)) = (v.as_object_mut(), model) {
         v.extend(model);
@@ -60,7 +65,8 @@ pub fn describe(loaded: &LoadedScene) -> Value {
         })
         .collect();
     let lights: Vec<Value> = setup.lights.iter().map(|l| json!(l.summary())).collect();
-    let total_flux_lm: f32 = setup.lights.iter().map(|l| l.flux_lm()).sum();
+    // (+ 0.0: no lights sum to −0.0, printed as such.)
+    let total_flux_lm: f32 = setup.lights.iter().map(|l| l.flux_lm()).sum::<f32>() + 0.0;
     let b = scene.bounds;
     json!({
         "name": scene.name,
@@ -148,7 +154,17 @@ fn print_text(v: &Value) {
     );
     println!("materials (sidecar keys):");
     for m in v["materials"].as_array().into_iter().flatten() {
-        let mut line = if m.get("base_color").is_some() {
+        let mut line = if m["kind"] == "pane" {
+            format!(
+                "  {}: thin glass pane, ior {}, {}",
+                m["name"],
+                m["ior"],
+                match m["transmittance"].as_f64() {
+                    Some(t) => format!("normal-incidence transmittance {t}"),
+                    None => "clear (no absorption)".to_owned(),
+                }
+            )
+        } else if m.get("base_color").is_some() {
             format!(
                 "  {}: base_color {} metallic {} roughness {}",
                 m["name"], m["base_color"], m["metallic"], m["roughness"]

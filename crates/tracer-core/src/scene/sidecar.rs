@@ -274,6 +274,21 @@ impl Sidecar {
                 if daylit && self.lights.is_none() && scene.design.lights.is_none() {
                     setup.lights.clear();
                 }
+                let below = daylight.sun().altitude_deg <= 0.0;
+                if below && daylight.sky.is_some() {
+                    warnings.push(format!(
+                        "daylight: the sun is below the horizon at {} {}; the sky keeps the \
+                         luminance given (raygine has no night or twilight sky)",
+                        daylight.place_time.date, daylight.place_time.time
+                    ));
+                }
+                if daylight.spec.direct_normal_lx.is_some() && !daylight.spec.sun {
+                    warnings.push(
+                        "daylight: the Perez sky lights no sun unless sun = true (its \
+                         direct_normal_lx shapes the sky only)"
+                            .into(),
+                    );
+                }
                 if daylight.sun_normal_illuminance_lx.is_some()
                     && daylight.sun_disc(right_handed).is_none()
                 {

@@ -260,7 +260,9 @@ impl DaylightSpec {
             }
             (_, Some(_)) => {
                 return Err(
-                    "daylight: direct_normal_lx is the Perez sky's (sky = \"perez\")".into(),
+                    "daylight: direct_normal_lx is the Perez sky's (sky = \"perez\"); under \
+                     another sky the sun takes sun = true and sun_normal_illuminance_lx"
+                        .into(),
                 );
             }
             (_, None) => None,

@@ -42,8 +42,13 @@ impl Date {
             2 => 28,
             _ => return Err(format!("`{text}`: month {month} is not 1-12")),
         };
-        if !(1..=days).contains(&day) || y.len() != 4 {
+        if y.len() != 4 {
             return Err(bad());
+        }
+        if !(1..=days).contains(&day) {
+            return Err(format!(
+                "`{text}`: {year:04}-{month:02} has days 1 to {days}, not {day}"
+            ));
         }
         Ok(Date { year, month, day })
     }
@@ -82,7 +87,7 @@ impl std::fmt::Display for Date {
 impl ClockTime {
     /// `HH:MM` or `HH:MM:SS` (24-hour clock), or why not.
     pub fn parse(text: &str) -> Result<ClockTime, String> {
-        let bad = || format!("`{text}` is not a time HH:MM (24-hour clock)");
+        let bad = || format!("`{text}` is not a time HH:MM or HH:MM:SS (24-hour clock)");
         let parts: Vec<&str> = text.trim().split(':').collect();
         if !(2..=3).contains(&parts.len()) {
             return Err(bad());
