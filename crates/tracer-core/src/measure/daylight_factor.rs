@@ -38,13 +38,13 @@ impl DaylightFactorSetup {
             }
             None => 0.2,
         };
-        let sky = Sky {
-            model: SkyModel::CieOvercast,
-            zenith_luminance_cd_m2: DF_OUTDOOR_LX / (7.0 * PI / 9.0),
+        let sky = Sky::new(
+            SkyModel::CieOvercast,
+            DF_OUTDOOR_LX / (7.0 * PI / 9.0),
             ground_reflectance,
-            sun_zenith_rad: 0.0,
-            perez: None,
-        };
+            0.0,
+            None,
+        );
         let sign = match setup.handedness {
             Handedness::Right => 1.0,
             Handedness::Left => -1.0,

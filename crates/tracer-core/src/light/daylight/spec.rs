@@ -78,6 +78,8 @@ pub struct Sky {
     pub sun_zenith_rad: f64,
     /// The Perez sky's coefficients (`SkyModel::Perez`).
     pub perez: Option<super::PerezSky>,
+    /// E_h / Lz, computed once (a quadrature for the skies that follow the sun).
+    pub(super) horizontal_over_zenith: f64,
 }
 
 /// The place, the time and the scene's orientation, checked.
@@ -283,14 +285,7 @@ impl DaylightSpec {
         {
             (Some(lz), None) => positive("zenith_luminance_cd_m2", lz)?,
             (None, Some(eh)) => {
-                let ratio = match &perez {
-                    Some(p) => {
-                        super::cie_general::horizontal_integral(sun_zenith_rad, |mu, chi| {
-                            p.over_zenith(mu, chi)
-                        })
-                    }
-                    None => model.horizontal_over_zenith(sun_zenith_rad),
-                };
+                let ratio = Sky::new(model, 1.0, 0.0, sun_zenith_rad, perez).horizontal_over_zenith;
                 positive("diffuse_horizontal_lx", eh)? / ratio
             }
             (Some(_), Some(_)) => {
@@ -313,13 +308,13 @@ impl DaylightSpec {
                 "daylight: ground_reflectance = {ground_reflectance} is outside 0..1"
             ));
         }
-        Ok(Some(Sky {
+        Ok(Some(Sky::new(
             model,
             zenith_luminance_cd_m2,
             ground_reflectance,
             sun_zenith_rad,
             perez,
-        }))
+        )))
     }
 }
 
