@@ -128,7 +128,7 @@ impl Sidecar {
     pub fn parse(text: &str, path: &Path) -> Result<Sidecar, SceneError> {
         let mut sidecar: Sidecar = toml::from_str(text).map_err(|e| SceneError::Sidecar {
             path: path.to_owned(),
-            message: e.to_string().trim_end().replace('\n', " "),
+            message: toml_error_message(text, &e),
         })?;
         sidecar.base_dir = path.parent().map(Path::to_path_buf);
         sidecar.source = Some(super::notes::SourceText {
@@ -142,7 +142,12 @@ impl Sidecar {
         sidecar.model_lights().map_err(invalid)?;
         sidecar.model_grids(None).map_err(invalid)?;
         if let Some(spec) = &sidecar.daylight {
-            let daylight = spec.to_model().map_err(invalid)?;
+            // Its errors name their key; the table's line says where it is.
+            let at_daylight = |message: String| match table_line(text, "daylight") {
+                Some(line) => invalid(format!("line {line}: {message}")),
+                None => invalid(message),
+            };
+            let daylight = spec.to_model().map_err(at_daylight)?;
             if daylight.sky.is_some() && sidecar.environment.is_some() {
                 return Err(invalid(
                     "give [environment] or a [daylight] sky, not both: the sky is the \
@@ -465,11 +470,74 @@ pub fn round_significant(v: f64, digits: i32) -> f64 {
     text.parse().unwrap_or(v)
 }
 
+/// A TOML error as one line: `line N: `the line's text`: reason` (the reason is what the
+/// reader or a key's check said), without the multi-line snippet the error's own text has.
+fn toml_error_message(text: &str, e: &toml::de::Error) -> String {
+    let reason = e.message().trim_end().replace('\n', " ");
+    let Some(span) = e.span().filter(|s| s.start <= text.len()) else {
+        return reason;
+    };
+    let line = text[..span.start].matches('\n').count() + 1;
+    let shown: String = text[span.start..]
+        .lines()
+        .next()
+        .unwrap_or("")
+        .trim()
+        .chars()
+        .take(60)
+        .collect();
+    if shown.is_empty() {
+        format!("line {line}: {reason}")
+    } else {
+        format!("line {line}: `{shown}`: {reason}")
+    }
+}
+
+/// The line of the table header `[name]` in `text`, if it has one.
+fn table_line(text: &str, name: &str) -> Option<usize> {
+    let header = format!("[{name}]");
+    text.lines()
+        .position(|l| l.trim_start().starts_with(&header))
+        .map(|i| i + 1)
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
     use super::*;
     use crate::shp::parse_shp;
+
+    /// Errors are one line with the line number, the line's text and the reason; a
+    /// `[daylight]` error gives the table's line.
+    #[test]
+    fn errors_name_the_line() {
+        let path = Path::new("room.raygine.toml");
+        let e = |text: &str| Sidecar::parse(text, path).unwrap_err().to_string();
+        let pane = e("unit = \"m\"\n\n[materials.window]\nkind = \"pane\"\ntransmittance = 1.5\n");
+        assert!(
+            pane.starts_with(
+                "room.raygine.toml: line 3: `[materials.window]`: pane: transmittance"
+            ),
+            "{pane}"
+        );
+        assert!(
+            !pane.contains('|') && !pane.contains("TOML parse error"),
+            "{pane}"
+        );
+        let unclosed = e("[camera\n");
+        assert!(
+            unclosed.starts_with("room.raygine.toml: line 1: "),
+            "{unclosed}"
+        );
+        let day = e(
+            "unit = \"m\"\n[daylight]\nlatitude = 100.0\nlongitude = 0.0\n\
+                     date = \"2026-01-01\"\ntime = \"12:00\"\ntimezone = 0.0\n",
+        );
+        assert!(
+            day.starts_with("room.raygine.toml: line 2: daylight: latitude = 100"),
+            "{day}"
+        );
+    }
 
     #[test]
     fn written_numbers_have_no_float_noise() {
