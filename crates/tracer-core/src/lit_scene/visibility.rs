@@ -84,8 +84,8 @@ impl LitScene<'_> {
     /// the end point): 0 when an opaque surface blocks it, else the product of the
     /// transmittances of the thin panes on it (1 without any). A pane does not deviate light,
     /// so the segment stays straight.
+    #[inline]
     pub fn transmittance(&self, origin: Vec3, to_target: Vec3) -> f32 {
-        let ray = Self::shadow_ray(origin, to_target);
         if !self.panes {
             return if self.occluded(origin, to_target) {
                 0.0
@@ -93,7 +93,7 @@ impl LitScene<'_> {
                 1.0
             };
         }
-        self.through_panes(ray)
+        self.through_panes(Self::shadow_ray(origin, to_target))
     }
 
     /// [`LitScene::occluded_many`], then for scenes with panes the share each blocked ray gets
@@ -121,10 +121,19 @@ impl LitScene<'_> {
     /// then reflects with R ([`crate::shading::Bsdf`]), so that either way the expected weight
     /// is the pane's T and R. Without panes: [`LitScene::closest_visible`] and weight 1, and no
     /// random number is drawn.
+    #[inline]
     pub fn closest_through_panes(&self, ray: &Ray, rng: &mut SampleRng) -> (Option<Hit>, f32) {
         if !self.panes {
             return (self.closest_visible(ray), 1.0);
         }
+        self.walk_panes(ray, rng)
+    }
+
+    /// [`LitScene::closest_through_panes`] in a scene with panes (out of line: the scenes
+    /// without them keep their hot loop as it was).
+    #[inline(never)]
+    #[cold]
+    fn walk_panes(&self, ray: &Ray, rng: &mut SampleRng) -> (Option<Hit>, f32) {
         let mut ray = *ray;
         let length = ray.dir.length();
         let mut weight = 1.0;
@@ -152,6 +161,8 @@ impl LitScene<'_> {
 
     /// Walks `ray`'s hits: the product of the panes' transmittances, 0 at the first opaque
     /// surface.
+    #[inline(never)]
+    #[cold]
     fn through_panes(&self, mut ray: Ray) -> f32 {
         let length = ray.dir.length();
         if length <= 0.0 {
