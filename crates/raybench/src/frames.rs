@@ -70,6 +70,7 @@ fn workload(name: &str) -> anyhow::Result<(Scene, Setup)> {
         look_at: frame.centre.to_array(),
         up: [0.0, 1.0, 0.0],
         fov_deg: 45.0,
+        ..Camera::default()
     };
     setup.lights = vec![Light::point(frame.light().to_array(), 1.0)];
     let grey = Material {

@@ -90,6 +90,7 @@ mod tests {
             look_at: [0.0; 3],
             up: [0.0, 1.0, 0.0],
             fov_deg: 45.0,
+            ..Camera::default()
         }
     }
 

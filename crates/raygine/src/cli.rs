@@ -78,6 +78,16 @@ pub struct MeasureArgs {
     pub shard: crate::cli_shards::ShardArgs,
 }
 
+fn parse_projection(s: &str) -> Result<tracer_core::scene::Projection, String> {
+    tracer_core::scene::Projection::from_name(s).ok_or_else(|| {
+        let names: Vec<&str> = tracer_core::scene::Projection::ALL
+            .iter()
+            .map(|p| p.name())
+            .collect();
+        format!("unknown projection `{s}`; one of {}", names.join(", "))
+    })
+}
+
 fn parse_percent(s: &str) -> Result<f64, String> {
     s.parse::<f64>()
         .ok()
@@ -137,8 +147,17 @@ pub struct RenderArgs {
     /// instead of sending them where the error is highest.
     #[arg(long, conflicts_with = "target_error")]
     pub no_adaptive: bool,
-    /// Light position, camera position and vertical field of view (degrees):
-    /// `lx ly lz cx cy cz cf`, or any prefix of them.
+    /// Camera projection: perspective, fisheye-equidistant (Radiance -vta), fisheye-equisolid,
+    /// hemispherical (-vth), equirectangular (360° x 180°) or orthographic (default: the
+    /// scene's camera's). Fisheyes take a field of view up to 180°, across the image circle.
+    #[arg(long, value_name = "NAME", value_parser = parse_projection)]
+    pub projection: Option<tracer_core::scene::Projection>,
+    /// Orthographic camera: the image's width in scene units (default: the perspective view's
+    /// width at the look-at point).
+    #[arg(long, value_name = "UNITS")]
+    pub ortho_width: Option<f32>,
+    /// Light position, camera position and field of view (degrees; vertical for perspective,
+    /// across the image circle for fisheyes): `lx ly lz cx cy cz cf`, or any prefix of them.
     #[arg(value_name = "LX LY LZ CX CY CZ CF", num_args = 0..=7)]
     pub positional: Vec<f32>,
     #[command(flatten)]

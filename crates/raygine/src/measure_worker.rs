@@ -64,6 +64,7 @@ impl MeasureWorker {
             look_at: [0.0; 3],
             up: [0.0; 3],
             fov_deg: 0.0,
+            ..Default::default()
         };
         let key = Key {
             scene: Arc::as_ptr(scene) as usize,

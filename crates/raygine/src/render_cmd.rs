@@ -61,15 +61,29 @@ pub fn apply_overrides(loaded: &mut LoadedScene, args: &RenderArgs) -> Result<()
         setup.camera.look_at = [c[0], c[1], c[2] - 1.0];
         setup.camera.up = [0.0, 1.0, 0.0];
     }
+    if let Some(projection) = args.projection {
+        setup.camera.projection = projection;
+    }
+    if let Some(width) = args.ortho_width {
+        setup.camera.width = Some(width);
+    }
     if let Some(fov) = p.get(6) {
-        if !(*fov > 0.0 && *fov < 180.0) {
-            bail!("field of view must be between 0 and 180 degrees, got {fov}");
-        }
         setup.camera.fov_deg = *fov;
     }
     if let Some(at) = args.look_at {
         setup.camera.look_at = at;
     }
+    if let Err(e) = setup.camera.check() {
+        // (The checks name the sidecar's keys; here they came from the command line.)
+        let e = e
+            .replace("fov_deg", "the field of view (CF)")
+            .replace("camera: width", "camera: --ortho-width");
+        bail!("{e}");
+    }
+    args.scene
+        .integrator
+        .check_projection(setup.camera.projection)
+        .map_err(anyhow::Error::msg)?;
     Ok(())
 }
 

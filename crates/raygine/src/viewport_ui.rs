@@ -238,7 +238,7 @@ fn surface_point(worker: &RenderWorker, fx: f32, fy: f32) -> Option<glam::Vec3> 
         key.settings.width,
         key.settings.height,
     );
-    let ray = basis.ray(fx, fy);
+    let ray = basis.ray(fx, fy)?;
     let hit = key.scene.closest_drawn(&ray, &key.setup.hidden)?;
     Some(ray.origin + ray.dir * hit.t)
 }
@@ -251,7 +251,7 @@ pub fn pick_slot(worker: &RenderWorker, fx: f32, fy: f32) -> Option<u32> {
         key.settings.width,
         key.settings.height,
     );
-    key.scene.pick_slot(&basis.ray(fx, fy), &key.setup.hidden)
+    key.scene.pick_slot(&basis.ray(fx, fy)?, &key.setup.hidden)
 }
 
 fn hover_info(worker: &RenderWorker, doc: &Document, fx: f32, fy: f32) -> Option<HoverInfo> {

@@ -1,5 +1,7 @@
 //! The names of the integrators: on the command line, in the viewer and in files.
 
+use crate::scene::Projection;
+
 /// Which light transport to compute.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum IntegratorKind {
@@ -24,6 +26,20 @@ impl IntegratorKind {
         IntegratorKind::Bidirectional,
         IntegratorKind::Light,
     ];
+
+    /// Whether this integrator can render through `projection`: the light tracer only splats,
+    /// and the orthographic camera, whose importance is a delta in direction, takes no splat.
+    pub fn check_projection(self, projection: Projection) -> Result<(), String> {
+        if self == IntegratorKind::Light && projection == Projection::Orthographic {
+            return Err(
+                "the light tracer cannot render an orthographic camera: it only joins light \
+                 paths to the eye, and no light path reaches an orthographic camera (all its \
+                 rays are parallel); use --gi bdpt or path, or another projection"
+                    .into(),
+            );
+        }
+        Ok(())
+    }
 
     /// Whether light subpaths are traced and splatted to the film.
     pub fn splats(self) -> bool {

@@ -72,6 +72,19 @@ pub trait Integrator: Send + Sync + std::fmt::Debug {
         splats: &mut Vec<Splat>,
     ) -> Sample;
 
+    /// Camera sample `want.index` of a film position outside the image (a fisheye's corners):
+    /// no camera ray, so the sample itself is black. The splatting integrators still trace its
+    /// light subpath and splat it into the image, since the film divides splats by the
+    /// samples of every pixel.
+    fn sample_outside(
+        &self,
+        _basis: &CameraBasis,
+        _rng: &mut SampleRng,
+        _splats: &mut Vec<Splat>,
+    ) -> Sample {
+        Sample::default()
+    }
+
     /// A preview sample along `ray` (unit direction) of the camera `basis`, for a picture with
     /// no film to splat to: what the mode converges to, as near as a sample without splats
     /// can show it. The illuminance as for [`Integrator::sample_camera`].

@@ -24,7 +24,9 @@ pub fn front_winding(scene: &Scene, setup: &crate::scene::Setup) -> f32 {
     let mut along = 0i32;
     for y in 0..16 {
         for x in 0..16 {
-            let ray = basis.ray(x as f32 + 0.5, y as f32 + 0.5);
+            let Some(ray) = basis.ray(x as f32 + 0.5, y as f32 + 0.5) else {
+                continue;
+            };
             if let Some(hit) = scene.closest_drawn(&ray, &setup.hidden) {
                 let [a, b, c] = scene.triangles[hit.prim as usize];
                 along += if (b - a).cross(c - a).dot(ray.dir) > 0.0 {

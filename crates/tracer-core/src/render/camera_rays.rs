@@ -9,7 +9,7 @@ use crate::geometry::Ray;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes8::Avx8;
 use crate::lanes8::{Lanes8, Scalar8};
-use crate::scene::CameraBasis;
+use crate::scene::{CameraBasis, Lens};
 use glam::Vec3;
 
 /// Chunks of eight per block of [`lane_rays`]' two passes (a batch's worth).
@@ -32,9 +32,36 @@ fn one_pixel_run(chunk: &[SampleJob]) -> Option<SampleJob> {
 }
 
 /// The camera ray of each of `jobs`, into `rays` (cleared first; the batch traces the rays
-/// from that slice as they are).
-pub(super) fn camera_rays(basis: &CameraBasis, jobs: &[SampleJob], rays: &mut Vec<Ray>) {
+/// from that slice as they are). Film positions outside the image (a fisheye's corners) get a
+/// stand-in ray that hits nothing, and their indices go to `outside` (cleared first).
+pub(super) fn camera_rays(
+    basis: &CameraBasis,
+    jobs: &[SampleJob],
+    rays: &mut Vec<Ray>,
+    outside: &mut Vec<u32>,
+) {
     rays.clear();
+    outside.clear();
+    if !matches!(basis.lens, Lens::Pinhole) {
+        // The other projections one ray at a time (their directions need trigonometry, and
+        // the wavefront's cost is in the tracing).
+        let width = basis.width;
+        for (i, job) in jobs.iter().enumerate() {
+            let (dx, dy) = super::pixel_sample_offset(job.x, job.y, width, job.s);
+            rays.push(
+                basis
+                    .ray(job.x as f32 + dx, job.y as f32 + dy)
+                    .unwrap_or_else(|| {
+                        outside.push(i as u32);
+                        Ray {
+                            t_max: 0.0,
+                            ..Ray::new(basis.origin, basis.forward)
+                        }
+                    }),
+            );
+        }
+        return;
+    }
     #[cfg(target_arch = "x86_64")]
     if is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2, the only feature `rays_avx2` is compiled for.
@@ -145,6 +172,7 @@ fn lane_rays<L: Lanes8>(basis: &CameraBasis, jobs: &[SampleJob], rays: &mut Vec<
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
     use super::*;
     use crate::scene::{Camera, Handedness};
 
@@ -155,6 +183,7 @@ mod tests {
             look_at: [-0.2, 0.4, -1.0],
             up: [0.1, 1.0, 0.0],
             fov_deg: 53.0,
+            ..Camera::default()
         };
         let basis = camera.basis(Handedness::Left, 317, 211);
         let runs = |jobs: &[SampleJob]| {
@@ -179,7 +208,7 @@ mod tests {
             .iter()
             .map(|j| {
                 let (dx, dy) = super::super::pixel_sample_offset(j.x, j.y, 317, j.s);
-                basis.ray(j.x as f32 + dx, j.y as f32 + dy)
+                basis.ray(j.x as f32 + dx, j.y as f32 + dy).unwrap()
             })
             .collect();
         assert!(runs(&jobs) >= 5, "the runs reach the lanes' path");
@@ -188,7 +217,7 @@ mod tests {
         lane_rays::<Scalar8>(&basis, &jobs, &mut rays);
         kinds.push(rays);
         let mut rays = Vec::new();
-        camera_rays(&basis, &jobs, &mut rays);
+        camera_rays(&basis, &jobs, &mut rays, &mut Vec::new());
         kinds.push(rays);
         for rays in kinds {
             assert_eq!(rays.len(), jobs.len());

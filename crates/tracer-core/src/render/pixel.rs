@@ -34,6 +34,8 @@ pub struct BatchScratch {
     jobs: Vec<SampleJob>,
     samples: Vec<Sample>,
     rays: Vec<Ray>,
+    /// Indices of the batch's samples outside the image.
+    outside: Vec<u32>,
     direct: DirectBatch,
 }
 
@@ -105,6 +107,11 @@ impl<'a> FrameSampler<'a> {
     /// mode) go to `splats`.
     pub fn sample(&self, x: u32, y: u32, s: u32, splats: &mut Vec<Splat>) -> Sample {
         let (ray, mut rng) = self.camera_ray(SampleJob { x, y, s });
+        let Some(ray) = ray else {
+            return self
+                .integrator
+                .sample_outside(&self.basis, &mut rng, splats);
+        };
         let want = self.want(s);
         let mut sample = self
             .integrator
@@ -116,17 +123,20 @@ impl<'a> FrameSampler<'a> {
     }
 
     /// The denoiser's guide of sample `s` of pixel (`x`, `y`): the same camera ray as the
-    /// sample's, its own random stream.
+    /// sample's, its own random stream (an empty guide outside the image).
     pub fn guide(&self, x: u32, y: u32, s: u32) -> Guide {
         let (ray, _) = self.camera_ray(SampleJob { x, y, s });
+        let Some(ray) = ray else {
+            return Guide::default();
+        };
         let key = u64::from(y) * u64::from(self.basis.width) + u64::from(x);
         let mut rng = SampleRng::new(GUIDE_STREAM ^ key, s);
         trace_guide(self.integrator.lit(), &ray, &mut rng)
     }
 
-    /// The camera ray of a sample and its random stream.
+    /// The camera ray of a sample (None outside the image) and its random stream.
     #[inline]
-    fn camera_ray(&self, SampleJob { x, y, s }: SampleJob) -> (Ray, SampleRng) {
+    fn camera_ray(&self, SampleJob { x, y, s }: SampleJob) -> (Option<Ray>, SampleRng) {
         let width = self.basis.width;
         let (dx, dy) = pixel_sample_offset(x, y, width, s);
         let ray = self.basis.ray(x as f32 + dx, y as f32 + dy);
@@ -155,7 +165,7 @@ impl<'a> FrameSampler<'a> {
             out.extend(jobs.iter().map(|j| self.sample(j.x, j.y, j.s, splats)));
             return;
         }
-        camera_rays(&self.basis, jobs, &mut scratch.rays);
+        camera_rays(&self.basis, jobs, &mut scratch.rays, &mut scratch.outside);
         out.resize(jobs.len(), Sample::default());
         trace_direct_batch(
             self.integrator.lit(),
@@ -164,6 +174,10 @@ impl<'a> FrameSampler<'a> {
             &mut scratch.direct,
             out,
         );
+        // Film positions outside the image traced a stand-in ray: they are black.
+        for &i in &scratch.outside {
+            out[i as usize] = Sample::default();
+        }
     }
 
     /// Adds samples `samples` of pixel (`x`, `y`) to `sum` (and their splats to `splats`);
@@ -246,7 +260,9 @@ impl<'a> FrameSampler<'a> {
         let key = PREVIEW_STREAM ^ (u64::from(fy.to_bits()) << 32 | u64::from(fx.to_bits()));
         let mut rng = SampleRng::new(key, index);
         let illuminance = self.illuminance_from() != NO_ILLUMINANCE;
-        let ray = self.basis.ray(fx, fy);
+        let Some(ray) = self.basis.ray(fx, fy) else {
+            return Sample::default();
+        };
         self.integrator
             .preview_camera(&self.basis, &ray, &mut rng, illuminance)
     }

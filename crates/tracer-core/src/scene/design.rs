@@ -70,6 +70,7 @@ impl Design {
             look_at: c.look_at,
             up: c.up,
             fov_deg: c.fov_deg,
+            ..Camera::default()
         });
         let unit = desc.metres_per_unit.and_then(|m| {
             LengthUnit::ALL

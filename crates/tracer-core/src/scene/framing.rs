@@ -32,6 +32,7 @@ pub fn framing_camera(scene: &Scene, fov_deg: f32) -> Camera {
         look_at: c.to_array(),
         up: up.to_array(),
         fov_deg,
+        ..Camera::default()
     }
 }
 

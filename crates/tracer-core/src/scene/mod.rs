@@ -23,7 +23,9 @@ mod smoothing;
 mod units;
 
 pub use builtin::{BUILTIN_NAME, builtin_cornell_box};
-pub use camera::{Camera, CameraBasis, DEFAULT_FOV_DEG};
+pub use camera::{
+    Camera, CameraBasis, DEFAULT_FOV_DEG, Lens, MAX_FISHEYE_FOV_DEG, Projection, Radial,
+};
 pub use default_light::default_light;
 pub use design::{Design, light_from_description, material_from_description};
 pub use environment_spec::EnvironmentSpec;

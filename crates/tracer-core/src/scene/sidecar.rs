@@ -116,6 +116,7 @@ fn camera_is_finite(c: &Camera) -> bool {
         .flatten()
         .all(|x| x.is_finite())
         && c.fov_deg.is_finite()
+        && c.width.is_none_or(f32::is_finite)
 }
 
 /// The sidecar path for a scene file: `room.shp` -> `room.raygine.toml`.
@@ -141,6 +142,22 @@ impl Sidecar {
         };
         sidecar.model_lights().map_err(invalid)?;
         sidecar.model_grids(None).map_err(invalid)?;
+        if let Some(camera) = &sidecar.camera
+            && camera_is_finite(camera)
+            && let Err(message) = camera.check()
+        {
+            // The message names its key; point at that key's line, else at the table's.
+            let key = if message.contains("width") {
+                "width"
+            } else {
+                "fov_deg"
+            };
+            let line = key_line(text, "camera", key).or_else(|| table_line(text, "camera"));
+            return Err(match line {
+                Some(line) => invalid(format!("line {line}: {message}")),
+                None => invalid(message),
+            });
+        }
         if let Some(spec) = &sidecar.daylight {
             // Its errors name their key; the table's line says where it is.
             let at_daylight = |message: String| match table_line(text, "daylight") {
@@ -501,11 +518,85 @@ fn table_line(text: &str, name: &str) -> Option<usize> {
         .map(|i| i + 1)
 }
 
+/// The line of `key = ...` inside the table `[table]` of `text`, if both are there.
+fn key_line(text: &str, table: &str, key: &str) -> Option<usize> {
+    let start = table_line(text, table)?;
+    text.lines()
+        .enumerate()
+        .skip(start)
+        .take_while(|(_, l)| !l.trim_start().starts_with('['))
+        .find(|(_, l)| {
+            l.trim_start()
+                .strip_prefix(key)
+                .is_some_and(|rest| rest.trim_start().starts_with('='))
+        })
+        .map(|(i, _)| i + 1)
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
     use super::*;
+    use crate::scene::Projection;
     use crate::shp::parse_shp;
+
+    /// Projections' limits are errors that name the key and its line.
+    #[test]
+    fn camera_limits_are_errors_naming_the_key() {
+        // Line 1 unit, 2 [camera], 3 look_at, then the keys from line 4.
+        let cases = [
+            (
+                "projection = \"fisheye-equidistant\"\nfov_deg = 190.0",
+                "line 5: camera: fov_deg of a fisheye-equidistant camera must be above 0 and at \
+                 most 180°, got 190",
+            ),
+            (
+                "fov_deg = 0.0\nprojection = \"hemispherical\"",
+                "line 4: camera: fov_deg of a hemispherical camera",
+            ),
+            (
+                "fov_deg = 180.0",
+                "line 4: camera: fov_deg of a perspective camera must be above 0 and below 180°",
+            ),
+            (
+                "projection = \"orthographic\"\nwidth = -2.0",
+                "line 5: camera: width (the orthographic image's width in scene units) must be \
+                 above 0, got -2",
+            ),
+            (
+                "width = 0.0\nprojection = \"orthographic\"",
+                "line 4: camera: width",
+            ),
+        ];
+        for (keys, want) in cases {
+            let text = format!(
+                "unit = \"m\"\n[camera]\nlook_at = [0.0, 0.0, 0.0]\n{keys}\n\
+                 position = [0.0, 0.0, 1.0]\n"
+            );
+            let err = Sidecar::parse(&text, Path::new("s.raygine.toml"))
+                .expect_err(keys)
+                .to_string();
+            assert!(err.contains(want), "{keys}:\n{err}\nwanted {want}");
+        }
+        let bad = "[camera]\nprojection = \"fisheye\"\n";
+        let err = Sidecar::parse(bad, Path::new("s.raygine.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("line 2") && err.contains("fisheye-equidistant"),
+            "an unknown projection lists the known ones: {err}"
+        );
+        for p in Projection::ALL {
+            let fov = if p.is_fisheye() { 180.0 } else { 60.0 };
+            let text = format!(
+                "[camera]\nposition = [0.0, 0.0, 1.0]\nlook_at = [0.0, 0.0, 0.0]\n\
+                 projection = \"{p}\"\nfov_deg = {fov}\nwidth = 3.0\n"
+            );
+            let sidecar = Sidecar::parse(&text, Path::new("s.raygine.toml")).unwrap();
+            let camera = sidecar.camera.unwrap();
+            assert_eq!((camera.projection, camera.width), (p, Some(3.0)));
+        }
+    }
 
     /// Errors are one line with the line number, the line's text and the reason; a
     /// `[daylight]` error gives the table's line.
@@ -559,6 +650,7 @@ mod tests {
             look_at: [278.0, 273.0, 0.0],
             up: [0.0, 1.0, 0.0],
             fov_deg: 39.0,
+            ..Camera::default()
         });
         let text = sidecar.to_toml();
         assert!(text.contains("kd = [0.63, 0.065, 0.05]"), "{text}");

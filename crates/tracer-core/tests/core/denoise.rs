@@ -75,7 +75,7 @@ fn guides_hold_the_material_reflectance_and_the_wall_normal() {
     let basis = setup.camera.basis(setup.handedness, w, h);
     // The pixel in the middle of the picture sees the back wall, head on.
     let (x, y) = (w / 2, h / 2);
-    let centre = basis.ray(x as f32 + 0.5, y as f32 + 0.5);
+    let centre = basis.ray(x as f32 + 0.5, y as f32 + 0.5).unwrap();
     let hidden = vec![false; setup.materials.len()];
     let slot = scene.pick_slot(&centre, &hidden).expect("the back wall") as usize;
     let kd = Vec3::from(setup.materials[slot].kd);

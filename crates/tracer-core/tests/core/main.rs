@@ -30,6 +30,7 @@ mod measure_grids;
 mod metal_peers;
 mod metal_rough;
 mod panes;
+mod projections;
 mod proptest_shp;
 mod radiance_daylight;
 mod session;

@@ -170,6 +170,7 @@ fn render_case(area: bool, spp: u32) -> Film {
             look_at: LOOK_AT.map(|c| c as f32),
             up: [0.0, 1.0, 0.0],
             fov_deg: FOV_DEG as f32,
+            ..Default::default()
         },
         lights,
         hidden: vec![false; materials.len()],

@@ -116,6 +116,7 @@ fn plane_reading(pbr: Pbr, theta_deg: f64, integrator: IntegratorKind, spp: u32)
         look_at: [0.0; 3],
         up: [0.0, 0.0, 1.0],
         fov_deg: 2.0,
+        ..Default::default()
     };
     let material = Material {
         pbr: Some(pbr),
@@ -230,6 +231,7 @@ fn direct_mode_shades_with_the_metallic_roughness_brdf() {
         look_at: [0.0; 3],
         up: [0.0, 0.0, 1.0],
         fov_deg: 0.5,
+        ..Default::default()
     };
     let light_at = [-(ti.sin()) as f32, ti.cos() as f32, 0.0];
     let light = tracer_core::scene::Light::point(light_at, 100.0);

@@ -161,12 +161,12 @@ fn accumulated_mean_converges_to_an_independent_reference() {
             // Pick pixels that are neither flat nor empty: edges.
             let c = tracer_core::integrator::trace_direct(
                 &lit,
-                &basis.ray(x as f32 + 0.5, y as f32 + 0.5),
+                &basis.ray(x as f32 + 0.5, y as f32 + 0.5).unwrap(),
                 &mut rng(),
             );
             let corner = tracer_core::integrator::trace_direct(
                 &lit,
-                &basis.ray(x as f32 + 0.01, y as f32 + 0.01),
+                &basis.ray(x as f32 + 0.01, y as f32 + 0.01).unwrap(),
                 &mut rng(),
             );
             if (c.rgb - corner.rgb).length() < 1.0 || checked >= 8 {
@@ -181,7 +181,7 @@ fn accumulated_mean_converges_to_an_independent_reference() {
                     let fy = (sy as f32 + 0.5) / n as f32;
                     let v = tracer_core::integrator::trace_direct(
                         &lit,
-                        &basis.ray(x as f32 + fx, y as f32 + fy),
+                        &basis.ray(x as f32 + fx, y as f32 + fy).unwrap(),
                         &mut rng(),
                     )
                     .rgb;

@@ -31,6 +31,7 @@ fn setup(scene: &Scene, unit: LengthUnit, lights: Vec<Light>, mats: Vec<Material
             look_at: [0.0; 3],
             up: [0.0, 1.0, 0.0],
             fov_deg: 45.0,
+            ..Default::default()
         },
         lights,
         hidden: vec![false; scene.slots.len()],

@@ -36,8 +36,13 @@ impl Bidirectional<'_, '_> {
     /// Whether strategy (s, t) takes part: the chosen set, without the camera's t = 1 when
     /// there is no film to splat to (the remaining weights then add up to 1 over the rest).
     fn allowed(&self, s: usize, t: usize) -> bool {
-        let splat = t == 1 && matches!(self.eye, Eye::Camera(_));
-        self.strategies.allowed(s, t) && (self.splats || !splat)
+        // The orthographic camera's importance is a delta in direction: no light vertex can be
+        // joined to it, and the other strategies share its paths.
+        let (splat, eye_point) = match self.eye {
+            Eye::Camera(b) => (t == 1, b.has_eye_point()),
+            Eye::Sensor => (false, true),
+        };
+        self.strategies.allowed(s, t) && ((self.splats && eye_point) || !splat)
     }
 
     /// Sum over every allowed strategy of the weighted contribution to this eye sample; splats
@@ -193,7 +198,7 @@ impl Bidirectional<'_, '_> {
         }
         let mut pixel = (0, 0);
         if let Eye::Camera(b) = self.eye {
-            let (x, y, _) = self.film_position((qs.p - e.p).normalize_or_zero())?;
+            let (x, y) = self.film_position((qs.p - e.p).normalize_or_zero())?;
             pixel = (
                 (x as u32).min(b.width.saturating_sub(1)),
                 (y as u32).min(b.height.saturating_sub(1)),

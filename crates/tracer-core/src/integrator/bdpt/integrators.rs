@@ -110,6 +110,28 @@ impl Integrator for BidirectionalPathTracing<'_> {
         }
     }
 
+    fn sample_outside(
+        &self,
+        basis: &CameraBasis,
+        rng: &mut SampleRng,
+        splats: &mut Vec<Splat>,
+    ) -> Sample {
+        let camera = Bidirectional {
+            strategies: self.strategies,
+            ..transport(
+                &self.lit,
+                &self.lights,
+                self.max_bounces,
+                Eye::Camera(*basis),
+            )
+        };
+        if self.lit.has_metal_rough() {
+            outside_sample::<Bsdf>(&camera, rng, splats)
+        } else {
+            outside_sample::<Classic>(&camera, rng, splats)
+        }
+    }
+
     /// Bidirectional transport without the t = 1 strategies (the power heuristic renormalised
     /// over the rest), so previews show what the mode converges to (a lamp's hot spot on the
     /// ceiling, the light its shades throw), not a path tracer's guess.
@@ -172,6 +194,28 @@ impl Integrator for LightTracing<'_> {
             camera_sample::<Bsdf>(&camera, want.illuminance, ray, rng, splats)
         } else {
             camera_sample::<Classic>(&camera, want.illuminance, ray, rng, splats)
+        }
+    }
+
+    fn sample_outside(
+        &self,
+        basis: &CameraBasis,
+        rng: &mut SampleRng,
+        splats: &mut Vec<Splat>,
+    ) -> Sample {
+        let camera = Bidirectional {
+            light_tracing: true,
+            ..transport(
+                &self.lit,
+                &self.lights,
+                self.max_bounces,
+                Eye::Camera(*basis),
+            )
+        };
+        if self.lit.has_metal_rough() {
+            outside_sample::<Bsdf>(&camera, rng, splats)
+        } else {
+            outside_sample::<Classic>(&camera, rng, splats)
         }
     }
 
@@ -269,6 +313,29 @@ fn camera_sample<S: PathScatter>(
                 .environment
                 .as_ref()
                 .is_some_and(|e| e.background),
+    }
+}
+
+/// A camera sample outside the image: its light subpath, joined to the eye (t = 1) only.
+fn outside_sample<S: PathScatter>(
+    camera: &Bidirectional<'_, '_>,
+    rng: &mut SampleRng,
+    splats: &mut Vec<Splat>,
+) -> Sample {
+    let Eye::Camera(basis) = camera.eye else {
+        return Sample::default();
+    };
+    let first_splat = splats.len();
+    let mut rays = 0;
+    super::with_subpaths::<S, _>(|paths| {
+        camera.light_subpath(&mut super::light_stream(rng), &mut rays, paths);
+        rays += camera.eye_splats(basis.origin, paths, splats);
+    });
+    combine_splats(splats, first_splat);
+    // Black, not the viewer's backdrop: `missed` stays false.
+    Sample {
+        rays,
+        ..Sample::default()
     }
 }
 

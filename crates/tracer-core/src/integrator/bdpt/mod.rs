@@ -27,7 +27,7 @@ pub use integrators::{BidirectionalPathTracing, LightTracing};
 use crate::geometry::Ray;
 use crate::lit_scene::LitScene;
 use crate::sampling::SampleRng;
-use crate::scene::CameraBasis;
+use crate::scene::{CameraBasis, Lens};
 use crate::shading::{Bsdf, Classic, Scatter};
 use glam::Vec3;
 use std::cell::RefCell;
@@ -168,39 +168,33 @@ pub struct EyeEstimate {
 }
 
 impl Bidirectional<'_, '_> {
-    /// Film area at unit distance of the camera (0 for a sensor).
-    fn film_area(&self) -> f32 {
+    /// For the camera: the film position the eye sees along unit direction `w`, if in the
+    /// image (never for the orthographic camera, whose importance is a delta in direction).
+    fn film_position(&self, w: Vec3) -> Option<(f32, f32)> {
         match self.eye {
-            Eye::Camera(b) => 4.0 * b.half_width * b.half_height,
-            Eye::Sensor => 0.0,
+            Eye::Camera(b) => b.film_position(w),
+            Eye::Sensor => None,
         }
     }
 
-    /// For the camera: the film position of unit direction `w` from the eye, if on the film.
-    fn film_position(&self, w: Vec3) -> Option<(f32, f32, f32)> {
-        let Eye::Camera(b) = self.eye else {
-            return None;
-        };
-        let cos = b.forward.dot(w);
-        if cos <= 0.0 {
-            return None;
-        }
-        let sx = b.right.dot(w) / cos / b.half_width;
-        let sy = b.up.dot(w) / cos / b.half_height;
-        if !(-1.0..=1.0).contains(&sx) || !(-1.0..=1.0).contains(&sy) {
-            return None;
-        }
-        let x = (sx + 1.0) * 0.5 * b.width as f32;
-        let y = (1.0 - sy) * 0.5 * b.height as f32;
-        Some((x, y, cos))
-    }
-
-    /// Importance of the eye vertex `eye` towards unit `w`.
+    /// Importance of the eye vertex `eye` towards unit `w`. The camera's, times the eye's
+    /// cosine ([`vertex::Vertex::cosine`]), is the density of `w` over the film
+    /// ([`CameraBasis::direction_density`]): 1 / (A cos⁴ θ) for the pinhole with its cos θ;
+    /// the other projections count no cosine at the eye (it may look sideways or back).
     fn eye_importance<S: Scatter>(&self, eye: &Vertex<S>, w: Vec3) -> f32 {
         match self.eye {
-            Eye::Camera(_) => match self.film_position(w) {
-                Some((_, _, cos)) => 1.0 / (self.film_area() * cos.powi(4)),
-                None => 0.0,
+            Eye::Camera(b) => match b.lens {
+                Lens::Pinhole => match b.film_position(w) {
+                    Some(_) => {
+                        let cos = b.forward.dot(w);
+                        1.0 / (4.0 * b.half_width * b.half_height * cos.powi(4))
+                    }
+                    None => 0.0,
+                },
+                _ => match b.film_position(w) {
+                    Some(_) => b.direction_density(w),
+                    None => 0.0,
+                },
             },
             Eye::Sensor => {
                 if eye.n.dot(w) > 0.0 {
@@ -212,12 +206,32 @@ impl Bidirectional<'_, '_> {
         }
     }
 
-    /// Density per sr with which the eye sends its subpath along unit `w`.
+    /// The cosine at the eye towards unit `w` that a connection's geometry term carries:
+    /// the pinhole's and the sensor's against their axis (0 behind), 1 for the other
+    /// projections (their importance holds it).
+    fn eye_cosine(&self, axis: Vec3, w: Vec3) -> f32 {
+        match self.eye {
+            Eye::Camera(b) if !matches!(b.lens, Lens::Pinhole) => 1.0,
+            _ => axis.dot(w).max(0.0),
+        }
+    }
+
+    /// Density per sr with which the eye sends its subpath along unit `w` (0 for the
+    /// orthographic camera: a delta).
     fn eye_direction_pdf<S: Scatter>(&self, eye: &Vertex<S>, w: Vec3) -> f32 {
         match self.eye {
-            Eye::Camera(_) => match self.film_position(w) {
-                Some((_, _, cos)) => 1.0 / (self.film_area() * cos.powi(3)),
-                None => 0.0,
+            Eye::Camera(b) => match b.lens {
+                Lens::Pinhole => match b.film_position(w) {
+                    Some(_) => {
+                        let cos = b.forward.dot(w);
+                        1.0 / (4.0 * b.half_width * b.half_height * cos.powi(3))
+                    }
+                    None => 0.0,
+                },
+                _ => match b.film_position(w) {
+                    Some(_) => b.direction_density(w),
+                    None => 0.0,
+                },
             },
             Eye::Sensor => vertex::cosine_pdf(eye.n, w),
         }
@@ -234,14 +248,7 @@ impl Bidirectional<'_, '_> {
         splats: &mut Vec<Splat>,
     ) -> (EyeEstimate, Option<(Vec3, Vec3)>) {
         let mut rays = 0;
-        let mut eye = Vertex::new(
-            vertex::Kind::Eye,
-            ray.origin,
-            self.forward(),
-            Vec3::ONE,
-            1.0,
-        );
-        eye.pdf_fwd = 1.0;
+        let eye = self.eye_vertex(ray.origin);
         let camera = &mut paths.eye;
         camera.clear();
         camera.push(eye);
@@ -254,6 +261,31 @@ impl Bidirectional<'_, '_> {
             value += self.hit_environment(camera, &e);
         }
         (EyeEstimate { value, rays }, first)
+    }
+
+    /// The t = 1 strategies alone, for a camera sample with no camera ray (outside a
+    /// fisheye's image circle): the light subpath in `paths` joined to the eye at `origin`,
+    /// as splats. Returns the rays traced.
+    pub fn eye_splats<S: Scatter>(
+        &self,
+        origin: Vec3,
+        paths: &mut Subpaths<S>,
+        splats: &mut Vec<Splat>,
+    ) -> u32 {
+        let mut rays = 0;
+        let camera = &mut paths.eye;
+        camera.clear();
+        camera.push(self.eye_vertex(origin));
+        // (t = 1 samples nothing: the stream is unused.)
+        let mut no_rng = SampleRng::new(0, 0);
+        let _ = self.connect_all(camera, &paths.light, &mut no_rng, splats, &mut rays);
+        rays
+    }
+
+    fn eye_vertex<S: Scatter>(&self, origin: Vec3) -> Vertex<S> {
+        let mut eye = Vertex::new(vertex::Kind::Eye, origin, self.forward(), Vec3::ONE, 1.0);
+        eye.pdf_fwd = 1.0;
+        eye
     }
 
     /// Irradiance per channel at `p` from the side of unit `n` (a sensor), by every strategy,

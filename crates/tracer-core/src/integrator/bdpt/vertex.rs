@@ -162,7 +162,7 @@ impl<S: Scatter> Vertex<S> {
             Kind::Surface(_) => self.n.dot(w).abs(),
             Kind::Light(light) => emission_cosine(bd.lit, light, self.n, w),
             Kind::Environment => 1.0,
-            Kind::Eye => bd_eye_cosine(self.n, w),
+            Kind::Eye => bd.eye_cosine(self.n, w),
         }
     }
 
@@ -225,11 +225,6 @@ impl<S: Scatter> Vertex<S> {
 pub fn shading_correction(ns: Vec3, ng: Vec3, w: Vec3) -> f32 {
     let g = ng.dot(w).abs();
     if g > 1e-6 { ns.dot(w).abs() / g } else { 0.0 }
-}
-
-/// The cosine at the eye: its axis against the direction (0 behind).
-fn bd_eye_cosine(axis: Vec3, w: Vec3) -> f32 {
-    axis.dot(w).max(0.0)
 }
 
 /// Cosine-weighted hemisphere density per sr (the sensor's direction sampling).

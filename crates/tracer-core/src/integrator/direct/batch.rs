@@ -217,7 +217,7 @@ mod tests {
             .map(|_| {
                 let (x, y) = rng.next_2d();
                 // Past the film's edges too, so some rays miss through the hidden wall.
-                basis.ray(x * 117.0 - 10.0, y * 71.0 - 5.0)
+                basis.ray(x * 117.0 - 10.0, y * 71.0 - 5.0).unwrap()
             })
             .collect();
         // Without mirror rays (depth 0) the highlight alone sends a hit to the walk.
@@ -281,7 +281,7 @@ mod tests {
         let lit = LitScene::new(&loaded.scene, &loaded.setup, 5);
         let basis = loaded.setup.camera.basis(loaded.setup.handedness, 40, 30);
         let rays: Vec<Ray> = (0..1200)
-            .map(|i| basis.ray((i % 40) as f32, (i / 40) as f32))
+            .map(|i| basis.ray((i % 40) as f32, (i / 40) as f32).unwrap())
             .collect();
         let (samples, in_lanes) = compare(&lit, &rays, 256);
         assert_eq!(in_lanes, 0);
@@ -295,7 +295,7 @@ mod tests {
         let lit = LitScene::new(&loaded.scene, &loaded.setup, 2);
         let basis = loaded.setup.camera.basis(loaded.setup.handedness, 40, 30);
         let rays: Vec<Ray> = (0..1200)
-            .map(|i| basis.ray((i % 40) as f32, (i / 40) as f32))
+            .map(|i| basis.ray((i % 40) as f32, (i / 40) as f32).unwrap())
             .collect();
         let (_, in_lanes) = compare(&lit, &rays, 256);
         assert_eq!(in_lanes, 0);

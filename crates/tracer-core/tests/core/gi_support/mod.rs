@@ -129,6 +129,7 @@ pub fn camera(position: [f32; 3], look_at: [f32; 3], fov_deg: f32) -> Camera {
         look_at,
         up: [0.0, 1.0, 0.0],
         fov_deg,
+        ..Default::default()
     }
 }
 
