@@ -3,7 +3,7 @@
 //! them.
 
 use glam::{Quat, Vec3};
-use tracer_core::scene::{Camera, Handedness};
+use tracer_core::scene::{Camera, Handedness, Projection};
 
 /// Radians of orbit per pixel of mouse drag.
 const ORBIT_PER_PIXEL: f32 = 0.008;
@@ -50,11 +50,17 @@ pub fn orbit_about(
 }
 
 /// Moves eye and look-at together in the view plane; `dx`, `dy` in pixels of an image
-/// `height_px` tall, so the point under the mouse at the look-at distance follows it.
-pub fn pan(camera: &Camera, handedness: Handedness, dx: f32, dy: f32, height_px: f32) -> Camera {
+/// `size_px` (width, height), so the point under the mouse at the look-at distance follows
+/// it (an orthographic view's points all do).
+pub fn pan(camera: &Camera, handedness: Handedness, dx: f32, dy: f32, size_px: [f32; 2]) -> Camera {
     let basis = camera.basis(handedness, 1, 1);
-    let distance = (Vec3::from(camera.look_at) - Vec3::from(camera.position)).length();
-    let units_per_px = 2.0 * distance * basis.half_height / height_px.max(1.0);
+    let [width_px, height_px] = size_px.map(|v| v.max(1.0));
+    let units_per_px = if camera.projection == Projection::Orthographic {
+        camera.orthographic_width(width_px / height_px) / width_px
+    } else {
+        let distance = (Vec3::from(camera.look_at) - Vec3::from(camera.position)).length();
+        2.0 * distance * basis.half_height / height_px
+    };
     let shift = (-basis.right * dx + basis.up * dy) * units_per_px;
     Camera {
         position: (Vec3::from(camera.position) + shift).to_array(),
@@ -64,8 +70,17 @@ pub fn pan(camera: &Camera, handedness: Handedness, dx: f32, dy: f32, height_px:
 }
 
 /// Moves the eye towards (positive `amount`) or away from the look-at point; the distance is
-/// scaled by `exp(-amount)` and never reaches zero.
-pub fn dolly(camera: &Camera, amount: f32) -> Camera {
+/// scaled by `exp(-amount)` and never reaches zero. An orthographic view, where distance
+/// changes nothing, narrows its width by the same factor instead (`aspect`, the image's width
+/// over height, gives the default width a value first).
+pub fn dolly(camera: &Camera, amount: f32, aspect: f32) -> Camera {
+    if camera.projection == Projection::Orthographic {
+        let width = camera.orthographic_width(aspect) * (-amount).exp();
+        return Camera {
+            width: Some(width.clamp(1e-4, 1e9)),
+            ..*camera
+        };
+    }
     let target = Vec3::from(camera.look_at);
     let offset = Vec3::from(camera.position) - target;
     let scaled = offset * (-amount).exp();
@@ -118,14 +133,40 @@ mod tests {
 
     #[test]
     fn pan_moves_both_and_dolly_scales_distance() {
-        let c = pan(&cam(), Handedness::Right, 10.0, 0.0, 100.0);
+        let c = pan(&cam(), Handedness::Right, 10.0, 0.0, [100.0, 100.0]);
         let shift = Vec3::from(c.position) - Vec3::from(cam().position);
         assert!((Vec3::from(c.look_at) - shift).length() < 1e-5);
         assert!(
             shift.x < 0.0,
             "dragging right moves the view left in a right-handed frame"
         );
-        let d = dolly(&cam(), 0.5);
+        let d = dolly(&cam(), 0.5, 1.0);
         assert!((Vec3::from(d.position).length() - 10.0 * (-0.5f32).exp()).abs() < 1e-4);
+    }
+
+    /// Orthographic: the dolly narrows the width (the eye stays), and a pan moves the scene
+    /// with the mouse at the film's scale, whatever the depth.
+    #[test]
+    fn orthographic_dolly_changes_width_and_pan_follows_the_mouse() {
+        let ortho = Camera {
+            projection: Projection::Orthographic,
+            width: Some(8.0),
+            ..cam()
+        };
+        let d = dolly(&ortho, 0.5, 2.0);
+        assert_eq!(d.position, ortho.position);
+        assert!((d.width.unwrap_or_default() - 8.0 * (-0.5f32).exp()).abs() < 1e-5);
+        // Without a width the default (the perspective view's at the look-at point) is taken
+        // first: 2 · 10 · tan(22.5°) · 2 across.
+        let default = Camera {
+            width: None,
+            ..ortho
+        };
+        let want = 2.0 * 10.0 * 22.5f32.to_radians().tan() * 2.0;
+        assert!((dolly(&default, 0.0, 2.0).width.unwrap_or_default() - want).abs() < 1e-3);
+        // 8 units over 200 px: a 50 px drag moves the view by 2 units.
+        let c = pan(&ortho, Handedness::Right, 50.0, 0.0, [200.0, 100.0]);
+        let shift = Vec3::from(c.position) - Vec3::from(ortho.position);
+        assert!((shift.length() - 2.0).abs() < 1e-4, "{shift}");
     }
 }

@@ -85,6 +85,8 @@ pub fn describe(loaded: &LoadedScene) -> Value {
             "look_at": setup.camera.look_at,
             "up": setup.camera.up,
             "fov_deg": setup.camera.fov_deg,
+            "projection": setup.camera.projection.name(),
+            "width": setup.camera.width,
             "resolution": scene.design.resolution,
         },
         "grids": setup.grids.iter().map(|g| json!({"name": g.name, "points": g.point_count()})).collect::<Vec<_>>(),
@@ -216,9 +218,21 @@ fn print_text(v: &Value) {
         println!("{line}");
     }
     let c = &v["camera"];
+    let view = match c["projection"].as_str().unwrap_or("perspective") {
+        "perspective" => format!("field of view {}°", c["fov_deg"]),
+        "equirectangular" => "equirectangular, 360° x 180°".to_owned(),
+        "orthographic" => match c["width"].as_f64() {
+            Some(w) => format!(
+                "orthographic, {w} {} across",
+                v["unit"].as_str().unwrap_or("")
+            ),
+            None => "orthographic, as wide as the perspective view at the look-at point".into(),
+        },
+        fisheye => format!("{fisheye}, {}° across the image circle", c["fov_deg"]),
+    };
     println!(
-        "camera at {} looking at {}, up {}, field of view {}°",
-        c["position"], c["look_at"], c["up"], c["fov_deg"]
+        "camera at {} looking at {}, up {}, {view}",
+        c["position"], c["look_at"], c["up"]
     );
     if let (Some(w), Some(h)) = (c["resolution"][0].as_u64(), c["resolution"][1].as_u64()) {
         println!("designed for {w} x {h} pixels");

@@ -36,8 +36,13 @@ impl Meter {
     }
 
     /// The reading over the film's accumulated samples (None for an empty rectangle or a film of
-    /// another size).
-    pub fn read(&self, film: &ProgressiveFilm) -> Option<MeterReading> {
+    /// another size), leaving out pixels for which `outside` says the camera sees nothing (a
+    /// fisheye's corners); None when no pixel is left.
+    pub fn read(
+        &self,
+        film: &ProgressiveFilm,
+        outside: impl Fn(u32, u32) -> bool,
+    ) -> Option<MeterReading> {
         if self.x1 > film.width()
             || self.y1 > film.height()
             || self.x0 >= self.x1
@@ -48,6 +53,9 @@ impl Meter {
         let (mut sum, mut var, mut n, mut all_se) = (0.0f64, 0.0f64, 0usize, true);
         for y in self.y0..self.y1 {
             for x in self.x0..self.x1 {
+                if outside(x, y) {
+                    continue;
+                }
                 // Film-level: under adaptive sampling the splats go over the film's light
                 // subpaths, not the pixel's own count.
                 let i = film.accum.index(x, y);
@@ -58,6 +66,9 @@ impl Meter {
                 }
                 n += 1;
             }
+        }
+        if n == 0 {
+            return None;
         }
         let nf = n as f64;
         Some(MeterReading {

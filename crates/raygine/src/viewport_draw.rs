@@ -39,6 +39,22 @@ fn to_screen(rect: Rect, basis: &CameraBasis, p: Vec3) -> Option<Pos2> {
     ))
 }
 
+/// A fisheye's image circle, outlined: outside it the camera sees nothing.
+pub fn draw_image_circle(ui: &egui::Ui, basis: &CameraBasis, rect: Rect) {
+    let tracer_core::scene::Lens::Fisheye {
+        centre, radius_px, ..
+    } = basis.lens
+    else {
+        return;
+    };
+    let sx = rect.width() / basis.width as f32;
+    let sy = rect.height() / basis.height as f32;
+    let centre = Pos2::new(rect.min.x + centre.0 * sx, rect.min.y + centre.1 * sy);
+    let stroke = Stroke::new(1.0, Color32::from_gray(110));
+    ui.painter_at(rect)
+        .circle_stroke(centre, radius_px * sx.min(sy), stroke);
+}
+
 /// The point an orbit turns about: a small ring with a cross.
 pub fn draw_pivot(ui: &egui::Ui, basis: &CameraBasis, rect: Rect, pivot: Vec3) {
     let Some(pos) = to_screen(rect, basis, pivot) else {
@@ -146,7 +162,7 @@ pub fn draw_grid_readings(
     let project = |p: Vec3| to_screen(rect, basis, p);
     // Depth test against the scene: a point is seen when no drawn surface lies between it and
     // the eye (the grid floats 0.1 % of the scene's size over its surface).
-    let visible = |p: Vec3| seen_from(&doc.scene, &doc.setup.hidden, basis.origin, p);
+    let visible = |p: Vec3| seen_from(&doc.scene, &doc.setup.hidden, basis.eye_for(p), p);
     for r in &readings.results {
         if let Some(grid) = doc.setup.grids.iter().find(|g| g.name == r.name) {
             crate::grid_overlay::draw(

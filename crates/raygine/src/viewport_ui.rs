@@ -77,6 +77,7 @@ pub fn viewport_ui(ui: &mut egui::Ui, mut v: Viewport<'_>, out: &mut Commands) {
     handle_mouse(ui, &mut v, &response, rect, out);
     let basis = v.worker.basis();
     if let Some(b) = &basis {
+        crate::viewport_draw::draw_image_circle(ui, b, rect);
         draw_light_markers(ui, v.doc, b, rect, v.selected_light);
         if let Some(pivot) = *v.orbit_pivot {
             crate::viewport_draw::draw_pivot(ui, b, rect, pivot);
@@ -158,9 +159,9 @@ fn handle_mouse(
         );
     }
     if delta != Vec2::ZERO && !metering {
-        let height_px = rect.height();
+        let size_px = [rect.width(), rect.height()];
         v.doc.setup.camera = if panning {
-            pan(&camera, handedness, delta.x, delta.y, height_px)
+            pan(&camera, handedness, delta.x, delta.y, size_px)
         } else if let Some(pivot) = *v.orbit_pivot {
             orbit_about(&camera, handedness, pivot, delta.x, delta.y)
         } else {
@@ -168,7 +169,8 @@ fn handle_mouse(
         };
     }
     if response.hovered() && scroll != 0.0 {
-        v.doc.setup.camera = dolly(&v.doc.setup.camera, scroll * 0.002);
+        let aspect = rect.width() / rect.height().max(1.0);
+        v.doc.setup.camera = dolly(&v.doc.setup.camera, scroll * 0.002, aspect);
     }
     *v.hover = response
         .hover_pos()
@@ -226,7 +228,9 @@ fn draw_meter(ui: &egui::Ui, v: &Viewport<'_>, rect: Rect) {
         )
     };
     let screen = Rect::from_min_max(to_screen(m.x0, m.y0), to_screen(m.x1, m.y1));
-    let reading = v.worker.with_film(|f| f.and_then(|f| m.read(f)));
+    let basis = v.worker.basis();
+    let outside = |x, y| basis.as_ref().is_some_and(|b| b.pixel_outside(x, y));
+    let reading = v.worker.with_film(|f| f.and_then(|f| m.read(f, outside)));
     crate::luminance_meter::draw(&ui.painter_at(rect), screen, reading);
 }
 
@@ -256,6 +260,10 @@ pub fn pick_slot(worker: &RenderWorker, fx: f32, fy: f32) -> Option<u32> {
 
 fn hover_info(worker: &RenderWorker, doc: &Document, fx: f32, fy: f32) -> Option<HoverInfo> {
     let (x, y) = (fx as u32, fy as u32);
+    // Outside a fisheye's image circle the camera sees nothing: no readout.
+    if worker.basis().is_some_and(|b| b.pixel_outside(x, y)) {
+        return None;
+    }
     let (lum, lx) = worker.with_film(|f| {
         let f = f?;
         if x >= f.width() || y >= f.height() {

@@ -266,6 +266,7 @@ impl RaygineApp {
             adding_luminaire: self.adding_luminaire.is_some(),
             loading_environment: self.loading_environment.is_some(),
             environment_thumbnail: thumbnail,
+            viewport_aspect: self.viewport_px[0].max(1) as f32 / self.viewport_px[1].max(1) as f32,
         };
         crate::panels::controls_ui(ui, panel, out);
     }

@@ -273,6 +273,16 @@ impl RaygineApp {
         if self.viewport_px[0] == 0 || self.viewport_px[1] == 0 {
             return;
         }
+        // A scene opened with an orthographic camera while the light tracer was chosen (the
+        // menus keep the two apart otherwise): bidirectional renders it, and the user is told.
+        if let Err(why) = self
+            .render
+            .integrator
+            .check_projection(self.doc.setup.camera.projection)
+        {
+            self.render.integrator = IntegratorKind::Bidirectional;
+            self.notice = Some(format!("{why}. Switched to bidirectional."));
+        }
         let key = RenderKey {
             scene: std::sync::Arc::clone(&self.doc.scene),
             setup: self.doc.setup.clone(),

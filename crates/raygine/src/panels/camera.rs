@@ -1,36 +1,87 @@
-//! Camera: position, look-at, vertical field of view; reset to framing.
+//! Camera: projection, position, look-at, field of view or orthographic width; reset to
+//! framing.
 
 use super::widgets::{drag_hint, fine_drag, length_speed};
 use crate::command::{Command, Commands};
 use crate::document::Document;
+use tracer_core::integrator::IntegratorKind;
+use tracer_core::scene::{MAX_FISHEYE_FOV_DEG, Projection};
 
 /// Degrees of field of view a point of drag (Shift: a tenth).
 const FOV_SPEED: f64 = 0.2;
 
-/// The camera's numbers, edited in place; Frame scene is asked for.
-pub fn camera_ui(ui: &mut egui::Ui, doc: &mut Document, out: &mut Commands) {
+/// The camera's numbers, edited in place; Frame scene is asked for. `integrator` is the render
+/// panel's: the light tracer cannot render an orthographic view, so that entry is disabled
+/// while it is chosen. `aspect` (the viewport's width over height) gives an orthographic
+/// width its starting value.
+pub fn camera_ui(
+    ui: &mut egui::Ui,
+    doc: &mut Document,
+    integrator: IntegratorKind,
+    aspect: f32,
+    out: &mut Commands,
+) {
     let unit = doc.setup.unit.symbol();
     let speed = length_speed(&doc.scene.bounds);
     let cam = &mut doc.setup.camera;
+    projection_ui(ui, cam, integrator, aspect);
     vec3_row(ui, "position", &mut cam.position, speed, unit);
     vec3_row(ui, "look at", &mut cam.look_at, speed, unit);
-    ui.horizontal(|ui| {
-        ui.label("field of view");
-        let r = fine_drag(
-            ui,
-            &mut cam.fov_deg,
-            FOV_SPEED,
-            Some(5.0..=150.0),
-            "",
-            "field of view (°)",
-        );
-        cam.fov_deg = cam.fov_deg.clamp(1.0, 179.0);
-        r.on_hover_text(format!(
-            "Vertical field of view, degrees, from the top edge to the bottom edge. {}",
-            drag_hint(FOV_SPEED, "°")
-        ));
-        ui.label("°");
-    });
+    match cam.projection {
+        Projection::Orthographic => {
+            ui.horizontal(|ui| {
+                ui.label("width");
+                let mut width = cam.orthographic_width(aspect);
+                let r = fine_drag(
+                    ui,
+                    &mut width,
+                    speed,
+                    Some(1e-3..=1e9),
+                    "",
+                    &format!("orthographic width ({unit})"),
+                );
+                if r.changed() {
+                    cam.width = Some(width.max(1e-4));
+                }
+                r.on_hover_text(format!(
+                    "What the orthographic view shows across, in scene units; the wheel \
+                     changes it too. {}",
+                    drag_hint(speed, unit)
+                ));
+                ui.label(unit);
+            });
+        }
+        Projection::Equirectangular => {
+            ui.label("360° across, 180° down; the view direction at the centre");
+        }
+        p => {
+            let (max, hint) = if p.is_fisheye() {
+                (
+                    MAX_FISHEYE_FOV_DEG,
+                    "Field of view across the image circle, degrees (at most 180°: a hemisphere).",
+                )
+            } else {
+                (
+                    179.0,
+                    "Vertical field of view, degrees, from the top edge to the bottom edge.",
+                )
+            };
+            ui.horizontal(|ui| {
+                ui.label("field of view");
+                let r = fine_drag(
+                    ui,
+                    &mut cam.fov_deg,
+                    FOV_SPEED,
+                    Some(5.0..=max),
+                    "",
+                    "field of view (°)",
+                );
+                cam.fov_deg = cam.fov_deg.clamp(1.0, max);
+                r.on_hover_text(format!("{hint} {}", drag_hint(FOV_SPEED, "°")));
+                ui.label("°");
+            });
+        }
+    }
     ui.horizontal(|ui| {
         if ui
             .button("Frame scene")
@@ -48,6 +99,55 @@ pub fn camera_ui(ui: &mut egui::Ui, doc: &mut Document, out: &mut Commands) {
         }
     });
     ui.label("drag: orbit · shift/middle: pan · wheel: dolly");
+}
+
+/// The projection menu. Switching to a fisheye opens it to 180°; back to perspective, a field
+/// of view a pinhole can show.
+fn projection_ui(
+    ui: &mut egui::Ui,
+    cam: &mut tracer_core::scene::Camera,
+    integrator: IntegratorKind,
+    aspect: f32,
+) {
+    let before = cam.projection;
+    egui::ComboBox::from_label("projection")
+        .selected_text(cam.projection.label())
+        .show_ui(ui, |ui| {
+            for p in Projection::ALL {
+                let refused = integrator.check_projection(p).err();
+                let r = ui.add_enabled(
+                    refused.is_none(),
+                    egui::Button::selectable(cam.projection == p, p.label()),
+                );
+                let r = match refused {
+                    Some(why) => r.on_disabled_hover_text(why),
+                    None => r,
+                };
+                if r.clicked() {
+                    cam.projection = p;
+                }
+            }
+        })
+        .response
+        .on_hover_text(
+            "Perspective: a pinhole. Fisheyes (up to 180°): equidistant is Radiance's -vta and \
+             evalglare's input, hemispherical (-vth) weighs the film by projected solid angle. \
+             Equirectangular: a 360° panorama. Orthographic: parallel rays, for plans and \
+             elevations.",
+        );
+    if cam.projection == before {
+        return;
+    }
+    if cam.projection.is_fisheye() && !before.is_fisheye() {
+        cam.fov_deg = MAX_FISHEYE_FOV_DEG;
+    } else if before.is_fisheye() && !cam.projection.is_fisheye() {
+        // A fisheye's angle means nothing to a pinhole (nor to the orthographic width).
+        cam.fov_deg = tracer_core::scene::DEFAULT_FOV_DEG;
+    }
+    if cam.projection == Projection::Orthographic && cam.width.is_none() {
+        // Start where the perspective view was, at the look-at point.
+        cam.width = Some(cam.orthographic_width(aspect));
+    }
 }
 
 fn vec3_row(ui: &mut egui::Ui, label: &str, v: &mut [f32; 3], speed: f64, unit: &str) {

@@ -74,6 +74,8 @@ pub struct SidePanel<'a> {
     pub loading_environment: bool,
     /// The environment map's thumbnail, once made.
     pub environment_thumbnail: Option<egui::load::SizedTexture>,
+    /// The viewport's width over its height.
+    pub viewport_aspect: f32,
 }
 
 /// All control groups of the side panel.
@@ -92,6 +94,7 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         adding_luminaire,
         loading_environment,
         environment_thumbnail,
+        viewport_aspect,
     } = p;
     ui.heading(doc.scene.name.clone());
     ui.label(format!(
@@ -137,7 +140,9 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         });
     egui::CollapsingHeader::new("Camera")
         .default_open(true)
-        .show(ui, |ui| camera::camera_ui(ui, doc, out));
+        .show(ui, |ui| {
+            camera::camera_ui(ui, doc, render.integrator, viewport_aspect, out)
+        });
     egui::CollapsingHeader::new("Materials")
         .default_open(true)
         .show(ui, |ui| {
@@ -151,7 +156,13 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
     egui::CollapsingHeader::new("Render")
         .default_open(true)
         .show(ui, |ui| {
-            render::render_ui(ui, render, display, false_colour);
+            render::render_ui(
+                ui,
+                doc.setup.camera.projection,
+                render,
+                display,
+                false_colour,
+            );
             render::denoise_ui(ui, denoise, render.integrator, false_colour.enabled);
         });
 }

@@ -4,6 +4,7 @@ use tracer_core::display::{
     DisplaySettings, FalseColour, FalseColourQuantity, FalseColourScale, ToneMap,
 };
 use tracer_core::integrator::IntegratorKind;
+use tracer_core::scene::Projection;
 
 /// Render preferences that restart the render when changed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,8 +59,10 @@ impl FalseColourUi {
 }
 
 /// The render settings, the display settings and the false-colour view, edited in place.
+/// `projection` is the camera's: an integrator that cannot render it is disabled.
 pub fn render_ui(
     ui: &mut egui::Ui,
+    projection: Projection,
     r: &mut RenderPrefs,
     d: &mut DisplaySettings,
     fc: &mut FalseColourUi,
@@ -69,7 +72,18 @@ pub fn render_ui(
         .selected_text(r.integrator.label())
         .show_ui(ui, |ui| {
             for k in IntegratorKind::ALL {
-                ui.selectable_value(&mut r.integrator, k, k.label());
+                let refused = k.check_projection(projection).err();
+                let item = ui.add_enabled(
+                    refused.is_none(),
+                    egui::Button::selectable(r.integrator == k, k.label()),
+                );
+                let item = match refused {
+                    Some(why) => item.on_disabled_hover_text(why),
+                    None => item,
+                };
+                if item.clicked() {
+                    r.integrator = k;
+                }
             }
         })
         .response

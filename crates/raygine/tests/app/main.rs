@@ -5,6 +5,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod cameras;
 mod commands;
 mod denoise;
 mod environment;

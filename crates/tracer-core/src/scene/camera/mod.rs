@@ -111,6 +111,20 @@ impl Camera {
         Ok(())
     }
 
+    /// The orthographic image's width in scene units for an image of aspect ratio `aspect`
+    /// (width over height): `width`, or by default what the perspective view at `fov_deg`
+    /// shows across at the look-at point.
+    pub fn orthographic_width(&self, aspect: f32) -> f32 {
+        match self.width {
+            Some(w) if w.is_finite() && w > 0.0 => w,
+            _ => {
+                let distance = (Vec3::from(self.look_at) - Vec3::from(self.position)).length();
+                let half_height = (self.fov_deg.clamp(0.1, 179.0).to_radians() * 0.5).tan();
+                (2.0 * distance * half_height * aspect).max(1e-6)
+            }
+        }
+    }
+
     /// The basis for an image of `width` x `height` pixels. In a right-handed frame
     /// `right = forward × up`; in a left-handed one (Lumicept files) `right = up × forward`, so a
     /// camera at +Z looking towards -Z sees +X on the left. Degenerate input (eye on the look-at
@@ -142,11 +156,7 @@ impl Camera {
             Projection::Perspective => Lens::Pinhole,
             Projection::Equirectangular => Lens::Equirectangular,
             Projection::Orthographic => {
-                let distance = (Vec3::from(self.look_at) - origin).length();
-                let half_width = match self.width {
-                    Some(w) if w.is_finite() && w > 0.0 => 0.5 * w,
-                    _ => (distance * half_height * aspect).max(1e-6),
-                };
+                let half_width = 0.5 * self.orthographic_width(aspect);
                 Lens::Orthographic {
                     half_width,
                     half_height: half_width / aspect,
@@ -296,6 +306,15 @@ impl CameraBasis {
     #[inline]
     pub fn pixel_outside(&self, x: u32, y: u32) -> bool {
         self.lens.pixel_outside(x, y)
+    }
+
+    /// Where the camera's ray towards scene point `p` starts: the eye, or for the
+    /// orthographic camera the foot of `p` on the film's plane.
+    pub fn eye_for(&self, p: Vec3) -> Vec3 {
+        match self.lens {
+            Lens::Orthographic { .. } => p - self.forward * (p - self.origin).dot(self.forward),
+            _ => self.origin,
+        }
     }
 
     /// Whether the camera has a single eye point (every projection but the orthographic).
