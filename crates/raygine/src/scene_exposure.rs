@@ -38,11 +38,15 @@ pub fn scene_key(path: Option<&Path>) -> String {
 }
 
 /// The exposure (stops) that maps the median luminance of the film's surfaces to middle grey;
-/// None when nothing lit is seen.
-pub fn median_exposure_stops(film: &ProgressiveFilm) -> Option<f32> {
+/// None when nothing lit is seen. Pixels for which `outside` (pixel index) says the camera
+/// sees nothing (a fisheye's corners, black) are left out like the background.
+pub fn median_exposure_stops(
+    film: &ProgressiveFilm,
+    outside: impl Fn(usize) -> bool,
+) -> Option<f32> {
     let n = film.width() as usize * film.height() as usize;
     let mut lum: Vec<f32> = (0..n)
-        .filter(|&i| film.background_fraction(i) < 0.5)
+        .filter(|&i| film.background_fraction(i) < 0.5 && !outside(i))
         .map(|i| luminance(film.shown_rgb(i)))
         .filter(|y| y.is_finite())
         .collect();
@@ -202,10 +206,17 @@ mod tests {
     fn the_median_surface_maps_to_middle_grey() {
         // Background pixels (missed, drawn as -1 here) are left out: the median is 50.
         let film = film_of(&[-1.0, -1.0, -1.0, 10.0, 50.0, 400.0]);
-        let stops = median_exposure_stops(&film).unwrap();
+        let stops = median_exposure_stops(&film, |_| false).unwrap();
         let shown = 50.0 * DisplaySettings::scale_for(stops);
         assert!((shown - MIDDLE_GREY).abs() < 1e-5, "{shown}");
-        assert_eq!(median_exposure_stops(&film_of(&[-1.0, 0.0])), None);
+        assert_eq!(
+            median_exposure_stops(&film_of(&[-1.0, 0.0]), |_| false),
+            None
+        );
+        // Pixels outside the image are left out too: the median of 10 and 400 is 400.
+        let stops = median_exposure_stops(&film, |i| i == 4).unwrap();
+        let shown = 400.0 * DisplaySettings::scale_for(stops);
+        assert!((shown - MIDDLE_GREY).abs() < 1e-4, "{shown}");
     }
 
     fn stats(generation: u64, preview: bool, spp: u32) -> SessionStats {

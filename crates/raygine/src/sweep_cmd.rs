@@ -57,6 +57,13 @@ pub fn run(args: &SweepArgs) -> Result<()> {
     for &i in &chosen {
         let variant = &variants[i];
         let setup = variant_setup(args, &loaded, &base, &base_path, i, variant)?;
+        if let Err(e) = args
+            .scene
+            .integrator
+            .check_projection(setup.camera.projection)
+        {
+            bail!("variant {i}: {e}");
+        }
         if args.measure && setup.grids.is_empty() {
             bail!(
                 "variant {i} ({}): --measure, but its sidecar has no [[grids]]",

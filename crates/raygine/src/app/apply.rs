@@ -173,9 +173,17 @@ impl RaygineApp {
         let stats = self.worker.stats();
         let worker = &self.worker;
         let remember = self.exposure.update(&mut self.display, &stats, || {
+            let basis = worker.basis();
             worker.with_film(|f| {
-                f.filter(|f| f.generation == stats.generation)
-                    .and_then(crate::scene_exposure::median_exposure_stops)
+                let f = f.filter(|f| f.generation == stats.generation)?;
+                // A fisheye's black corners are not the scene.
+                let outside = |i: usize| {
+                    basis.as_ref().is_some_and(|b| {
+                        let w = f.width() as usize;
+                        b.width == f.width() && b.pixel_outside((i % w) as u32, (i / w) as u32)
+                    })
+                };
+                crate::scene_exposure::median_exposure_stops(f, outside)
             })
         });
         if let Some(e) = remember {

@@ -24,20 +24,18 @@ pub fn camera_ui(
     let unit = doc.setup.unit.symbol();
     let speed = length_speed(&doc.scene.bounds);
     let cam = &mut doc.setup.camera;
-    projection_ui(ui, cam, integrator, aspect);
-    vec3_row(ui, "position", &mut cam.position, speed, unit);
-    vec3_row(ui, "look at", &mut cam.look_at, speed, unit);
-    match cam.projection {
-        Projection::Orthographic => {
-            ui.horizontal(|ui| {
-                ui.label("width");
+    // One row: the projection and its one number (field of view, or width).
+    ui.horizontal(|ui| {
+        projection_ui(ui, cam, integrator, aspect);
+        match cam.projection {
+            Projection::Orthographic => {
                 let mut width = cam.orthographic_width(aspect);
                 let r = fine_drag(
                     ui,
                     &mut width,
                     speed,
                     Some(1e-3..=1e9),
-                    "",
+                    "width ",
                     &format!("orthographic width ({unit})"),
                 );
                 if r.changed() {
@@ -49,25 +47,25 @@ pub fn camera_ui(
                     drag_hint(speed, unit)
                 ));
                 ui.label(unit);
-            });
-        }
-        Projection::Equirectangular => {
-            ui.label("360° across, 180° down; the view direction at the centre");
-        }
-        p => {
-            let (max, hint) = if p.is_fisheye() {
-                (
-                    MAX_FISHEYE_FOV_DEG,
-                    "Field of view across the image circle, degrees (at most 180°: a hemisphere).",
-                )
-            } else {
-                (
-                    179.0,
-                    "Vertical field of view, degrees, from the top edge to the bottom edge.",
-                )
-            };
-            ui.horizontal(|ui| {
-                ui.label("field of view");
+            }
+            Projection::Equirectangular => {
+                ui.label("360° x 180°").on_hover_text(
+                    "Azimuth across, elevation down; the view direction at the centre",
+                );
+            }
+            p => {
+                let (max, hint) = if p.is_fisheye() {
+                    (
+                        MAX_FISHEYE_FOV_DEG,
+                        "Field of view across the image circle, degrees (at most 180°: a \
+                         hemisphere).",
+                    )
+                } else {
+                    (
+                        179.0,
+                        "Vertical field of view, degrees, from the top edge to the bottom edge.",
+                    )
+                };
                 let r = fine_drag(
                     ui,
                     &mut cam.fov_deg,
@@ -79,9 +77,11 @@ pub fn camera_ui(
                 cam.fov_deg = cam.fov_deg.clamp(1.0, max);
                 r.on_hover_text(format!("{hint} {}", drag_hint(FOV_SPEED, "°")));
                 ui.label("°");
-            });
+            }
         }
-    }
+    });
+    vec3_row(ui, "position", &mut cam.position, speed, unit);
+    vec3_row(ui, "look at", &mut cam.look_at, speed, unit);
     ui.horizontal(|ui| {
         if ui
             .button("Frame scene")
@@ -111,7 +111,7 @@ fn projection_ui(
 ) {
     let before = cam.projection;
     egui::ComboBox::from_label("projection")
-        .selected_text(cam.projection.label())
+        .selected_text(short_label(cam.projection))
         .show_ui(ui, |ui| {
             for p in Projection::ALL {
                 let refused = integrator.check_projection(p).err();
@@ -147,6 +147,18 @@ fn projection_ui(
     if cam.projection == Projection::Orthographic && cam.width.is_none() {
         // Start where the perspective view was, at the look-at point.
         cam.width = Some(cam.orthographic_width(aspect));
+    }
+}
+
+/// The projection's name in the closed menu (the open menu says more).
+fn short_label(p: Projection) -> &'static str {
+    match p {
+        Projection::Perspective => "Perspective",
+        Projection::FisheyeEquidistant => "Fisheye -vta",
+        Projection::FisheyeEquisolid => "Equisolid",
+        Projection::Hemispherical => "Hemisph. -vth",
+        Projection::Equirectangular => "360°",
+        Projection::Orthographic => "Orthographic",
     }
 }
 

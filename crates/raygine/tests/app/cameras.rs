@@ -32,10 +32,11 @@ fn choose_projection(h: &mut Viewer, label: &str) {
     h.run_steps(2);
 }
 
-/// The rendered film's mean luminance at pixel (x, y) once every pixel has a sample.
+/// The current generation's film mean luminance at pixel (x, y) once every pixel has a sample.
 fn film_luminance(h: &Viewer, x: u32, y: u32) -> Option<f64> {
+    let generation = h.state().worker().generation();
     h.state().worker().with_film(|f| {
-        let f = f?;
+        let f = f.filter(|f| f.generation == generation)?;
         (f.accum.min_samples() >= 1).then(|| f.accum.mean_luminance(f.accum.index(x, y)))
     })
 }
@@ -54,12 +55,13 @@ fn a_fisheye_renders_black_corners_and_the_menus_keep_light_tracing_from_orthogr
     assert_eq!(camera.fov_deg, 180.0, "a fisheye opens at 180°");
     assert!(h.state().worker().generation() > generation, "no restart");
     step_until(&mut h, "a fisheye film", |app| {
+        let generation = app.worker().generation();
         app.worker()
             .current()
             .is_some_and(|k| k.setup.camera.projection == Projection::FisheyeEquidistant)
-            && app
-                .worker()
-                .with_film(|f| f.is_some_and(|f| f.accum.min_samples() >= 1))
+            && app.worker().with_film(|f| {
+                f.is_some_and(|f| f.generation == generation && f.accum.min_samples() >= 1)
+            })
     });
     let key = h.state().worker().current().unwrap();
     let (w, hgt) = (key.settings.width, key.settings.height);

@@ -170,7 +170,7 @@ fn exposure_is_set_on_first_view_held_while_editing_and_kept_per_scene() {
     );
     let median_now = app
         .worker()
-        .with_film(|f| f.and_then(median_exposure_stops))
+        .with_film(|f| f.and_then(|f| median_exposure_stops(f, |_| false)))
         .unwrap();
     assert!(
         (median_now - box_stops).abs() < 0.5,

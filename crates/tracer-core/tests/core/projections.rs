@@ -387,3 +387,61 @@ fn orthographic_view_of_a_plane_shows_its_illuminance_pattern() {
         println!("orthographic floor, {integrator}: worst {worst:.4} along row {y}");
     }
 }
+
+/// What evalglare does with a fisheye image: the illuminance at the eye from the luminances it
+/// sees, E = Σ L cos θ ω. A dark room (ρ = 0) whose ceiling glows at Le, seen from a tilted
+/// eye: E = Le π F, F the form factor of the ceiling from the eye (Lambert's contour formula).
+/// The hemispherical film's area is in proportion to the projected solid angle, so there
+/// E = π × the mean luminance over the image circle = Σ L / R² (pixels); the equidistant
+/// fisheye weighs each pixel by its solid angle (from the direction density checked above)
+/// and its cosine.
+#[test]
+fn a_fisheye_image_gives_the_illuminance_at_the_eye() {
+    let sc = box_scene(4.0, 3.0, 4.0, vec![]);
+    let le = 100.0f32;
+    let mut mats = vec![diffuse(0.0); 6];
+    mats[1] = emitting(diffuse(0.0), le);
+    let eye = Vec3::new(1.5, 1.2, 2.2);
+    let n = Vec3::new(0.3, 1.0, -0.2).normalize();
+    let ceiling = box_faces(4.0, 3.0, 4.0)[1].1.map(DVec3::from_array);
+    let exact = f64::from(le) * PI * form_factor(eye.as_dvec3(), n.as_dvec3(), &ceiling);
+    let (w, h) = (240u32, 240u32);
+    for projection in [Projection::Hemispherical, Projection::FisheyeEquidistant] {
+        let camera = Camera {
+            position: eye.to_array(),
+            look_at: (eye + n).to_array(),
+            up: [1.0, 0.0, 0.0],
+            fov_deg: 180.0,
+            projection,
+            width: None,
+        };
+        let st = setup(&sc, camera, vec![], mats.clone());
+        let settings = RenderSettings {
+            width: w,
+            height: h,
+            samples_per_pixel: 16,
+            integrator: IntegratorKind::Direct,
+            ..RenderSettings::default()
+        };
+        let (film, _) = render(&sc, &st, &settings);
+        let basis = camera.basis(Handedness::Right, w, h);
+        let radius = 0.5 * f64::from(w.min(h));
+        let mut e = 0.0;
+        for y in 0..h {
+            for x in 0..w {
+                let l = film.mean_luminance(film.index(x, y));
+                if projection == Projection::Hemispherical {
+                    e += l / (radius * radius);
+                } else if let Some(ray) = basis.ray(x as f32 + 0.5, y as f32 + 0.5) {
+                    let sr = 1.0 / (f64::from(basis.direction_density(ray.dir)) * f64::from(w * h));
+                    e += l * f64::from(ray.dir.dot(n).max(0.0)) * sr;
+                }
+            }
+        }
+        println!("{projection}: E from the image {e:.4} lx, exact Le π F = {exact:.4} lx");
+        assert!(
+            (e / exact - 1.0).abs() < 0.005,
+            "{projection}: {e} vs {exact}"
+        );
+    }
+}
