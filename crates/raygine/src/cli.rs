@@ -45,6 +45,32 @@ pub enum Command {
     Merge(crate::cli_shards::MergeArgs),
     /// Render (and measure) variants of a scene, each a patch of its sidecar.
     Sweep(crate::cli_shards::SweepArgs),
+    /// Measure the grids and write a lighting report (PDF): settings, a view, per grid a plan
+    /// and its statistics, the luminaire schedule and the requirements check.
+    Report(ReportArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// The PDF to write.
+    #[arg(short = 'o', long, value_name = "PATH")]
+    pub output: PathBuf,
+    /// Measure until every point's standard error is at most PCT % of max(E_i, 0.1 × Eavg),
+    /// as `measure --target-error` does (--samples caps it).
+    #[arg(long, value_name = "PCT", value_parser = parse_percent)]
+    pub target_error: Option<f64>,
+    /// Paper: a4 (default) or letter.
+    #[arg(long, value_name = "a4|letter", default_value = "a4")]
+    pub paper: String,
+    /// The requirements table (TOML) the grids' `task` keys name (default: raygine's, with
+    /// EN 12464-1 rows and their sources).
+    #[arg(long, value_name = "FILE")]
+    pub requirements: Option<PathBuf>,
+    /// Samples per pixel of the scene's view (default 16 direct, 64 otherwise).
+    #[arg(long, value_name = "N")]
+    pub view_samples: Option<u32>,
 }
 
 #[derive(Debug, Args)]
@@ -66,6 +92,10 @@ pub struct MeasureArgs {
     /// Write the statistics and every point here (JSON).
     #[arg(long, value_name = "PATH")]
     pub json: Option<PathBuf>,
+    /// How the CSV and JSON write readings: `rounded` (default) to what each one's standard
+    /// error supports, 3 significant figures at most; `full`, every digit, for machines.
+    #[arg(long, value_name = "rounded|full", default_value = "rounded", value_parser = parse_precision)]
+    pub precision: tracer_core::measure::rounding::Precision,
     /// Stop once every point's standard error is at most PCT % of max(E_i, 0.1 × Eavg of its
     /// grid), after at least 64 samples; --samples caps it (default 65536).
     #[arg(long, value_name = "PCT", value_parser = parse_percent)]
@@ -86,6 +116,13 @@ fn parse_projection(s: &str) -> Result<tracer_core::scene::Projection, String> {
             .collect();
         format!("unknown projection `{s}`; one of {}", names.join(", "))
     })
+}
+
+pub(crate) fn parse_precision(
+    s: &str,
+) -> Result<tracer_core::measure::rounding::Precision, String> {
+    tracer_core::measure::rounding::Precision::from_name(s)
+        .ok_or_else(|| format!("`{s}`: the precision is `rounded` or `full`"))
 }
 
 fn parse_percent(s: &str) -> Result<f64, String> {

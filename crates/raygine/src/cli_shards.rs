@@ -50,6 +50,9 @@ pub struct MergeArgs {
     /// Measurement parts: write the statistics and every point here (JSON).
     #[arg(long, value_name = "PATH")]
     pub json: Option<PathBuf>,
+    /// How the CSV and JSON write readings: `rounded` (default) or `full` (every digit).
+    #[arg(long, value_name = "rounded|full", default_value = "rounded", value_parser = crate::cli::parse_precision)]
+    pub precision: tracer_core::measure::rounding::Precision,
 }
 
 #[derive(Debug, Args)]

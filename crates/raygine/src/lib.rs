@@ -17,6 +17,8 @@ pub mod measure_cmd;
 pub mod merge_cmd;
 pub mod picture_hints;
 pub mod render_cmd;
+pub mod report_cmd;
+pub mod report_pdf;
 pub mod shard_cmd;
 pub mod sweep_cmd;
 pub mod sweep_variants;
@@ -86,6 +88,7 @@ pub fn run() -> ExitCode {
         Some(cli::Command::Info(info)) => info_cmd::run(&info),
         Some(cli::Command::Merge(merge)) => merge_cmd::run(&merge),
         Some(cli::Command::Sweep(sweep)) => sweep_cmd::run(&sweep),
+        Some(cli::Command::Report(report)) => report_cmd::run(&report),
         None => open_viewer(&args),
     };
     match result {

@@ -8,6 +8,7 @@ use serde_json::json;
 use std::fmt::Write as _;
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
+use tracer_core::measure::rounding::Precision;
 use tracer_core::measure::{
     DaylightFactorSetup, GridResult, MeasureSettings, measure_grids_with_progress,
 };
@@ -86,8 +87,11 @@ pub fn run(args: &MeasureArgs) -> Result<()> {
         unit,
         settings.integrator.name(),
         done,
-        args.csv.as_deref(),
-        args.json.as_deref(),
+        ReadingFiles {
+            csv: args.csv.as_deref(),
+            json: args.json.as_deref(),
+            precision: args.precision,
+        },
         outdoor,
     )?;
     if mf != 1.0 {
@@ -120,22 +124,30 @@ pub fn run(args: &MeasureArgs) -> Result<()> {
     Ok(())
 }
 
+/// Where the readings go and how precisely.
+#[derive(Clone, Copy, Debug)]
+pub struct ReadingFiles<'a> {
+    pub csv: Option<&'a std::path::Path>,
+    pub json: Option<&'a std::path::Path>,
+    pub precision: Precision,
+}
+
 /// Writes the readings (maintained values) as CSV and JSON, where asked.
 pub fn write_readings(
     results: &[GridResult],
     unit: &str,
     integrator: &str,
     samples: u32,
-    csv_path: Option<&std::path::Path>,
-    json_path: Option<&std::path::Path>,
+    files: ReadingFiles<'_>,
     df_outdoor_lx: Option<f64>,
 ) -> Result<()> {
-    if let Some(path) = csv_path {
-        tracer_core::export::write_text(path, &csv(results, df_outdoor_lx))
+    let precision = files.precision;
+    if let Some(path) = files.csv {
+        tracer_core::export::write_text(path, &csv(results, df_outdoor_lx, precision))
             .with_context(|| format!("{}: cannot write the CSV", path.display()))?;
     }
-    if let Some(path) = json_path {
-        let text = json_report(results, unit, integrator, samples, df_outdoor_lx);
+    if let Some(path) = files.json {
+        let text = json_report(results, unit, integrator, samples, df_outdoor_lx, precision);
         tracer_core::export::write_text(path, &text)
             .with_context(|| format!("{}: cannot write the JSON", path.display()))?;
     }
@@ -199,8 +211,9 @@ pub fn df_summary_line(r: &GridResult, outdoor_lx: f64) -> String {
 }
 
 /// The CSV text: the header, then one line a point (i along u, j along v, 0-based); with
-/// `df_outdoor_lx`, each point's daylight factor and its standard error in % too.
-pub fn csv(results: &[GridResult], df_outdoor_lx: Option<f64>) -> String {
+/// `df_outdoor_lx`, each point's daylight factor and its standard error in % too. Readings
+/// are written at `precision` (positions as the f32 they are, in their shortest form).
+pub fn csv(results: &[GridResult], df_outdoor_lx: Option<f64>, precision: Precision) -> String {
     let mut out = String::with_capacity(64 * results.len());
     out.push_str(CSV_HEADER);
     if df_outdoor_lx.is_some() {
@@ -218,15 +231,16 @@ pub fn csv(results: &[GridResult], df_outdoor_lx: Option<f64>) -> String {
                 p.position.x,
                 p.position.y,
                 p.position.z,
-                p.illuminance_lx,
-                p.std_error_lx
+                precision.value(p.illuminance_lx, p.std_error_lx),
+                precision.std_error(p.std_error_lx)
             );
             if let Some(e) = df_outdoor_lx {
+                let (df, se) = (100.0 * p.illuminance_lx / e, 100.0 * p.std_error_lx / e);
                 let _ = write!(
                     out,
                     ",{},{}",
-                    100.0 * p.illuminance_lx / e,
-                    100.0 * p.std_error_lx / e
+                    precision.value(df, se),
+                    precision.std_error(se)
                 );
             }
             out.push('\n');
@@ -243,20 +257,32 @@ pub fn json_report(
     integrator: &str,
     samples: u32,
     df_outdoor_lx: Option<f64>,
+    precision: Precision,
 ) -> String {
     let pct = |e: f64| df_outdoor_lx.map(|out| 100.0 * e / out);
+    // A ratio's standard error from its two terms' relative errors.
+    let ratio_se = |r: f64, (a, sa): (f64, f64), (b, sb): (f64, f64)| {
+        let rel = |v: f64, s: f64| if v > 0.0 { s / v } else { 0.0 };
+        r * (rel(a, sa).powi(2) + rel(b, sb).powi(2)).sqrt()
+    };
     let grids: Vec<_> = results
         .iter()
         .map(|r| {
             let s = r.statistics();
+            let [se_min, se_avg, se_max] = r.statistics_std_errors();
+            let u0_se = ratio_se(s.u0, (s.e_min_lx, se_min), (s.e_avg_lx, se_avg));
+            let ratio = ratio_se(s.emin_over_emax, (s.e_min_lx, se_min), (s.e_max_lx, se_max));
             let mut grid = json!({
                 "name": r.name,
                 "normal": r.normal.to_array(),
-                "e_min_lx": s.e_min_lx,
-                "e_avg_lx": s.e_avg_lx,
-                "e_max_lx": s.e_max_lx,
-                "u0": s.u0,
-                "emin_over_emax": s.emin_over_emax,
+                "e_min_lx": precision.value(s.e_min_lx, se_min),
+                "e_avg_lx": precision.value(s.e_avg_lx, se_avg),
+                "e_max_lx": precision.value(s.e_max_lx, se_max),
+                "e_min_std_error_lx": precision.std_error(se_min),
+                "e_avg_std_error_lx": precision.std_error(se_avg),
+                "e_max_std_error_lx": precision.std_error(se_max),
+                "u0": precision.value(s.u0, u0_se),
+                "emin_over_emax": precision.value(s.emin_over_emax, ratio),
                 "points_inside_objects": r.buried_count(),
                 "points": r.points.iter().map(|p| {
                     let mut point = json!({
@@ -265,22 +291,23 @@ pub fn json_report(
                     "x": p.position.x,
                     "y": p.position.y,
                     "z": p.position.z,
-                    "illuminance_lx": p.illuminance_lx,
-                    "std_error_lx": p.std_error_lx,
+                    "illuminance_lx": precision.value(p.illuminance_lx, p.std_error_lx),
+                    "std_error_lx": precision.std_error(p.std_error_lx),
                     "inside_object": p.buried,
                     });
                     if let (Some(df), Some(se)) = (pct(p.illuminance_lx), pct(p.std_error_lx)) {
-                        point["daylight_factor_pct"] = json!(df);
-                        point["daylight_factor_std_error_pct"] = json!(se);
+                        point["daylight_factor_pct"] = json!(precision.value(df, se));
+                        point["daylight_factor_std_error_pct"] = json!(precision.std_error(se));
                     }
                     point
                 }).collect::<Vec<_>>(),
             });
             if df_outdoor_lx.is_some() {
-                grid["df_min_pct"] = json!(pct(s.e_min_lx));
-                grid["df_avg_pct"] = json!(pct(s.e_avg_lx));
-                grid["df_max_pct"] = json!(pct(s.e_max_lx));
-                grid["df_uniformity"] = json!(s.u0);
+                let df = |e: f64, se: f64| pct(e).zip(pct(se)).map(|(v, s)| precision.value(v, s));
+                grid["df_min_pct"] = json!(df(s.e_min_lx, se_min));
+                grid["df_avg_pct"] = json!(df(s.e_avg_lx, se_avg));
+                grid["df_max_pct"] = json!(df(s.e_max_lx, se_max));
+                grid["df_uniformity"] = json!(precision.value(s.u0, u0_se));
             }
             grid
         })

@@ -224,8 +224,11 @@ fn merge_measure(args: &MergeArgs, first: &PartHeader, started: Instant) -> Resu
         &part.unit,
         &part.integrator,
         first.samples,
-        args.csv.as_deref(),
-        args.json.as_deref(),
+        crate::measure_cmd::ReadingFiles {
+            csv: args.csv.as_deref(),
+            json: args.json.as_deref(),
+            precision: args.precision,
+        },
         None,
     )?;
     if mf != 1.0 {

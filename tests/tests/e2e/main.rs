@@ -10,4 +10,5 @@ mod exr_and_units;
 mod gi_and_measure;
 mod integra;
 mod obj_gltf;
+mod report;
 mod shards;

@@ -6,6 +6,7 @@ use crate::document::Document;
 use crate::measure_cmd::{csv, json_report};
 use crate::measure_worker::Readings;
 use tracer_core::integrator::IntegratorKind;
+use tracer_core::measure::rounding::Precision;
 
 /// What the Measure panel shows besides the document.
 #[derive(Debug)]
@@ -152,14 +153,24 @@ pub fn measure_ui(
                 if ui.button("Export CSV").clicked()
                     && let Some(r) = &readings
                 {
-                    out.push(export(doc, "grids.csv", csv(&r.results, None)));
+                    out.push(export(
+                        doc,
+                        "grids.csv",
+                        csv(&r.results, None, Precision::Rounded),
+                    ));
                 }
                 if ui.button("Export JSON").clicked()
                     && let Some(r) = &readings
                 {
                     let unit = doc.setup.unit.symbol();
-                    let text =
-                        json_report(&r.results, unit, view.integrator.name(), r.samples, None);
+                    let text = json_report(
+                        &r.results,
+                        unit,
+                        view.integrator.name(),
+                        r.samples,
+                        None,
+                        Precision::Rounded,
+                    );
                     out.push(export(doc, "grids.json", text));
                 }
             });
@@ -175,7 +186,7 @@ pub fn measure_ui(
                 out.push(Command::SaveReport {
                     png: report_path(doc, "report.png"),
                     csv: report_path(doc, "grids.csv"),
-                    csv_text: csv(&r.results, None),
+                    csv_text: csv(&r.results, None, Precision::Rounded),
                 });
             }
         },

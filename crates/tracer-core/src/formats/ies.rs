@@ -6,7 +6,7 @@
 //! relative photometry (lumens per lamp > 0) the values are already candela for the rated lamps.
 
 use super::{MAX_ANGLES, MAX_VALUES, PhotometryFileError, Symmetry, unfold};
-use crate::light::{LuminousShape, Photometry, Plane};
+use crate::light::{LuminaireInfo, LuminousShape, Photometry, Plane};
 use std::path::Path;
 
 /// A number token and the line it is on.
@@ -164,7 +164,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
     let (shape, shape_note) = LuminousShape::from_ies(opening[0], opening[1], opening[2]);
     let (ballast, b_line) = nums.number("the ballast factor")?;
     let (ballast_lamp, _) = nums.number("the ballast-lamp photometric factor")?;
-    nums.number("the input watts")?;
+    let (watts, _) = nums.number("the input watts")?;
     let scale = multiplier * ballast * ballast_lamp;
     if scale < 0.0 {
         return Err(nums.err(
@@ -222,9 +222,30 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
         });
     }
     let gamma = vert.iter().map(|(g, _)| *g as f32).collect();
+    let info = LuminaireInfo {
+        manufacturer: keyword(&lines[..tilt_at], "MANUFAC"),
+        name: keyword(&lines[..tilt_at], "LUMINAIRE"),
+        catalogue_number: keyword(&lines[..tilt_at], "LUMCAT"),
+        power_w: (watts > 0.0 && watts.is_finite()).then_some(watts),
+        colour_rendering: None,
+    };
     Photometry::from_planes(gamma, unfold(symmetry, planes), shape)
-        .map(|p| p.with_shape_note(shape_note))
+        .map(|p| p.with_shape_note(shape_note).with_info(info))
         .map_err(|e| PhotometryFileError::new(path, 0, e.to_string()))
+}
+
+/// The text of keyword line `[NAME] text` among the header lines, if there is one.
+fn keyword(header: &[&str], name: &str) -> Option<String> {
+    let tag = format!("[{name}]");
+    header.iter().find_map(|l| {
+        let l = l.trim();
+        let rest = l
+            .get(..tag.len())?
+            .eq_ignore_ascii_case(&tag)
+            .then(|| &l[tag.len()..])?;
+        let text = rest.trim();
+        (!text.is_empty()).then(|| text.to_owned())
+    })
 }
 
 fn ascending(values: &[(f64, usize)], what: &str, path: &Path) -> Result<(), PhotometryFileError> {

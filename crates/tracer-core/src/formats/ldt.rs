@@ -6,7 +6,7 @@
 //! added.
 
 use super::{MAX_ANGLES, MAX_VALUES, PhotometryFileError, Symmetry, unfold};
-use crate::light::{LuminousShape, Photometry, Plane};
+use crate::light::{LuminaireInfo, LuminousShape, Photometry, Plane};
 use std::path::Path;
 
 struct Lines<'a> {
@@ -69,22 +69,18 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
         next: 0,
         path,
     };
-    l.text("the manufacturer")?;
+    let (manufacturer, _) = l.text("the manufacturer")?;
     l.number("the type indicator")?;
     let (isym, isym_line) = l.count("the symmetry indicator", 0, 4)?;
     let (mc, mc_line) = l.count("the number of C planes", 1, MAX_ANGLES)?;
     l.number("the distance between C planes")?;
     let (ng, _) = l.count("the number of γ angles", 1, MAX_ANGLES)?;
     l.number("the distance between γ angles")?;
-    for what in [
-        "the report number",
-        "the luminaire name",
-        "the luminaire number",
-        "the file name",
-        "the date and user",
-    ] {
-        l.text(what)?;
-    }
+    l.text("the report number")?;
+    let (name, _) = l.text("the luminaire name")?;
+    let (number, _) = l.text("the luminaire number")?;
+    l.text("the file name")?;
+    l.text("the date and user")?;
     for what in [
         "the luminaire length or diameter",
         "the luminaire width",
@@ -111,6 +107,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
     l.number("the tilt during measurement")?;
     let (sets, sets_line) = l.count("the number of lamp sets", 1, 1000)?;
     let mut first_flux = None;
+    let (mut watts, mut ra) = (0.0f64, None);
     for _ in 0..sets {
         l.number("the number of lamps")?;
         l.text("the lamp type")?;
@@ -120,8 +117,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
         }
         first_flux.get_or_insert(flux);
         l.text("the colour temperature")?;
-        l.text("the colour rendering")?;
-        l.number("the wattage")?;
+        let (rendering, _) = l.text("the colour rendering")?;
+        ra.get_or_insert(rendering);
+        watts += l.number("the wattage")?.0;
     }
     let lamp_flux = first_flux.ok_or_else(|| l.err(sets_line, "no lamp set"))?;
     for _ in 0..10 {
@@ -218,7 +216,15 @@ pub fn parse(text: &str, path: &Path) -> Result<Photometry, PhotometryFileError>
         _ => Symmetry::Quadrants,
     };
     let gamma = gammas.iter().map(|(g, _)| *g as f32).collect();
+    let given = |t: String| (!t.is_empty()).then_some(t);
+    let info = LuminaireInfo {
+        manufacturer: given(manufacturer),
+        name: given(name),
+        catalogue_number: given(number),
+        power_w: (watts > 0.0 && watts.is_finite()).then_some(watts),
+        colour_rendering: ra.and_then(given),
+    };
     Photometry::from_planes(gamma, unfold(symmetry, planes), shape)
-        .map(|p| p.with_shape_note(shape_note))
+        .map(|p| p.with_shape_note(shape_note).with_info(info))
         .map_err(|e| PhotometryFileError::new(path, 0, e.to_string()))
 }

@@ -21,6 +21,21 @@ pub struct Photometry {
     pub shape: LuminousShape,
     /// Why the file's opening was not taken as it is (a shape raygine does not draw).
     pub shape_note: Option<String>,
+    /// What the file says about the luminaire (for schedules and reports; boxed, as few read it).
+    pub info: Box<LuminaireInfo>,
+}
+
+/// What a photometric file says about its luminaire, as far as it says it: IES keywords
+/// (`[MANUFAC]`, `[LUMINAIRE]`, `[LUMCAT]`) and input watts; EULUMDAT's header and lamp data.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LuminaireInfo {
+    pub manufacturer: Option<String>,
+    pub name: Option<String>,
+    pub catalogue_number: Option<String>,
+    /// Electrical input power (W), where the file gives one above 0.
+    pub power_w: Option<f64>,
+    /// Colour rendering (Ra) as the file gives it (EULUMDAT's lamp data).
+    pub colour_rendering: Option<String>,
 }
 
 /// Why a table is not a distribution.
@@ -92,7 +107,14 @@ impl Photometry {
             cd,
             shape,
             shape_note: None,
+            info: Box::default(),
         })
+    }
+
+    /// The same with what the file says about its luminaire.
+    pub fn with_info(mut self, info: LuminaireInfo) -> Photometry {
+        self.info = Box::new(info);
+        self
     }
 
     /// The same with a note on its opening (see [`Photometry::shape_note`]).

@@ -29,7 +29,7 @@ pub use emitters::{EmissionSides, EmissiveTriangle, EmitterSample, EmitterTable}
 pub use environment::{
     Environment, EnvironmentLight, EnvironmentMap, EnvironmentSource, SunDisc, map_direction,
 };
-pub use goniometric::{Photometry, PhotometryError, Plane, cosine_flux};
+pub use goniometric::{LuminaireInfo, Photometry, PhotometryError, Plane, cosine_flux};
 pub use handle::LightHandle;
 pub use luminaire::{GoniometricLight, Luminaire, LuminaireFrame};
 pub use luminous_shape::{LuminousShape, SHAPE_NAMES};

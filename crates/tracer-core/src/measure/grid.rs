@@ -18,6 +18,11 @@ pub struct Grid {
     pub nv: u32,
     /// Unit normal of the measuring side.
     pub normal: [f32; 3],
+    /// The activity whose requirements the report checks it against (`task` in the sidecar:
+    /// a key of the requirements table).
+    pub task: Option<String>,
+    /// The observers whose glare the report judges it by.
+    pub observers: Vec<String>,
 }
 
 /// One sensor point of a grid.
@@ -96,6 +101,8 @@ impl Grid {
             nu,
             nv,
             normal: normal.to_array(),
+            task: None,
+            observers: Vec::new(),
         })
     }
 

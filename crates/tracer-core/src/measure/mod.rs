@@ -5,8 +5,10 @@
 mod buried;
 mod daylight_factor;
 mod grid;
+pub mod isolux;
 pub mod partial;
 pub mod placement;
+pub mod rounding;
 mod sensors;
 
 pub use buried::{buried_points, front_winding, is_buried, mark_buried};

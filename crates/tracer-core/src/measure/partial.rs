@@ -76,6 +76,8 @@ impl MeasurePart {
                     u: get_vec3(&mut d)?,
                     v: get_vec3(&mut d)?,
                     normal: get_vec3(&mut d)?,
+                    task: None,
+                    observers: Vec::new(),
                 })
             })()
             .ok_or_else(|| bad(&format!("grid {i}")))?;

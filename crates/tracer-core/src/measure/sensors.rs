@@ -287,6 +287,36 @@ impl GridResult {
         }
     }
 
+    /// The standard errors of Emin, Eavg and Emax (lx): the minimum's and the maximum's
+    /// points' own, and the mean's from the points' (independent) errors.
+    pub fn statistics_std_errors(&self) -> [f64; 3] {
+        let measured: Vec<&PointResult> = self.points.iter().filter(|p| !p.buried).collect();
+        if measured.is_empty() {
+            return [0.0; 3];
+        }
+        let pick = |better: fn(f64, f64) -> bool| {
+            measured
+                .iter()
+                .copied()
+                .reduce(|a, b| {
+                    if better(b.illuminance_lx, a.illuminance_lx) {
+                        b
+                    } else {
+                        a
+                    }
+                })
+                .map_or(0.0, |p| p.std_error_lx)
+        };
+        let n = measured.len() as f64;
+        let avg = measured
+            .iter()
+            .map(|p| p.std_error_lx.powi(2))
+            .sum::<f64>()
+            .sqrt()
+            / n;
+        [pick(|b, a| b < a), avg, pick(|b, a| b > a)]
+    }
+
     /// The readings times `factor` (a maintenance factor: maintained illuminance).
     pub fn scaled(mut self, factor: f64) -> GridResult {
         for p in &mut self.points {

@@ -317,6 +317,12 @@ pub struct GridSpec {
     /// Work plane: distance kept from the walls, scene unit (default 0.5 m).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub margin: Option<f32>,
+    /// The activity the report checks this grid against (a key of the requirements table).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub task: Option<String>,
+    /// Observers whose glare the report judges this grid by.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub observers: Vec<String>,
 }
 
 /// EN 12464-1's automatic grid spacing (m) for a rectangle whose longer side is `d_m` metres:
@@ -403,7 +409,13 @@ impl GridSpec {
             _ => return Err(format!("grid {name}: give both nu and nv, or neither")),
         };
         Grid::new(name, origin, u, v, nu, nv, normal)
-            .map(Some)
+            .map(|g| {
+                Some(Grid {
+                    task: self.task.clone(),
+                    observers: self.observers.clone(),
+                    ..g
+                })
+            })
             .map_err(|e| e.to_string())
     }
 
@@ -416,6 +428,8 @@ impl GridSpec {
             nu: Some(g.nu),
             nv: Some(g.nv),
             normal: Some(g.normal),
+            task: g.task.clone(),
+            observers: g.observers.clone(),
             ..GridSpec::default()
         }
     }

@@ -1,0 +1,423 @@
+//! `raygine report`: measure the sidecar's grids, render the scene's view and each grid's plan
+//! view (orthographic, from the normal's side), and write the lighting report as a PDF.
+
+use crate::cli::ReportArgs;
+use crate::cli_support::{load_scene, map_film_rgb, thread_pool};
+use crate::report_pdf::requirements::{
+    DEFAULT_REQUIREMENTS, DEFAULT_SOURCE, GridCheck, Requirements, check,
+};
+use crate::report_pdf::{GridSection, Paper, Picture, Report, ScheduleRow, write_pdf};
+use anyhow::{Context, Result, bail};
+use glam::Vec3;
+use std::time::{Duration, Instant};
+use tracer_core::display::DisplaySettings;
+use tracer_core::integrator::IntegratorKind;
+use tracer_core::light::LightKind;
+use tracer_core::measure::{Grid, GridResult, MeasureSettings, measure_grids};
+use tracer_core::render::{RenderSettings, render};
+use tracer_core::scene::{Camera, LoadedScene, Projection, Setup};
+
+/// The scene view's width in pixels (its height follows the design's aspect, else 4:3).
+const VIEW_WIDTH: u32 = 800;
+/// A plan view's longer side in pixels.
+const PLAN_PIXELS: u32 = 480;
+
+pub fn run(args: &ReportArgs) -> Result<()> {
+    let started = Instant::now();
+    let loaded = load_scene(&args.scene)?;
+    for w in &loaded.warnings {
+        eprintln!("warning: {w}");
+    }
+    let paper = Paper::from_name(&args.paper)
+        .with_context(|| format!("--paper {}: a4 or letter", args.paper))?;
+    let (requirements, requirements_source) = match &args.requirements {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("{}: cannot read the requirements", path.display()))?;
+            let origin = path.display().to_string();
+            (
+                Requirements::parse(&text, &origin).map_err(anyhow::Error::msg)?,
+                origin,
+            )
+        }
+        None => (
+            Requirements::parse(DEFAULT_REQUIREMENTS, DEFAULT_SOURCE)
+                .map_err(anyhow::Error::msg)?,
+            DEFAULT_SOURCE.to_owned(),
+        ),
+    };
+    // Unknown tasks are errors before anything is measured.
+    for g in &loaded.setup.grids {
+        if let Some(task) = &g.task {
+            requirements
+                .activity(task)
+                .map_err(|e| anyhow::anyhow!("grid {}: {e}", g.name))?;
+        }
+    }
+    // Nothing is half-written: the PDF goes through a temporary file; a folder that is not
+    // there is said before the work starts.
+    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        bail!(
+            "{}: the folder {} does not exist",
+            args.output.display(),
+            dir.display()
+        );
+    }
+    let pool = thread_pool(&args.scene)?;
+    let samples = match (args.scene.samples, args.target_error) {
+        (Some(n), _) => n,
+        (None, Some(_)) => crate::measure_cmd::TARGET_ERROR_CAP,
+        (None, None) => args.scene.samples_or(16),
+    };
+    let settings = MeasureSettings {
+        integrator: args.scene.integrator,
+        max_bounces: args.scene.max_bounces,
+        samples,
+        time_limit: args.scene.time_limit.map(Duration::from_secs_f64),
+        target_error: args.target_error.map(|pct| pct / 100.0),
+    };
+    let mf = f64::from(loaded.setup.maintenance_factor);
+    let results: Vec<GridResult> = pool
+        .install(|| measure_grids(&loaded.scene, &loaded.setup, &settings))
+        .into_iter()
+        .map(|r| r.scaled(mf))
+        .collect();
+    let done = results.first().map_or(0, |r| r.samples);
+    let view_samples =
+        args.view_samples
+            .unwrap_or(if args.scene.integrator == IntegratorKind::Direct {
+                16
+            } else {
+                64
+            });
+    let view = pool.install(|| scene_view(&loaded, args.scene.integrator, view_samples));
+    let grids: Vec<GridSection> = loaded
+        .setup
+        .grids
+        .iter()
+        .zip(&results)
+        .map(|(grid, result)| GridSection {
+            grid: grid.clone(),
+            result: result.clone(),
+            plan_view: pool.install(|| plan_view(&loaded, grid)),
+        })
+        .collect();
+    let schedule = schedule(&loaded.setup);
+    let ra = least_ra(&schedule);
+    let checks: Vec<GridCheck> = grids
+        .iter()
+        .filter_map(|g| {
+            let task = g.grid.task.as_deref()?;
+            let activity = requirements.activity(task).ok()?;
+            Some(check(&g.result, activity, ra))
+        })
+        .collect();
+    let report = Report {
+        title: loaded.scene.name.clone(),
+        scene_file: args
+            .scene
+            .scene_path
+            .as_ref()
+            .map_or("the built-in Cornell box".to_owned(), |p| {
+                p.display().to_string()
+            }),
+        date: today(),
+        version: env!("CARGO_PKG_VERSION").to_owned(),
+        unit: loaded.setup.unit.symbol().to_owned(),
+        integrator: settings.integrator.label().to_owned(),
+        samples: done,
+        reached_error: reached_error(&results, args.target_error),
+        maintenance_factor: mf,
+        paper,
+        view,
+        grids,
+        schedule,
+        checks,
+        requirements_source,
+    };
+    let pdf = write_pdf(&report).map_err(anyhow::Error::msg)?;
+    tracer_core::export::write_bytes(&args.output, &pdf)
+        .with_context(|| format!("{}: cannot write the report", args.output.display()))?;
+    for c in &report.checks {
+        println!(
+            "grid {}: {} against \"{}\"",
+            c.grid,
+            if c.passes() { "PASS" } else { "FAIL" },
+            c.activity.name
+        );
+    }
+    println!(
+        "wrote {} ({} grids, {done} samples a point, {:.1} s)",
+        args.output.display(),
+        report.grids.len(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// "worst point 1.9 % of its reading" (with the floor `measure --target-error` uses: 10 % of
+/// its grid's mean), and the target when one was set.
+fn reached_error(results: &[GridResult], target_pct: Option<f64>) -> String {
+    let mut worst = 0.0f64;
+    for r in results {
+        let floor = 0.1 * r.statistics().e_avg_lx;
+        for p in r.points.iter().filter(|p| !p.buried) {
+            let scale = p.illuminance_lx.max(floor);
+            if scale > 0.0 {
+                worst = worst.max(p.std_error_lx / scale);
+            }
+        }
+    }
+    if results.is_empty() {
+        return "no grids measured".to_owned();
+    }
+    let reached = format!(
+        "worst point {} % of its reading",
+        tracer_core::measure::rounding::format_with(100.0 * worst, 1)
+    );
+    match target_pct {
+        Some(t) => format!("{reached} (target {t} %)"),
+        None => reached,
+    }
+}
+
+/// The scene's camera, rendered and mapped for display (auto exposure), RGBA8.
+fn scene_view(loaded: &LoadedScene, integrator: IntegratorKind, samples: u32) -> Option<Picture> {
+    let aspect = loaded
+        .scene
+        .design
+        .resolution
+        .map_or(4.0 / 3.0, |[w, h]| w as f32 / h.max(1) as f32);
+    let height = ((VIEW_WIDTH as f32 / aspect).round() as u32).clamp(16, 2000);
+    let settings = RenderSettings {
+        width: VIEW_WIDTH,
+        height,
+        samples_per_pixel: samples,
+        integrator,
+        pixel_illuminance: false,
+        ..RenderSettings::default()
+    };
+    let (film, _) = render(&loaded.scene, &loaded.setup, &settings);
+    let picture = rgba(&film, false);
+    Some(Picture {
+        rgba: picture,
+        width: VIEW_WIDTH,
+        height,
+        caption: format!(
+            "The scene's camera ({}): {}, {samples} samples per pixel, automatic exposure, \
+             not denoised",
+            loaded.setup.camera.projection,
+            integrator.name()
+        ),
+    })
+}
+
+/// The film mapped for display with automatic exposure, RGBA8; `mirror` flips it left-right.
+fn rgba(film: &tracer_core::render::Film, mirror: bool) -> Vec<u8> {
+    let display = DisplaySettings {
+        auto_exposure: true,
+        ..DisplaySettings::default()
+    };
+    let exposure = display.effective_exposure(film);
+    let rgb = map_film_rgb(film, &display, exposure).rgb;
+    let (w, h) = (film.width as usize, film.height as usize);
+    let mut out = Vec::with_capacity(w * h * 4);
+    for y in 0..h {
+        for x in 0..w {
+            let sx = if mirror { w - 1 - x } else { x };
+            let i = 3 * (y * w + sx);
+            out.extend_from_slice(&[rgb[i], rgb[i + 1], rgb[i + 2], 255]);
+        }
+    }
+    out
+}
+
+/// The grid's area seen orthographically from its normal's side (direct light, 16 samples): u
+/// to the right and v up, as its plan is drawn. The camera stands just short of the first
+/// surface above the grid's centre, so a ceiling does not hide the floor.
+fn plan_view(loaded: &LoadedScene, grid: &Grid) -> Option<Picture> {
+    let (u, v, n) = (
+        Vec3::from(grid.u),
+        Vec3::from(grid.v),
+        Vec3::from(grid.normal),
+    );
+    let (lu, lv) = (u.length(), v.length());
+    if !(lu > 0.0 && lv > 0.0) {
+        return None;
+    }
+    let centre = Vec3::from(grid.origin) + 0.5 * (u + v);
+    // The camera's plane: just short of the farthest first surface over a 5 x 5 sample of the
+    // grid (a room's ceiling, not a desk's or a block's top, nor the inside of an object over
+    // the centre); over open sky, past the scene's bounds.
+    let mut up_to = 0.0f32;
+    let mut open = false;
+    for k in 0..25 {
+        let (fu, fv) = ((k % 5) as f32 / 4.0, (k / 5) as f32 / 4.0);
+        let p = Vec3::from(grid.origin) + u * fu + v * fv + n * 1e-3 * lu.max(lv);
+        let ray = tracer_core::geometry::Ray::new(p, n);
+        match loaded.scene.closest_drawn(&ray, &loaded.setup.hidden) {
+            Some(hit) => up_to = up_to.max(hit.t),
+            None => open = true,
+        }
+    }
+    let up_to = if open || up_to <= 0.0 {
+        let b = &loaded.scene.bounds;
+        (b.max - centre).length() + (b.min - centre).length()
+    } else {
+        0.98 * up_to
+    };
+    let camera = Camera {
+        position: (centre + n * up_to).to_array(),
+        look_at: centre.to_array(),
+        up: v.to_array(),
+        fov_deg: 45.0,
+        projection: Projection::Orthographic,
+        width: Some(lu),
+    };
+    let (width, height) = if lu >= lv {
+        (
+            PLAN_PIXELS,
+            ((PLAN_PIXELS as f32 * lv / lu).round() as u32).max(8),
+        )
+    } else {
+        (
+            ((PLAN_PIXELS as f32 * lu / lv).round() as u32).max(8),
+            PLAN_PIXELS,
+        )
+    };
+    let setup = Setup {
+        camera,
+        ..loaded.setup.clone()
+    };
+    let settings = RenderSettings {
+        width,
+        height,
+        samples_per_pixel: 16,
+        integrator: IntegratorKind::Direct,
+        pixel_illuminance: false,
+        ..RenderSettings::default()
+    };
+    let (film, _) = render(&loaded.scene, &setup, &settings);
+    // In a left-handed scene the camera's picture has u to the left: mirror it to match the plan.
+    let basis = camera.basis(setup.handedness, width, height);
+    let o = Vec3::from(grid.origin);
+    let mirror = match (basis.project(o + 0.5 * v), basis.project(o + u + 0.5 * v)) {
+        (Some(a), Some(b)) => b.0 < a.0,
+        _ => false,
+    };
+    Some(Picture {
+        rgba: rgba(&film, mirror),
+        width,
+        height,
+        caption: format!(
+            "Rendered plan view: orthographic, {} {} across, from the grid's normal side (direct \
+             light, 16 samples per pixel)",
+            tracer_core::measure::rounding::format_reading(f64::from(lu), 0.0),
+            loaded.setup.unit.symbol()
+        ),
+    })
+}
+
+/// The lights grouped: one row per luminaire file and multiplier, one per point or spot light.
+fn schedule(setup: &Setup) -> Vec<ScheduleRow> {
+    let mut rows: Vec<(String, ScheduleRow)> = Vec::new();
+    for light in &setup.lights {
+        let placement = (light.position().to_array(), light.aim());
+        let (key, row) = match &light.kind {
+            LightKind::Luminaire(l) => {
+                let info = &l.luminaire.photometry.info;
+                let file = l.luminaire.file.display().to_string();
+                let label = l
+                    .luminaire
+                    .file
+                    .file_name()
+                    .map_or(file.clone(), |f| f.to_string_lossy().into_owned());
+                let label = if l.multiplier == 1.0 {
+                    label
+                } else {
+                    format!("{label} x {}", l.multiplier)
+                };
+                (
+                    format!("{file}|{}", l.multiplier),
+                    ScheduleRow {
+                        label,
+                        manufacturer: info.manufacturer.clone(),
+                        name: info.name.clone(),
+                        catalogue_number: info.catalogue_number.clone(),
+                        flux_lm: f64::from(light.flux_lm()),
+                        power_w: info.power_w,
+                        colour_rendering: info.colour_rendering.clone(),
+                        placements: Vec::new(),
+                    },
+                )
+            }
+            _ => (
+                format!("{}|{}", light.tag().name(), light.flux_lm()),
+                ScheduleRow {
+                    label: format!("{} light", light.tag().name()),
+                    manufacturer: None,
+                    name: None,
+                    catalogue_number: None,
+                    flux_lm: f64::from(light.flux_lm()),
+                    power_w: None,
+                    colour_rendering: None,
+                    placements: Vec::new(),
+                },
+            ),
+        };
+        match rows.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, r)) => r.placements.push(placement),
+            None => {
+                let mut row = row;
+                row.placements.push(placement);
+                rows.push((key, row));
+            }
+        }
+    }
+    rows.into_iter().map(|(_, r)| r).collect()
+}
+
+/// The least Ra the luminaire files give as a number (EULUMDAT's lamp data), if any does.
+fn least_ra(schedule: &[ScheduleRow]) -> Option<f64> {
+    schedule
+        .iter()
+        .filter_map(|r| r.colour_rendering.as_deref()?.trim().parse::<f64>().ok())
+        .reduce(f64::min)
+}
+
+/// Today's date (UTC), YYYY-MM-DD.
+fn today() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (y, m, d) = civil_from_days((secs / 86_400) as i64);
+    format!("{y:04}-{m:02}-{d:02}")
+}
+
+/// The proleptic Gregorian date of a day count from 1970-01-01 (Howard Hinnant's algorithm).
+fn civil_from_days(z: i64) -> (i64, u32, u32) {
+    let z = z + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = (doy - (153 * mp + 2) / 5 + 1) as u32;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 } as u32;
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    (y, m, d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn days_become_dates() {
+        assert_eq!(civil_from_days(0), (1970, 1, 1));
+        assert_eq!(civil_from_days(20_793), (2026, 12, 6));
+        assert_eq!(civil_from_days(11_016), (2000, 2, 29));
+    }
+}
