@@ -102,6 +102,8 @@ fn faces(dir: &Path, scene: &str) -> (f64, f64) {
         dir,
         [
             "measure".as_ref(),
+            "--precision".as_ref(),
+            "full".as_ref(),
             "-S".as_ref(),
             scene.as_ref(),
             "--gi".as_ref(),

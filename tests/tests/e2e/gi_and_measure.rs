@@ -31,6 +31,8 @@ fn measure_writes_the_csv_with_exact_direct_illuminance() {
             dir.path(),
             [
                 "measure".as_ref(),
+                "--precision".as_ref(),
+                "full".as_ref(),
                 "-S".as_ref(),
                 shp.as_os_str(),
                 "--gi".as_ref(),
@@ -256,6 +258,8 @@ fn measure_writes_json_with_statistics() {
         dir.path(),
         [
             "measure".as_ref(),
+            "--precision".as_ref(),
+            "full".as_ref(),
             "-S".as_ref(),
             shp.as_os_str(),
             "--json".as_ref(),

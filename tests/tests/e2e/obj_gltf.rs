@@ -91,6 +91,8 @@ fn measure_matches_inverse_square(dir: &Path, scene: &str) {
         dir,
         [
             "measure".as_ref(),
+            "--precision".as_ref(),
+            "full".as_ref(),
             "-S".as_ref(),
             scene.as_ref(),
             "--gi".as_ref(),

@@ -93,6 +93,19 @@ fn the_report_is_a_valid_pdf_whose_numbers_are_measures() {
     let measured: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
 
+    // The JSON's readings are rounded: three significant figures at most, no float noise.
+    for grid in measured["grids"].as_array().unwrap() {
+        for p in grid["points"].as_array().unwrap() {
+            let text = p["illuminance_lx"].to_string();
+            let digits = text
+                .trim_start_matches('-')
+                .replace('.', "")
+                .trim_start_matches('0')
+                .trim_end_matches('0')
+                .len();
+            assert!(digits <= 3, "{text} has {digits} significant digits");
+        }
+    }
     let Some(info) = poppler("pdfinfo", &pdf) else {
         return;
     };

@@ -295,6 +295,8 @@ fn a_sweep_of_three_light_positions_equals_three_renders() {
         );
         let mut args = vec![
             "measure",
+            "--precision",
+            "full",
             "--sidecar",
             sidecar.as_str(),
             "--json",
