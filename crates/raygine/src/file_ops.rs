@@ -141,6 +141,8 @@ pub enum DialogPurpose {
     RenderImage,
     /// Read a latitude-longitude `.hdr` or `.exr` map as the environment.
     EnvironmentMap,
+    /// Write the lighting report (PDF).
+    SaveReport,
 }
 
 impl DialogPurpose {
@@ -231,6 +233,7 @@ fn run_dialog(purpose: DialogPurpose, suggested: Option<&Path>) -> Option<PathBu
         }
         DialogPurpose::ExportExr => dialog.add_filter("OpenEXR image", &["exr"]).save_file(),
         DialogPurpose::SaveSidecar => dialog.add_filter("raygine sidecar", &["toml"]).save_file(),
+        DialogPurpose::SaveReport => dialog.add_filter("PDF report", &["pdf"]).save_file(),
         DialogPurpose::EnvironmentMap => dialog
             .add_filter("Environment map (latitude-longitude)", &["hdr", "exr"])
             .pick_file(),

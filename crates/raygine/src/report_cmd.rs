@@ -9,18 +9,60 @@ use crate::report_pdf::requirements::{
 use crate::report_pdf::{GridSection, Paper, Picture, Report, ScheduleRow, write_pdf};
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
+use std::path::Path;
 use std::time::{Duration, Instant};
 use tracer_core::display::DisplaySettings;
 use tracer_core::integrator::IntegratorKind;
 use tracer_core::light::LightKind;
 use tracer_core::measure::{Grid, GridResult, MeasureSettings, measure_grids};
 use tracer_core::render::{RenderSettings, render};
-use tracer_core::scene::{Camera, LoadedScene, Projection, Setup};
+use tracer_core::scene::{Camera, Projection, Scene, Setup};
 
 /// The scene view's width in pixels (its height follows the design's aspect, else 4:3).
 const VIEW_WIDTH: u32 = 800;
 /// A plan view's longer side in pixels.
 const PLAN_PIXELS: u32 = 480;
+
+/// What a report is made with, beside the scene.
+#[derive(Clone, Debug)]
+pub struct ReportOptions {
+    /// The scene's file as the cover names it.
+    pub scene_file: String,
+    pub measure: MeasureSettings,
+    /// Samples per pixel of the scene's view.
+    pub view_samples: u32,
+    pub paper: Paper,
+    pub requirements: Requirements,
+    pub requirements_source: String,
+    /// `--target-error`, %, for the cover.
+    pub target_error_pct: Option<f64>,
+}
+
+impl ReportOptions {
+    /// Options with raygine's requirements table, A4, and `samples` a point.
+    pub fn new(scene_file: String, integrator: IntegratorKind, samples: u32) -> Result<Self> {
+        Ok(ReportOptions {
+            scene_file,
+            measure: MeasureSettings {
+                integrator,
+                max_bounces: None,
+                samples,
+                time_limit: None,
+                target_error: None,
+            },
+            view_samples: if integrator == IntegratorKind::Direct {
+                16
+            } else {
+                64
+            },
+            paper: Paper::A4,
+            requirements: Requirements::parse(DEFAULT_REQUIREMENTS, DEFAULT_SOURCE)
+                .map_err(anyhow::Error::msg)?,
+            requirements_source: DEFAULT_SOURCE.to_owned(),
+            target_error_pct: None,
+        })
+    }
+}
 
 pub fn run(args: &ReportArgs) -> Result<()> {
     let started = Instant::now();
@@ -30,113 +72,40 @@ pub fn run(args: &ReportArgs) -> Result<()> {
     }
     let paper = Paper::from_name(&args.paper)
         .with_context(|| format!("--paper {}: a4 or letter", args.paper))?;
-    let (requirements, requirements_source) = match &args.requirements {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("{}: cannot read the requirements", path.display()))?;
-            let origin = path.display().to_string();
-            (
-                Requirements::parse(&text, &origin).map_err(anyhow::Error::msg)?,
-                origin,
-            )
-        }
-        None => (
-            Requirements::parse(DEFAULT_REQUIREMENTS, DEFAULT_SOURCE)
-                .map_err(anyhow::Error::msg)?,
-            DEFAULT_SOURCE.to_owned(),
-        ),
-    };
-    // Unknown tasks are errors before anything is measured.
-    for g in &loaded.setup.grids {
-        if let Some(task) = &g.task {
-            requirements
-                .activity(task)
-                .map_err(|e| anyhow::anyhow!("grid {}: {e}", g.name))?;
-        }
-    }
-    // Nothing is half-written: the PDF goes through a temporary file; a folder that is not
-    // there is said before the work starts.
-    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty())
-        && !dir.is_dir()
-    {
-        bail!(
-            "{}: the folder {} does not exist",
-            args.output.display(),
-            dir.display()
-        );
-    }
-    let pool = thread_pool(&args.scene)?;
     let samples = match (args.scene.samples, args.target_error) {
         (Some(n), _) => n,
         (None, Some(_)) => crate::measure_cmd::TARGET_ERROR_CAP,
         (None, None) => args.scene.samples_or(16),
     };
-    let settings = MeasureSettings {
-        integrator: args.scene.integrator,
-        max_bounces: args.scene.max_bounces,
-        samples,
-        time_limit: args.scene.time_limit.map(Duration::from_secs_f64),
-        target_error: args.target_error.map(|pct| pct / 100.0),
-    };
-    let mf = f64::from(loaded.setup.maintenance_factor);
-    let results: Vec<GridResult> = pool
-        .install(|| measure_grids(&loaded.scene, &loaded.setup, &settings))
-        .into_iter()
-        .map(|r| r.scaled(mf))
-        .collect();
-    let done = results.first().map_or(0, |r| r.samples);
-    let view_samples =
-        args.view_samples
-            .unwrap_or(if args.scene.integrator == IntegratorKind::Direct {
-                16
-            } else {
-                64
-            });
-    let view = pool.install(|| scene_view(&loaded, args.scene.integrator, view_samples));
-    let grids: Vec<GridSection> = loaded
-        .setup
-        .grids
-        .iter()
-        .zip(&results)
-        .map(|(grid, result)| GridSection {
-            grid: grid.clone(),
-            result: result.clone(),
-            plan_view: pool.install(|| plan_view(&loaded, grid)),
-        })
-        .collect();
-    let schedule = schedule(&loaded.setup);
-    let ra = least_ra(&schedule);
-    let checks: Vec<GridCheck> = grids
-        .iter()
-        .filter_map(|g| {
-            let task = g.grid.task.as_deref()?;
-            let activity = requirements.activity(task).ok()?;
-            Some(check(&g.result, activity, ra))
-        })
-        .collect();
-    let report = Report {
-        title: loaded.scene.name.clone(),
-        scene_file: args
-            .scene
-            .scene_path
-            .as_ref()
-            .map_or("the built-in Cornell box".to_owned(), |p| {
-                p.display().to_string()
-            }),
-        date: today(),
-        version: env!("CARGO_PKG_VERSION").to_owned(),
-        unit: loaded.setup.unit.symbol().to_owned(),
-        integrator: settings.integrator.label().to_owned(),
-        samples: done,
-        reached_error: reached_error(&results, args.target_error),
-        maintenance_factor: mf,
-        paper,
-        view,
-        grids,
-        schedule,
-        checks,
-        requirements_source,
-    };
+    let scene_file = args
+        .scene
+        .scene_path
+        .as_ref()
+        .map_or("the built-in Cornell box".to_owned(), |p| {
+            p.display().to_string()
+        });
+    let mut options = ReportOptions::new(scene_file, args.scene.integrator, samples)?;
+    options.measure.max_bounces = args.scene.max_bounces;
+    options.measure.time_limit = args.scene.time_limit.map(Duration::from_secs_f64);
+    options.measure.target_error = args.target_error.map(|pct| pct / 100.0);
+    options.target_error_pct = args.target_error;
+    options.paper = paper;
+    if let Some(v) = args.view_samples {
+        options.view_samples = v;
+    }
+    if let Some(path) = &args.requirements {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read the requirements", path.display()))?;
+        let origin = path.display().to_string();
+        options.requirements = Requirements::parse(&text, &origin).map_err(anyhow::Error::msg)?;
+        options.requirements_source = origin;
+    }
+    check_tasks(&loaded.setup, &options.requirements)?;
+    // Nothing is half-written: the PDF goes through a temporary file; a folder that is not
+    // there is said before the work starts.
+    check_folder(&args.output)?;
+    let pool = thread_pool(&args.scene)?;
+    let report = pool.install(|| build(&loaded.scene, &loaded.setup, &options))?;
     let pdf = write_pdf(&report).map_err(anyhow::Error::msg)?;
     tracer_core::export::write_bytes(&args.output, &pdf)
         .with_context(|| format!("{}: cannot write the report", args.output.display()))?;
@@ -149,12 +118,117 @@ pub fn run(args: &ReportArgs) -> Result<()> {
         );
     }
     println!(
-        "wrote {} ({} grids, {done} samples a point, {:.1} s)",
+        "wrote {} ({} grids, {} samples a point, {:.1} s)",
         args.output.display(),
         report.grids.len(),
+        report.samples,
         started.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// Every grid's task is in `requirements` (else the error lists the known keys).
+pub fn check_tasks(setup: &Setup, requirements: &Requirements) -> Result<()> {
+    for g in &setup.grids {
+        if let Some(task) = &g.task {
+            requirements
+                .activity(task)
+                .map_err(|e| anyhow::anyhow!("grid {}: {e}", g.name))?;
+        }
+    }
+    Ok(())
+}
+
+/// The PDF's folder exists.
+pub fn check_folder(output: &Path) -> Result<()> {
+    if let Some(dir) = output.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        bail!(
+            "{}: the folder {} does not exist",
+            output.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// Measures, renders and assembles the report (on the current rayon pool).
+pub fn build(scene: &Scene, setup: &Setup, options: &ReportOptions) -> Result<Report> {
+    check_tasks(setup, &options.requirements)?;
+    let mf = f64::from(setup.maintenance_factor);
+    let results: Vec<GridResult> = measure_grids(scene, setup, &options.measure)
+        .into_iter()
+        .map(|r| r.scaled(mf))
+        .collect();
+    let done = results.first().map_or(0, |r| r.samples);
+    let integrator = options.measure.integrator;
+    let view = scene_view(scene, setup, integrator, options.view_samples);
+    let grids: Vec<GridSection> = setup
+        .grids
+        .iter()
+        .zip(&results)
+        .map(|(grid, result)| GridSection {
+            grid: grid.clone(),
+            result: result.clone(),
+            plan_view: plan_view(scene, setup, grid),
+        })
+        .collect();
+    let schedule = schedule(setup);
+    let ra = least_ra(&schedule);
+    let checks: Vec<GridCheck> = grids
+        .iter()
+        .filter_map(|g| {
+            let task = g.grid.task.as_deref()?;
+            let activity = options.requirements.activity(task).ok()?;
+            Some(check(&g.result, activity, ra))
+        })
+        .collect();
+    Ok(Report {
+        title: scene.name.clone(),
+        scene_file: options.scene_file.clone(),
+        date: today(),
+        version: env!("CARGO_PKG_VERSION").to_owned(),
+        unit: setup.unit.symbol().to_owned(),
+        integrator: integrator.label().to_owned(),
+        samples: done,
+        reached_error: reached_error(&results, options.target_error_pct),
+        maintenance_factor: mf,
+        paper: options.paper,
+        view,
+        grids,
+        schedule,
+        checks,
+        requirements_source: options.requirements_source.clone(),
+    })
+}
+
+/// Builds the report and writes the PDF to `output` (atomically); a line for the user.
+pub fn build_and_write(
+    scene: &Scene,
+    setup: &Setup,
+    options: &ReportOptions,
+    output: &Path,
+) -> Result<String> {
+    check_folder(output)?;
+    let report = build(scene, setup, options)?;
+    let pdf = write_pdf(&report).map_err(anyhow::Error::msg)?;
+    tracer_core::export::write_bytes(output, &pdf)
+        .with_context(|| format!("{}: cannot write the report", output.display()))?;
+    let verdicts: Vec<String> = report
+        .checks
+        .iter()
+        .map(|c| format!("{} {}", c.grid, if c.passes() { "PASS" } else { "FAIL" }))
+        .collect();
+    Ok(if verdicts.is_empty() {
+        format!("wrote the report {}", output.display())
+    } else {
+        format!(
+            "wrote the report {} ({})",
+            output.display(),
+            verdicts.join(", ")
+        )
+    })
 }
 
 /// "worst point 1.9 % of its reading" (with the floor `measure --target-error` uses: 10 % of
@@ -184,9 +258,13 @@ fn reached_error(results: &[GridResult], target_pct: Option<f64>) -> String {
 }
 
 /// The scene's camera, rendered and mapped for display (auto exposure), RGBA8.
-fn scene_view(loaded: &LoadedScene, integrator: IntegratorKind, samples: u32) -> Option<Picture> {
-    let aspect = loaded
-        .scene
+fn scene_view(
+    scene: &Scene,
+    setup: &Setup,
+    integrator: IntegratorKind,
+    samples: u32,
+) -> Option<Picture> {
+    let aspect = scene
         .design
         .resolution
         .map_or(4.0 / 3.0, |[w, h]| w as f32 / h.max(1) as f32);
@@ -199,7 +277,7 @@ fn scene_view(loaded: &LoadedScene, integrator: IntegratorKind, samples: u32) ->
         pixel_illuminance: false,
         ..RenderSettings::default()
     };
-    let (film, _) = render(&loaded.scene, &loaded.setup, &settings);
+    let (film, _) = render(scene, setup, &settings);
     let picture = rgba(&film, false);
     Some(Picture {
         rgba: picture,
@@ -208,7 +286,7 @@ fn scene_view(loaded: &LoadedScene, integrator: IntegratorKind, samples: u32) ->
         caption: format!(
             "The scene's camera ({}): {}, {samples} samples per pixel, automatic exposure, \
              not denoised",
-            loaded.setup.camera.projection,
+            setup.camera.projection,
             integrator.name()
         ),
     })
@@ -237,7 +315,7 @@ fn rgba(film: &tracer_core::render::Film, mirror: bool) -> Vec<u8> {
 /// The grid's area seen orthographically from its normal's side (direct light, 16 samples): u
 /// to the right and v up, as its plan is drawn. The camera stands just short of the first
 /// surface above the grid's centre, so a ceiling does not hide the floor.
-fn plan_view(loaded: &LoadedScene, grid: &Grid) -> Option<Picture> {
+fn plan_view(scene: &Scene, base: &Setup, grid: &Grid) -> Option<Picture> {
     let (u, v, n) = (
         Vec3::from(grid.u),
         Vec3::from(grid.v),
@@ -257,13 +335,13 @@ fn plan_view(loaded: &LoadedScene, grid: &Grid) -> Option<Picture> {
         let (fu, fv) = ((k % 5) as f32 / 4.0, (k / 5) as f32 / 4.0);
         let p = Vec3::from(grid.origin) + u * fu + v * fv + n * 1e-3 * lu.max(lv);
         let ray = tracer_core::geometry::Ray::new(p, n);
-        match loaded.scene.closest_drawn(&ray, &loaded.setup.hidden) {
+        match scene.closest_drawn(&ray, &base.hidden) {
             Some(hit) => up_to = up_to.max(hit.t),
             None => open = true,
         }
     }
     let up_to = if open || up_to <= 0.0 {
-        let b = &loaded.scene.bounds;
+        let b = &scene.bounds;
         (b.max - centre).length() + (b.min - centre).length()
     } else {
         0.98 * up_to
@@ -289,7 +367,7 @@ fn plan_view(loaded: &LoadedScene, grid: &Grid) -> Option<Picture> {
     };
     let setup = Setup {
         camera,
-        ..loaded.setup.clone()
+        ..base.clone()
     };
     let settings = RenderSettings {
         width,
@@ -299,7 +377,7 @@ fn plan_view(loaded: &LoadedScene, grid: &Grid) -> Option<Picture> {
         pixel_illuminance: false,
         ..RenderSettings::default()
     };
-    let (film, _) = render(&loaded.scene, &setup, &settings);
+    let (film, _) = render(scene, &setup, &settings);
     // In a left-handed scene the camera's picture has u to the left: mirror it to match the plan.
     let basis = camera.basis(setup.handedness, width, height);
     let o = Vec3::from(grid.origin);
@@ -315,7 +393,7 @@ fn plan_view(loaded: &LoadedScene, grid: &Grid) -> Option<Picture> {
             "Rendered plan view: orthographic, {} {} across, from the grid's normal side (direct \
              light, 16 samples per pixel)",
             tracer_core::measure::rounding::format_reading(f64::from(lu), 0.0),
-            loaded.setup.unit.symbol()
+            base.unit.symbol()
         ),
     })
 }

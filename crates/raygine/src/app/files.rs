@@ -158,6 +158,7 @@ impl RaygineApp {
             DialogPurpose::Open => base,
             DialogPurpose::ExportPng | DialogPurpose::RenderImage => base.with_extension("png"),
             DialogPurpose::ExportExr => base.with_extension("exr"),
+            DialogPurpose::SaveReport => base.with_extension("pdf"),
             DialogPurpose::SaveSidecar => sidecar_path(&base),
             // The map shown, else the scene's folder.
             DialogPurpose::EnvironmentMap => match &self.doc.setup.environment {
@@ -192,7 +193,37 @@ impl RaygineApp {
             DialogPurpose::SaveSidecar => self.save_sidecar(&ctx, path),
             DialogPurpose::RenderImage => self.start_render_image(path),
             DialogPurpose::EnvironmentMap => self.edit(Edit::LoadEnvironmentMap(path)),
+            DialogPurpose::SaveReport => self.save_pdf_report(&ctx, path),
         }
+    }
+
+    /// Writes the lighting report (PDF) in the background: the grids measured anew with the
+    /// viewer's light transport (64 samples a point in the global-illumination modes, 16 in
+    /// direct), the current camera's view, the schedule and the requirements check. The UI
+    /// goes on; the banner says where it went, or why not.
+    pub fn save_pdf_report(&mut self, ctx: &egui::Context, path: PathBuf) {
+        let scene = std::sync::Arc::clone(&self.doc.scene);
+        let setup = self.doc.setup.clone();
+        let integrator = self.render.integrator;
+        let samples = if integrator == tracer_core::integrator::IntegratorKind::Direct {
+            16
+        } else {
+            64
+        };
+        let scene_file = self
+            .doc
+            .path
+            .as_ref()
+            .map_or("the built-in Cornell box".to_owned(), |p| {
+                p.display().to_string()
+            });
+        self.notice = Some(format!("writing the report {} …", path.display()));
+        self.writes.push(start_write(ctx, move || {
+            let options = crate::report_cmd::ReportOptions::new(scene_file, integrator, samples)
+                .map_err(|e| format!("{e:#}"))?;
+            crate::report_cmd::build_and_write(&scene, &setup, &options, &path)
+                .map_err(|e| format!("{e:#}"))
+        }));
     }
 
     /// Writes the image as displayed (display mapping applied) to `path`.

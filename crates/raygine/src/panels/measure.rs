@@ -175,10 +175,10 @@ pub fn measure_ui(
                 }
             });
             if ui
-                .button("Save report")
+                .button("Save view + CSV")
                 .on_hover_text(
                     "The view with the grids, their statistics and legend as a PNG, and the \
-                     CSV beside it",
+                     CSV beside it (File > Save report… writes the PDF report)",
                 )
                 .clicked()
                 && let Some(r) = &readings

@@ -170,6 +170,17 @@ fn file_menu_ui(ui: &mut egui::Ui, recent: &[PathBuf], out: &mut Commands) {
         out.push(Command::PromptPath(DialogPurpose::ExportExr));
         ui.close();
     }
+    if ui
+        .button("Save report…")
+        .on_hover_text(
+            "A lighting report (PDF): settings, a view, each grid's plan and statistics, the \
+             luminaire schedule and the requirements check; written in the background",
+        )
+        .clicked()
+    {
+        out.push(Command::PromptPath(DialogPurpose::SaveReport));
+        ui.close();
+    }
     if ui.button("Render image…").clicked() {
         out.push(Command::OpenRenderImageForm);
         ui.close();

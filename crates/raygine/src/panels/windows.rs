@@ -65,6 +65,7 @@ fn title(purpose: DialogPurpose) -> &'static str {
         DialogPurpose::SaveSidecar => "Save scene settings",
         DialogPurpose::RenderImage => "Render image to",
         DialogPurpose::EnvironmentMap => "Load environment map",
+        DialogPurpose::SaveReport => "Save report (PDF)",
     }
 }
 

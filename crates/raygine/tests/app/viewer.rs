@@ -979,11 +979,40 @@ fn save_report_writes_the_csv_and_waits_for_the_picture() {
         app.measure().readings().is_some_and(|r| r.samples >= 16)
     });
     h.run_steps(2);
-    h.get_by_role_and_label(Role::Button, "Save report").click();
+    h.get_by_role_and_label(Role::Button, "Save view + CSV")
+        .click();
     h.step();
     let csv = std::fs::read_to_string(dir.join("box.grids.csv")).unwrap();
     assert!(csv.starts_with("grid,i,j,x,y,z,illuminance_lx,std_error_lx\nworkplane1,"));
     assert!(h.state().report_pending() || h.state().notice().is_some());
+}
+
+/// File > Save report… writes the PDF in the background: the UI keeps stepping, the banner
+/// names the file and each grid's verdict, and the file is a PDF.
+#[test]
+fn save_report_writes_a_pdf_in_the_background() {
+    let (mut h, _mirror) = viewer();
+    let dir = scratch_dir("pdf-report");
+    h.state_mut().set_document_path(dir.join("box.shp"));
+    open_measure(&mut h, true);
+    h.get_by_role_and_label(Role::Button, "Add work plane")
+        .click();
+    h.step();
+    let pdf = dir.join("box.pdf");
+    // What the path window's Save does once the dialog (or the typed path) gave the file.
+    h.state_mut()
+        .run_path_action(raygine::file_ops::DialogPurpose::SaveReport, pdf.clone());
+    // The UI keeps stepping while a background job writes it.
+    step_until(&mut h, "the report", |app| {
+        app.notice().is_some_and(|n| n.contains("wrote the report"))
+    });
+    let notice = h.state().notice().unwrap_or_default().to_owned();
+    assert!(
+        notice.contains("wrote the report") && notice.contains("box.pdf"),
+        "{notice}"
+    );
+    let bytes = std::fs::read(&pdf).unwrap();
+    assert!(bytes.starts_with(b"%PDF-"), "not a PDF");
 }
 
 // ---------------------------------------------------------------------------------------------
