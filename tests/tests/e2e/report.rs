@@ -215,4 +215,32 @@ fn bad_tasks_and_unwritable_paths_are_errors_and_write_nothing() {
     assert!(!run.success());
     assert!(run.stderr.contains("does not exist"), "{}", run.stderr);
     assert!(!nowhere.exists());
+    // Paper sizes: letter is 612 x 792 pt; anything else is refused.
+    let letter = dir.path().join("letter.pdf");
+    let run = |paper: &str, out: &Path| {
+        raygine_in(
+            dir.path(),
+            [
+                "report".as_ref(),
+                "-S".as_ref(),
+                shp.as_os_str(),
+                "-o".as_ref(),
+                out.as_os_str(),
+                "--paper".as_ref(),
+                paper.as_ref(),
+                "--view-samples".as_ref(),
+                "1".as_ref(),
+            ],
+        )
+    };
+    let a5 = run("a5", &letter);
+    assert!(
+        !a5.success() && a5.stderr.contains("a4 or letter"),
+        "{}",
+        a5.stderr
+    );
+    run("letter", &letter).assert_ok();
+    if let Some(info) = poppler("pdfinfo", &letter) {
+        assert!(info.contains("612 x 792 pts (letter)"), "{info}");
+    }
 }
