@@ -234,6 +234,7 @@ impl RaygineApp {
             loading: self.loading.as_ref(),
             p95_frame_ms: self.p95_frame_ms(),
             denoised: self.worker.denoised_shown().map(|p| (p.samples, p.secs)),
+            writing: !self.writes.is_empty(),
         };
         crate::panels::status_bar(ui, status, out);
     }

@@ -21,6 +21,8 @@ pub struct StatusBar<'a> {
     /// The viewport shows a denoised picture: of how many samples per pixel, made in how many
     /// seconds.
     pub denoised: Option<(u32, f64)>,
+    /// A file is being written in the background (an export, the sidecar, the PDF report).
+    pub writing: bool,
 }
 
 /// One line at the bottom; what does not fit is cut off at the window's edge. It never wraps:
@@ -99,6 +101,15 @@ pub fn status_bar(ui: &mut egui::Ui, s: StatusBar<'_>, out: &mut Commands) {
                 {
                     out.push(Command::CancelLoad);
                 }
+            }
+            if s.writing {
+                ui.separator();
+                ui.spinner();
+                ui.label("writing a file…").on_hover_text(
+                    "An export or the PDF report is being written in the background (a report \
+                     measures its grids and renders its views first); the banner says when it \
+                     is done",
+                );
             }
             if let Some(p95) = s.p95_frame_ms {
                 ui.separator();

@@ -122,7 +122,7 @@ pub fn draw(
         y_next + 18.0,
         7.0,
         GREY,
-        &format!("{} lx", trim(colours.max)),
+        &format!("{} lx", format_reading(f64::from(colours.max), 0.0)),
     );
     y_next + 22.0 - y
 }
