@@ -181,7 +181,7 @@ pub fn build(scene: &Scene, setup: &Setup, options: &ReportOptions) -> Result<Re
         .filter_map(|g| {
             let task = g.grid.task.as_deref()?;
             let activity = options.requirements.activity(task).ok()?;
-            Some(check(&g.result, activity, ra))
+            Some(check(&g.result, activity, ra, &g.grid.observers))
         })
         .collect();
     Ok(Report {

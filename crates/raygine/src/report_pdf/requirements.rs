@@ -119,8 +119,13 @@ impl GridCheck {
 }
 
 /// Checks `result` (maintained values) against `activity`; `ra` is the least colour rendering
-/// index the luminaires' files give (None: not given).
-pub fn check(result: &GridResult, activity: &Activity, ra: Option<f64>) -> GridCheck {
+/// index the luminaires' files give (None: not given); `observers` are the grid's (for UGR).
+pub fn check(
+    result: &GridResult,
+    activity: &Activity,
+    ra: Option<f64>,
+    observers: &[String],
+) -> GridCheck {
     let s = result.statistics();
     let [se_min, se_avg, _] = result.statistics_std_errors();
     let rel = |v: f64, se: f64| if v > 0.0 { se / v } else { 0.0 };
@@ -141,8 +146,13 @@ pub fn check(result: &GridResult, activity: &Activity, ra: Option<f64>) -> GridC
     ];
     let mut not_checked = Vec::new();
     if let Some(limit) = activity.ugr_l {
+        let who = if observers.is_empty() {
+            String::new()
+        } else {
+            format!(", observers {}", observers.join(", "))
+        };
         not_checked.push(format!(
-            "UGR (limit {limit}): not computed, raygine has no glare rating yet"
+            "UGR (limit {limit}{who}): not computed, raygine has no glare rating yet"
         ));
     }
     match (activity.ra, ra) {
@@ -218,17 +228,27 @@ mod tests {
     fn a_grid_built_to_pass_passes_and_one_built_to_fail_fails() {
         let r = Requirements::parse(DEFAULT_REQUIREMENTS, "table").unwrap();
         let office = r.activity("office-writing").unwrap();
-        let pass = check(&grid(&[500.0, 600.0, 700.0], 5.0), office, Some(85.0));
+        let pass = check(
+            &grid(&[500.0, 600.0, 700.0], 5.0),
+            office,
+            Some(85.0),
+            &["desk".into()],
+        );
         assert!(pass.passes(), "{pass:?}");
         assert!(pass.lines.iter().all(Line::certain));
         assert!((pass.lines[0].margin() - 100.0).abs() < 1e-9);
         assert_eq!(pass.not_checked.len(), 1, "UGR is not computed");
-        let fail = check(&grid(&[400.0, 450.0, 500.0], 5.0), office, None);
+        assert!(
+            pass.not_checked[0].contains("observers desk"),
+            "{:?}",
+            pass.not_checked
+        );
+        let fail = check(&grid(&[400.0, 450.0, 500.0], 5.0), office, None, &[]);
         assert!(!fail.passes());
         assert!(!fail.lines[0].passes() && fail.lines[0].certain());
         assert!(fail.not_checked.iter().any(|n| n.starts_with("Ra")));
         // A margin within its uncertainty is said to be so.
-        let close = check(&grid(&[499.0, 501.0, 502.0], 50.0), office, None);
+        let close = check(&grid(&[499.0, 501.0, 502.0], 50.0), office, None, &[]);
         assert!(!close.lines[0].certain());
     }
 }

@@ -429,3 +429,25 @@ fn bad_files_are_refused_with_file_line_and_reason() {
         None,
     );
 }
+
+/// What the files say about their luminaire, for the report's schedule: IES keywords and
+/// input watts; EULUMDAT's manufacturer, name, number, lamp wattage and colour rendering.
+#[test]
+fn files_name_their_luminaire_and_its_power() {
+    let ies_text = ies(&[0.0, 90.0], &[0.0], |_, _| 100.0).replace(
+        "[MANUFAC] tests\n",
+        "[MANUFAC] tests\n[LUMINAIRE] Downlight 12 W\n[LUMCAT] DL-12\n",
+    );
+    let p = parse(&ies_text, "a.ies");
+    assert_eq!(p.info.manufacturer.as_deref(), Some("tests"));
+    assert_eq!(p.info.name.as_deref(), Some("Downlight 12 W"));
+    assert_eq!(p.info.catalogue_number.as_deref(), Some("DL-12"));
+    assert_eq!(p.info.power_w, Some(50.0), "the input watts");
+    assert_eq!(p.info.colour_rendering, None);
+    let p = parse(&ldt(1, 24, &[0.0, 90.0, 180.0], |_, _| 100.0), "a.ldt");
+    assert_eq!(p.info.manufacturer.as_deref(), Some("raygine tests"));
+    assert_eq!(p.info.name.as_deref(), Some("luminaire"));
+    assert_eq!(p.info.catalogue_number.as_deref(), Some("L-1"));
+    assert_eq!(p.info.power_w, Some(20.0), "the lamp set's wattage");
+    assert_eq!(p.info.colour_rendering.as_deref(), Some("80"));
+}
