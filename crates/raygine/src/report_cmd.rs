@@ -36,6 +36,9 @@ pub struct ReportOptions {
     pub requirements_source: String,
     /// `--target-error`, %, for the cover.
     pub target_error_pct: Option<f64>,
+    /// Maintained readings already measured for these grids (the viewer's), used instead of
+    /// measuring again when they are one per grid, in order.
+    pub measured: Option<Vec<GridResult>>,
 }
 
 impl ReportOptions {
@@ -60,6 +63,7 @@ impl ReportOptions {
                 .map_err(anyhow::Error::msg)?,
             requirements_source: DEFAULT_SOURCE.to_owned(),
             target_error_pct: None,
+            measured: None,
         })
     }
 }
@@ -157,10 +161,19 @@ pub fn check_folder(output: &Path) -> Result<()> {
 pub fn build(scene: &Scene, setup: &Setup, options: &ReportOptions) -> Result<Report> {
     check_tasks(setup, &options.requirements)?;
     let mf = f64::from(setup.maintenance_factor);
-    let results: Vec<GridResult> = measure_grids(scene, setup, &options.measure)
-        .into_iter()
-        .map(|r| r.scaled(mf))
-        .collect();
+    let fits = |m: &Vec<GridResult>| {
+        m.len() == setup.grids.len()
+            && m.iter()
+                .zip(&setup.grids)
+                .all(|(r, g)| r.name == g.name && r.points.len() == g.point_count())
+    };
+    let results: Vec<GridResult> = match options.measured.as_ref().filter(|m| fits(m)) {
+        Some(m) => m.clone(),
+        None => measure_grids(scene, setup, &options.measure)
+            .into_iter()
+            .map(|r| r.scaled(mf))
+            .collect(),
+    };
     let done = results.first().map_or(0, |r| r.samples);
     let integrator = options.measure.integrator;
     let view = scene_view(scene, setup, integrator, options.view_samples);

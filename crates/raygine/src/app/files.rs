@@ -197,10 +197,11 @@ impl RaygineApp {
         }
     }
 
-    /// Writes the lighting report (PDF) in the background: the grids measured anew with the
-    /// viewer's light transport (64 samples a point in the global-illumination modes, 16 in
-    /// direct), the current camera's view, the schedule and the requirements check. The UI
-    /// goes on; the banner says where it went, or why not.
+    /// Writes the lighting report (PDF) in the background: the grids' readings as the Measure
+    /// section has them (else measured anew with the viewer's light transport, 64 samples a
+    /// point in the global-illumination modes, 16 in direct), the current camera's view, the
+    /// schedule and the requirements check. The UI goes on; the banner says where it went, or
+    /// why not.
     pub fn save_pdf_report(&mut self, ctx: &egui::Context, path: PathBuf) {
         let scene = std::sync::Arc::clone(&self.doc.scene);
         let setup = self.doc.setup.clone();
@@ -217,10 +218,18 @@ impl RaygineApp {
             .map_or("the built-in Cornell box".to_owned(), |p| {
                 p.display().to_string()
             });
+        // Illuminance readings (not daylight factors) of this setup's grids, if measured.
+        let measured = self
+            .measure
+            .readings()
+            .filter(|r| !r.daylight_factor && r.error.is_none())
+            .map(|r| r.results);
         self.notice = Some(format!("writing the report {} …", path.display()));
         self.writes.push(start_write(ctx, move || {
-            let options = crate::report_cmd::ReportOptions::new(scene_file, integrator, samples)
-                .map_err(|e| format!("{e:#}"))?;
+            let mut options =
+                crate::report_cmd::ReportOptions::new(scene_file, integrator, samples)
+                    .map_err(|e| format!("{e:#}"))?;
+            options.measured = measured;
             crate::report_cmd::build_and_write(&scene, &setup, &options, &path)
                 .map_err(|e| format!("{e:#}"))
         }));
