@@ -3,9 +3,6 @@
 
 use crate::cli::ReportArgs;
 use crate::cli_support::{load_scene, map_film_rgb, thread_pool};
-use crate::report_pdf::requirements::{
-    DEFAULT_REQUIREMENTS, DEFAULT_SOURCE, GridCheck, Requirements, check,
-};
 use crate::report_pdf::{GridSection, Paper, Picture, Report, ScheduleRow, write_pdf};
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
@@ -14,6 +11,9 @@ use std::time::{Duration, Instant};
 use tracer_core::display::DisplaySettings;
 use tracer_core::integrator::IntegratorKind;
 use tracer_core::light::LightKind;
+use tracer_core::measure::requirements::{
+    DEFAULT_REQUIREMENTS, DEFAULT_SOURCE, GridCheck, Requirements, check,
+};
 use tracer_core::measure::{Grid, GridResult, MeasureSettings, measure_grids};
 use tracer_core::render::{RenderSettings, render};
 use tracer_core::scene::{Camera, Projection, Scene, Setup};

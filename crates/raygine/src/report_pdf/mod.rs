@@ -8,12 +8,11 @@
 
 pub mod canvas;
 mod plan;
-pub mod requirements;
 
 use canvas::{BLACK, Canvas, GREEN, GREY, LIGHT, RED};
 use krilla::Document;
 use krilla::page::PageSettings;
-use requirements::GridCheck;
+use tracer_core::measure::requirements::GridCheck;
 use tracer_core::measure::rounding::{format_reading, format_std_error};
 use tracer_core::measure::{Grid, GridResult};
 

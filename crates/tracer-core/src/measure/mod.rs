@@ -8,6 +8,7 @@ mod grid;
 pub mod isolux;
 pub mod partial;
 pub mod placement;
+pub mod requirements;
 pub mod rounding;
 mod sensors;
 

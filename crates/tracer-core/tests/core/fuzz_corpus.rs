@@ -95,6 +95,7 @@ fn replay(data: &[u8], scene: &Scene) {
             Some(film)
         );
     }
+    replay_requirements(data);
     if let Ok(text) = std::str::from_utf8(data)
         && let Ok(sidecar) = Sidecar::parse(text, Path::new("fuzz.raygine.toml"))
     {
@@ -110,6 +111,40 @@ fn replay(data: &[u8], scene: &Scene) {
         let _ = render(scene, &setup, &settings);
         let _ = Sidecar::from_setup(scene, &setup).to_toml();
     }
+}
+
+/// What the `requirements` target does with `data`.
+fn replay_requirements(data: &[u8]) {
+    use tracer_core::measure::requirements::{Requirements, check};
+    use tracer_core::measure::{GridResult, PointResult};
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(table) = Requirements::parse(text, "fuzz.toml") else {
+        return;
+    };
+    let grid = GridResult {
+        name: "g".into(),
+        normal: glam::Vec3::Y,
+        points: [120.0, 480.0, 0.0]
+            .iter()
+            .map(|&e| PointResult {
+                i: 0,
+                j: 0,
+                position: glam::Vec3::ZERO,
+                illuminance_lx: e,
+                std_error_lx: 3.0,
+                buried: false,
+            })
+            .collect(),
+        samples: 4,
+        rays: 0,
+    };
+    for a in &table.activities {
+        assert!(table.activity(&a.key).is_ok());
+        let _ = check(&grid, a, Some(80.0), &["o".into()]).passes();
+    }
+    let _ = table.activity("no such key");
 }
 
 /// What the `obj` and `gltf` targets do with `data`.
@@ -210,8 +245,20 @@ fn saved_fuzz_inputs_never_panic_or_hang() {
 #[test]
 fn every_target_has_a_corpus() {
     for target in [
-        "shp", "brs", "sidecar", "ies", "ldt", "atr", "prb", "lgt", "cam", "obj", "gltf", "part",
+        "shp",
+        "brs",
+        "sidecar",
+        "ies",
+        "ldt",
+        "atr",
+        "prb",
+        "lgt",
+        "cam",
+        "obj",
+        "gltf",
+        "part",
         "envmap",
+        "requirements",
     ] {
         let dir = fuzz_dir().join("corpus").join(target);
         let count = fs::read_dir(&dir).map(|d| d.count()).unwrap_or(0);

@@ -2,8 +2,8 @@
 //! against its activity: the maintained average illuminance and the uniformity, each with its
 //! margin and whether the margin is larger than its uncertainty (two standard errors).
 
+use super::GridResult;
 use serde::Deserialize;
-use tracer_core::measure::GridResult;
 
 /// The table shipped with raygine (EN 12464-1 rows with their sources).
 pub const DEFAULT_REQUIREMENTS: &str =
@@ -179,8 +179,8 @@ pub fn check(
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
     use super::*;
+    use crate::measure::PointResult;
     use glam::Vec3;
-    use tracer_core::measure::PointResult;
 
     fn grid(values: &[f64], se: f64) -> GridResult {
         GridResult {
