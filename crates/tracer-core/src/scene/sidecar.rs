@@ -10,7 +10,9 @@
 //! [camera]
 //! position = [278.0, 273.0, 800.0]
 //! look_at = [278.0, 273.0, -280.0]
-//! fov_deg = 40.0
+//! fov_deg = 40.0               # vertical; a fisheye's across its circle, at most 180
+//! projection = "perspective"   # fisheye-equidistant, fisheye-equisolid, hemispherical,
+//!                              # equirectangular, orthographic (with width = scene units)
 //!
 //! [[lights]]
 //! position = [278.0, 548.7, -279.5]

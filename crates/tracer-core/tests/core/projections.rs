@@ -240,7 +240,7 @@ fn inside(camera: &Camera, w: u32, h: u32, x: u32, y: u32) -> bool {
 fn reads_uniformly(film: &Film, camera: &Camera, exact: f64, skip_rows: u32, what: &str) {
     let (w, h) = (film.width, film.height);
     let basis = camera.basis(Handedness::Right, w, h);
-    let (mut sum, mut n) = (0.0, 0);
+    let (mut sum, mut var, mut n) = (0.0, 0.0, 0);
     for y in 0..h {
         for x in 0..w {
             let i = film.index(x, y);
@@ -261,11 +261,13 @@ fn reads_uniformly(film: &Film, camera: &Camera, exact: f64, skip_rows: u32, wha
                 "{what}: pixel ({x}, {y}) reads {l} ± {se}, exact {exact}"
             );
             sum += l;
+            var += se * se;
             n += 1;
         }
     }
     let mean = sum / f64::from(n);
-    println!("{what}: {n} pixels inside, mean {mean:.3} (exact {exact})");
+    let se = var.sqrt() / f64::from(n);
+    println!("{what}: {n} pixels inside, mean {mean:.3} ± {se:.3} (exact {exact})");
     assert!(
         (mean / exact - 1.0).abs() < 0.01,
         "{what}: mean {mean} vs {exact}"
