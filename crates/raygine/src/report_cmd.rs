@@ -131,9 +131,24 @@ pub fn run(args: &ReportArgs) -> Result<()> {
     Ok(())
 }
 
-/// Every grid's task is in `requirements` (else the error lists the known keys).
+/// Every grid's task is in `requirements` (else the error lists the known keys), and every
+/// observer it names is in the sidecar.
 pub fn check_tasks(setup: &Setup, requirements: &Requirements) -> Result<()> {
     for g in &setup.grids {
+        for name in &g.observers {
+            if !setup.observers.iter().any(|o| &o.name == name) {
+                let known: Vec<&str> = setup.observers.iter().map(|o| o.name.as_str()).collect();
+                bail!(
+                    "grid {}: unknown observer \"{name}\"; the sidecar's [[observers]] are {}",
+                    g.name,
+                    if known.is_empty() {
+                        "none".to_owned()
+                    } else {
+                        known.join(", ")
+                    }
+                );
+            }
+        }
         if let Some(task) = &g.task {
             requirements
                 .activity(task)

@@ -55,6 +55,36 @@ pub fn draw_image_circle(ui: &egui::Ui, basis: &CameraBasis, rect: Rect) {
         .circle_stroke(centre, radius_px * sx.min(sy), stroke);
 }
 
+/// Each observer as a small cyan ring with its name and a short line along its view.
+pub fn draw_observers(
+    ui: &egui::Ui,
+    observers: &[tracer_core::scene::Observer],
+    basis: &CameraBasis,
+    rect: Rect,
+    scene_size: f32,
+) {
+    let painter = ui.painter_at(rect);
+    let colour = Color32::from_rgb(120, 220, 255);
+    for o in observers {
+        let eye = Vec3::from(o.position);
+        let Some(pos) = to_screen(rect, basis, eye) else {
+            continue;
+        };
+        painter.circle_stroke(pos, 5.0, Stroke::new(1.5, colour));
+        let dir = Vec3::from(o.direction).normalize_or_zero();
+        if let Some(tip) = to_screen(rect, basis, eye + dir * 0.08 * scene_size) {
+            painter.line_segment([pos, tip], Stroke::new(1.5, colour));
+        }
+        painter.text(
+            pos + Vec2::new(8.0, -8.0),
+            Align2::LEFT_BOTTOM,
+            &o.name,
+            FontId::proportional(12.0),
+            colour,
+        );
+    }
+}
+
 /// The point an orbit turns about: a small ring with a cross.
 pub fn draw_pivot(ui: &egui::Ui, basis: &CameraBasis, rect: Rect, pivot: Vec3) {
     let Some(pos) = to_screen(rect, basis, pivot) else {

@@ -78,6 +78,8 @@ pub fn viewport_ui(ui: &mut egui::Ui, mut v: Viewport<'_>, out: &mut Commands) {
     let basis = v.worker.basis();
     if let Some(b) = &basis {
         crate::viewport_draw::draw_image_circle(ui, b, rect);
+        let size = v.doc.scene.bounds.extent().length();
+        crate::viewport_draw::draw_observers(ui, &v.doc.setup.observers, b, rect, size);
         draw_light_markers(ui, v.doc, b, rect, v.selected_light);
         if let Some(pivot) = *v.orbit_pivot {
             crate::viewport_draw::draw_pivot(ui, b, rect, pivot);

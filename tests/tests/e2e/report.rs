@@ -215,6 +215,30 @@ fn bad_tasks_and_unwritable_paths_are_errors_and_write_nothing() {
     assert!(!run.success());
     assert!(run.stderr.contains("does not exist"), "{}", run.stderr);
     assert!(!nowhere.exists());
+    // A grid judged by an observer the sidecar does not have.
+    let sidecar = dir.path().join("box.raygine.toml");
+    let text = std::fs::read_to_string(&sidecar).unwrap();
+    std::fs::write(&sidecar, format!("{text}observers = [\"nobody\"]\n")).unwrap();
+    let run = raygine_in(
+        dir.path(),
+        [
+            "report".as_ref(),
+            "-S".as_ref(),
+            shp.as_os_str(),
+            "-o".as_ref(),
+            pdf.as_os_str(),
+        ],
+    );
+    assert!(
+        !run.success()
+            && run
+                .stderr
+                .contains("grid floor: unknown observer \"nobody\""),
+        "{}",
+        run.stderr
+    );
+    assert!(!pdf.exists());
+    std::fs::write(&sidecar, &text).unwrap();
     // Paper sizes: letter is 612 x 792 pt; anything else is refused.
     let letter = dir.path().join("letter.pdf");
     let run = |paper: &str, out: &Path| {

@@ -11,6 +11,7 @@ pub mod materials;
 mod measure;
 mod menu;
 mod notes;
+mod observers;
 mod polar;
 mod reflectance;
 mod render;

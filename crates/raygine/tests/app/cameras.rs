@@ -147,3 +147,32 @@ fn an_orthographic_scene_under_the_light_tracer_switches_to_bidirectional_with_a
         "no notice"
     );
 }
+
+/// The Measure section's observers: one added where the camera stands, then "View from
+/// observer" looks through a 180° equidistant fisheye from it; the eye stays where the camera
+/// was.
+#[test]
+fn an_observer_is_added_at_the_camera_and_viewed_through_a_fisheye() {
+    let mut h = crate::box_viewer(Vec2::new(960.0, 900.0), IntegratorKind::Direct, 1, 0.25);
+    h.run_steps(2);
+    for group in ["Lights", "Camera", "Materials", "Render"] {
+        h.get_by_label(group).click();
+        h.step();
+    }
+    h.get_by_label("Measure").click();
+    h.run_steps(2);
+    let before = h.state().document().setup.camera;
+    h.get_by_role_and_label(Role::Button, "Add observer at camera")
+        .click();
+    h.run_steps(2);
+    let observers = h.state().document().setup.observers.clone();
+    assert_eq!(observers.len(), 1);
+    assert_eq!(observers[0].name, "observer1");
+    assert_eq!(observers[0].position, before.position);
+    h.get_by_role_and_label(Role::Button, "View from observer")
+        .click();
+    h.run_steps(2);
+    let camera = h.state().document().setup.camera;
+    assert_eq!(camera.projection, Projection::FisheyeEquidistant);
+    assert_eq!((camera.fov_deg, camera.position), (180.0, before.position));
+}

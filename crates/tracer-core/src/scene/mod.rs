@@ -15,6 +15,7 @@ mod light_spec;
 mod material;
 mod material_keys;
 mod notes;
+mod observer;
 mod pick;
 mod setup;
 mod sidecar;
@@ -41,6 +42,7 @@ pub use light_spec::{GridContext, GridSpec, LightKindSpec, LightSpec, en12464_sp
 pub use material::{Glazing, Material, PANE_IOR, Pbr};
 pub use material_keys::MaterialKeys;
 pub use notes::{SourceText, luminaire_near_surface, luminaire_shape, relative_below};
+pub use observer::{Observer, check_observers};
 pub use setup::Setup;
 pub use sidecar::{Sidecar, sidecar_path};
 pub use sidecar_open::{

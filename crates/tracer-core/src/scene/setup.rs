@@ -27,6 +27,8 @@ pub struct Setup {
     pub environment: Option<crate::light::Environment>,
     /// The place, time and orientation of the sidecar's `[daylight]` (None: no daylight).
     pub daylight: Option<crate::light::daylight::Daylight>,
+    /// Eyes where glare is judged (`[[observers]]`).
+    pub observers: Vec<super::observer::Observer>,
 }
 
 impl Setup {
@@ -64,6 +66,7 @@ impl Setup {
             maintenance_factor: 1.0,
             environment: None,
             daylight: design.daylight.clone(),
+            observers: Vec::new(),
         }
     }
 

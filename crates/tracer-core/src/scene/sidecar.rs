@@ -84,6 +84,9 @@ pub struct Sidecar {
     /// `[daylight]`: place, local time and orientation (the sun's position).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub daylight: Option<crate::light::daylight::DaylightSpec>,
+    /// Eyes where glare is judged: `[[observers]]` with name, position, direction, up.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub observers: Vec<super::observer::Observer>,
     /// The sidecar's folder: luminaire files are relative to it (not part of the file).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -178,6 +181,18 @@ impl Sidecar {
         if let Some(spec) = &sidecar.environment {
             let base = sidecar.base_dir.clone();
             sidecar.environment_model = Some(spec.to_model(base.as_deref()).map_err(invalid)?);
+        }
+        if let Err(message) = super::observer::check_observers(&sidecar.observers) {
+            // Point at the observer's own table when its name is there.
+            let line = sidecar
+                .observers
+                .iter()
+                .position(|o| message.contains(&format!("observer {}", o.name)))
+                .and_then(|i| nth_line(text, "[[observers]]", i));
+            return Err(match line {
+                Some(line) => invalid(format!("line {line}: {message}")),
+                None => invalid(message),
+            });
         }
         if let Some(mf) = sidecar.maintenance_factor
             && !(mf.is_finite() && mf > 0.0 && mf <= 1.0)
@@ -332,6 +347,8 @@ impl Sidecar {
             Ok(grids) => setup.grids = grids,
             Err(e) => warnings.push(format!("{e}; grids ignored")),
         }
+        // (Checked by `parse`.)
+        setup.observers = self.observers.clone();
         if let Some(m) = &self.default_material {
             let all: Vec<u32> = (0..scene.slots.len() as u32).collect();
             set_material(&mut setup, &all, m, "default_material", warnings);
@@ -426,6 +443,7 @@ impl Sidecar {
                 .map(EnvironmentSpec::from_model),
             environment_model: None,
             daylight: setup.daylight.as_ref().map(|d| d.spec.clone()),
+            observers: setup.observers.clone(),
             smooth_angle_deg: (scene.smooth_angle_deg
                 != super::smoothing::DEFAULT_SMOOTH_ANGLE_DEG)
                 .then_some(scene.smooth_angle_deg),
@@ -520,6 +538,15 @@ fn table_line(text: &str, name: &str) -> Option<usize> {
         .map(|i| i + 1)
 }
 
+/// The line of the `n`-th (0-based) `header` line (e.g. `[[observers]]`) of `text`.
+fn nth_line(text: &str, header: &str, n: usize) -> Option<usize> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| l.trim_start().starts_with(header))
+        .nth(n)
+        .map(|(i, _)| i + 1)
+}
+
 /// The line of `key = ...` inside the table `[table]` of `text`, if both are there.
 fn key_line(text: &str, table: &str, key: &str) -> Option<usize> {
     let start = table_line(text, table)?;
@@ -541,6 +568,41 @@ mod tests {
     use super::*;
     use crate::scene::Projection;
     use crate::shp::parse_shp;
+
+    /// `[[observers]]`: kept through apply and back to TOML; a zero direction, a NaN or a name
+    /// given twice is an error naming the observer and its table's line.
+    #[test]
+    fn observers_round_trip_and_bad_ones_are_errors() {
+        let good = "[[observers]]\nname = \"desk\"\nposition = [1.0, 1.2, 2.0]\n\
+                    direction = [0.0, 0.0, -1.0]\n";
+        let sidecar = Sidecar::parse(good, Path::new("s.raygine.toml")).unwrap();
+        let scene = scene();
+        let setup = sidecar.apply(&scene, None, &mut Vec::new());
+        assert_eq!(setup.observers.len(), 1);
+        assert_eq!(setup.observers[0].up, [0.0, 1.0, 0.0], "up defaults to +Y");
+        let text = Sidecar::from_setup(&scene, &setup).to_toml();
+        let again = Sidecar::parse(&text, Path::new("s.raygine.toml")).unwrap();
+        assert_eq!(again.observers, setup.observers, "{text}");
+        for (bad, want) in [
+            (
+                format!("{good}[[observers]]\nname = \"door\"\nposition = [0.0, 1.0, 0.0]\ndirection = [0.0, 0.0, 0.0]\n"),
+                "line 5: observer door: direction must not be zero",
+            ),
+            (
+                format!("{good}[[observers]]\nname = \"desk\"\nposition = [0.0, 1.0, 0.0]\ndirection = [1.0, 0.0, 0.0]\n"),
+                "observer desk: a second observer has that name",
+            ),
+            (
+                "[[observers]]\nname = \"w\"\nposition = [nan, 1.0, 0.0]\ndirection = [1.0, 0.0, 0.0]\n".to_owned(),
+                "line 1: observer w: position must be finite numbers",
+            ),
+        ] {
+            let err = Sidecar::parse(&bad, Path::new("s.raygine.toml"))
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains(want), "{err}\nwanted {want}");
+        }
+    }
 
     /// Projections' limits are errors that name the key and its line.
     #[test]
