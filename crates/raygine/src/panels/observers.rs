@@ -14,9 +14,15 @@ pub fn observers_ui(ui: &mut egui::Ui, doc: &mut Document) {
     let (mut view, mut remove) = (None, None);
     for (i, o) in doc.setup.observers.iter().enumerate() {
         ui.horizontal(|ui| {
-            ui.label(format!(
-                "{} at ({:.0}, {:.0}, {:.0}) {unit}",
-                o.name, o.position[0], o.position[1], o.position[2]
+            // The name only, so the row's buttons fit the panel; where it stands on hover.
+            ui.label(&o.name).on_hover_text(format!(
+                "at ({:.0}, {:.0}, {:.0}) {unit}, looking along ({:.2}, {:.2}, {:.2})",
+                o.position[0],
+                o.position[1],
+                o.position[2],
+                o.direction[0],
+                o.direction[1],
+                o.direction[2]
             ));
             if ui
                 .button("View from observer")
