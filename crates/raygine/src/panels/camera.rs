@@ -1,7 +1,7 @@
 //! Camera: projection, position, look-at, field of view or orthographic width; reset to
 //! framing.
 
-use super::widgets::{drag_hint, fine_drag, length_speed};
+use super::widgets::{drag_hint, fine_drag, length_speed, refusable_choice};
 use crate::command::{Command, Commands};
 use crate::document::Document;
 use tracer_core::integrator::IntegratorKind;
@@ -115,17 +115,7 @@ fn projection_ui(
         .show_ui(ui, |ui| {
             for p in Projection::ALL {
                 let refused = integrator.check_projection(p).err();
-                let r = ui.add_enabled(
-                    refused.is_none(),
-                    egui::Button::selectable(cam.projection == p, p.label()),
-                );
-                let r = match refused {
-                    Some(why) => r.on_disabled_hover_text(why),
-                    None => r,
-                };
-                if r.clicked() {
-                    cam.projection = p;
-                }
+                refusable_choice(ui, &mut cam.projection, p, p.label(), refused);
             }
         })
         .response

@@ -73,17 +73,7 @@ pub fn render_ui(
         .show_ui(ui, |ui| {
             for k in IntegratorKind::ALL {
                 let refused = k.check_projection(projection).err();
-                let item = ui.add_enabled(
-                    refused.is_none(),
-                    egui::Button::selectable(r.integrator == k, k.label()),
-                );
-                let item = match refused {
-                    Some(why) => item.on_disabled_hover_text(why),
-                    None => item,
-                };
-                if item.clicked() {
-                    r.integrator = k;
-                }
+                super::widgets::refusable_choice(ui, &mut r.integrator, k, k.label(), refused);
             }
         })
         .response

@@ -52,3 +52,25 @@ pub fn drag_hint(speed: f64, unit: &str) -> String {
         crate::format::format_value(speed as f32 / 10.0)
     )
 }
+
+/// A menu entry for `value`: selected when `*current` is it, disabled with the reason on hover
+/// when `refused` says why it cannot be chosen; a click chooses it.
+pub fn refusable_choice<T: PartialEq + Copy>(
+    ui: &mut egui::Ui,
+    current: &mut T,
+    value: T,
+    label: &str,
+    refused: Option<String>,
+) {
+    let item = ui.add_enabled(
+        refused.is_none(),
+        egui::Button::selectable(*current == value, label),
+    );
+    let item = match refused {
+        Some(why) => item.on_disabled_hover_text(why),
+        None => item,
+    };
+    if item.clicked() {
+        *current = value;
+    }
+}

@@ -86,30 +86,14 @@ impl Canvas<'_, '_> {
 
     /// A closed polygon's outline.
     pub fn polygon(&mut self, points: &[(f32, f32)], width: f32, colour: Rgb) {
-        let Some(first) = points.first() else {
-            return;
-        };
-        let mut p = PathBuilder::new();
-        p.move_to(first.0, first.1);
-        for q in &points[1..] {
-            p.line_to(q.0, q.1);
+        if let Some(p) = polygon_path(points) {
+            self.stroke_path(p, width, colour);
         }
-        p.close();
-        self.stroke_path(p, width, colour);
     }
 
     /// A filled polygon.
     pub fn fill_polygon(&mut self, points: &[(f32, f32)], colour: Rgb) {
-        let Some(first) = points.first() else {
-            return;
-        };
-        let mut p = PathBuilder::new();
-        p.move_to(first.0, first.1);
-        for q in &points[1..] {
-            p.line_to(q.0, q.1);
-        }
-        p.close();
-        if let Some(path) = p.finish() {
+        if let Some(path) = polygon_path(points).and_then(PathBuilder::finish) {
             self.surface.set_stroke(None);
             self.surface.set_fill(Some(fill(colour)));
             self.surface.draw_path(&path);
@@ -154,6 +138,18 @@ impl Canvas<'_, '_> {
             self.surface.set_stroke(None);
         }
     }
+}
+
+/// The closed path through `points` (None for none).
+fn polygon_path(points: &[(f32, f32)]) -> Option<PathBuilder> {
+    let first = points.first()?;
+    let mut p = PathBuilder::new();
+    p.move_to(first.0, first.1);
+    for q in &points[1..] {
+        p.line_to(q.0, q.1);
+    }
+    p.close();
+    Some(p)
 }
 
 fn fill(colour: Rgb) -> Fill {

@@ -46,6 +46,19 @@ impl<'a> BidirectionalPathTracing<'a> {
             strategies: Strategies::All,
         }
     }
+
+    /// The transport of a camera sample with its strategies.
+    fn camera_transport(&self, basis: &CameraBasis) -> Bidirectional<'_, 'a> {
+        Bidirectional {
+            strategies: self.strategies,
+            ..transport(
+                &self.lit,
+                &self.lights,
+                self.max_bounces,
+                Eye::Camera(*basis),
+            )
+        }
+    }
 }
 
 impl<'a> LightTracing<'a> {
@@ -54,6 +67,19 @@ impl<'a> LightTracing<'a> {
             lights: LightPicker::with_environment(&lit),
             lit,
             max_bounces: settings.max_bounces,
+        }
+    }
+
+    /// The transport of a camera sample: light tracing.
+    fn camera_transport(&self, basis: &CameraBasis) -> Bidirectional<'_, 'a> {
+        Bidirectional {
+            light_tracing: true,
+            ..transport(
+                &self.lit,
+                &self.lights,
+                self.max_bounces,
+                Eye::Camera(*basis),
+            )
         }
     }
 }
@@ -94,15 +120,7 @@ impl Integrator for BidirectionalPathTracing<'_> {
         want: Want,
         splats: &mut Vec<Splat>,
     ) -> Sample {
-        let camera = Bidirectional {
-            strategies: self.strategies,
-            ..transport(
-                &self.lit,
-                &self.lights,
-                self.max_bounces,
-                Eye::Camera(*basis),
-            )
-        };
+        let camera = self.camera_transport(basis);
         if self.lit.has_metal_rough() {
             camera_sample::<Bsdf>(&camera, want.illuminance, ray, rng, splats)
         } else {
@@ -116,15 +134,7 @@ impl Integrator for BidirectionalPathTracing<'_> {
         rng: &mut SampleRng,
         splats: &mut Vec<Splat>,
     ) -> Sample {
-        let camera = Bidirectional {
-            strategies: self.strategies,
-            ..transport(
-                &self.lit,
-                &self.lights,
-                self.max_bounces,
-                Eye::Camera(*basis),
-            )
-        };
+        let camera = self.camera_transport(basis);
         if self.lit.has_metal_rough() {
             outside_sample::<Bsdf>(&camera, rng, splats)
         } else {
@@ -181,15 +191,7 @@ impl Integrator for LightTracing<'_> {
         want: Want,
         splats: &mut Vec<Splat>,
     ) -> Sample {
-        let camera = Bidirectional {
-            light_tracing: true,
-            ..transport(
-                &self.lit,
-                &self.lights,
-                self.max_bounces,
-                Eye::Camera(*basis),
-            )
-        };
+        let camera = self.camera_transport(basis);
         if self.lit.has_metal_rough() {
             camera_sample::<Bsdf>(&camera, want.illuminance, ray, rng, splats)
         } else {
@@ -203,15 +205,7 @@ impl Integrator for LightTracing<'_> {
         rng: &mut SampleRng,
         splats: &mut Vec<Splat>,
     ) -> Sample {
-        let camera = Bidirectional {
-            light_tracing: true,
-            ..transport(
-                &self.lit,
-                &self.lights,
-                self.max_bounces,
-                Eye::Camera(*basis),
-            )
-        };
+        let camera = self.camera_transport(basis);
         if self.lit.has_metal_rough() {
             outside_sample::<Bsdf>(&camera, rng, splats)
         } else {
