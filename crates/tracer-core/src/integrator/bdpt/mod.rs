@@ -183,19 +183,7 @@ impl Bidirectional<'_, '_> {
     /// the other projections count no cosine at the eye (it may look sideways or back).
     fn eye_importance<S: Scatter>(&self, eye: &Vertex<S>, w: Vec3) -> f32 {
         match self.eye {
-            Eye::Camera(b) => match b.lens {
-                Lens::Pinhole => match b.film_position(w) {
-                    Some(_) => {
-                        let cos = b.forward.dot(w);
-                        1.0 / (4.0 * b.half_width * b.half_height * cos.powi(4))
-                    }
-                    None => 0.0,
-                },
-                _ => match b.film_position(w) {
-                    Some(_) => b.direction_density(w),
-                    None => 0.0,
-                },
-            },
+            Eye::Camera(b) => camera_density(&b, w, 4),
             Eye::Sensor => {
                 if eye.n.dot(w) > 0.0 {
                     1.0
@@ -220,19 +208,7 @@ impl Bidirectional<'_, '_> {
     /// orthographic camera: a delta).
     fn eye_direction_pdf<S: Scatter>(&self, eye: &Vertex<S>, w: Vec3) -> f32 {
         match self.eye {
-            Eye::Camera(b) => match b.lens {
-                Lens::Pinhole => match b.film_position(w) {
-                    Some(_) => {
-                        let cos = b.forward.dot(w);
-                        1.0 / (4.0 * b.half_width * b.half_height * cos.powi(3))
-                    }
-                    None => 0.0,
-                },
-                _ => match b.film_position(w) {
-                    Some(_) => b.direction_density(w),
-                    None => 0.0,
-                },
-            },
+            Eye::Camera(b) => camera_density(&b, w, 3),
             Eye::Sensor => vertex::cosine_pdf(eye.n, w),
         }
     }
@@ -344,6 +320,22 @@ impl Bidirectional<'_, '_> {
             Eye::Camera(b) => b.forward,
             Eye::Sensor => Vec3::ZERO,
         }
+    }
+}
+
+/// The camera's density of unit direction `w` over its film (0 off the film): the pinhole's
+/// 1 / (A cos^`cos_power` θ) (4: its importance, 3: its direction density), the other
+/// projections' [`CameraBasis::direction_density`] either way (no cosine at their eye).
+fn camera_density(b: &CameraBasis, w: Vec3, cos_power: i32) -> f32 {
+    if b.film_position(w).is_none() {
+        return 0.0;
+    }
+    match b.lens {
+        Lens::Pinhole => {
+            let cos = b.forward.dot(w);
+            1.0 / (4.0 * b.half_width * b.half_height * cos.powi(cos_power))
+        }
+        _ => b.direction_density(w),
     }
 }
 
