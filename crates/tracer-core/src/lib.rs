@@ -44,6 +44,7 @@ pub mod shading;
 pub mod shard;
 #[cfg(test)]
 mod test_scenes;
+pub mod texture;
 
 /// The `.shp` reader, kept at its old path (it lives in [`formats::shp`]).
 pub use formats::shp;

@@ -7,9 +7,11 @@
 //! as fractions in 0..=1 (linear RGB), flux in lumen, intensity in candela, luminance in cd/m².
 
 use crate::light::{EmissionSides, Photometry};
+use crate::texture::{Maps, TextureRef};
 use glam::DMat4;
 use std::borrow::Cow;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Which reader produced a description.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -63,6 +65,9 @@ pub struct MeshDescription {
     /// Vertex normals, one per position (unit length, pointing out of the visible side); empty
     /// when the format has none (the geometric normal is used).
     pub normals: Vec<[f32; 3]>,
+    /// Texture coordinates per position, set 0 and set 1 (glTF `TEXCOORD_0/1`, OBJ `vt` as
+    /// set 0), in the image's frame: v = 0 at the image's top row. Empty when the mesh has none.
+    pub uvs: [Vec<[f32; 2]>; 2],
     /// Vertex indices into `positions`, three per triangle.
     pub triangles: Vec<[u32; 3]>,
     /// The parts, at least one when the mesh has triangles.
@@ -113,6 +118,41 @@ pub struct MaterialDescription {
     /// of `diffuse`, `specular` and `glossiness` (which stay a Blinn-Phong approximation for
     /// readers of the description) and instead of `transmission`.
     pub metal_rough: Option<MetalRoughDescription>,
+    /// Image textures and alpha, when the material has any.
+    pub maps: Option<Box<Maps<TextureRef<ImageSource>>>>,
+}
+
+/// Where a texture's image is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ImageSource {
+    /// A file (absolute, or relative to the working folder).
+    File(PathBuf),
+    /// Bytes inside the scene file (a glTF buffer view or data URI); `name` for the user
+    /// (`model.glb#image2`).
+    Embedded { name: String, bytes: Arc<[u8]> },
+    /// An image the file names but that cannot be found, and why.
+    Missing { name: String, why: String },
+}
+
+impl ImageSource {
+    /// What identifies the image: materials with the same key share one texture.
+    pub fn key(&self) -> String {
+        match self {
+            ImageSource::File(p) => std::fs::canonicalize(p)
+                .unwrap_or_else(|_| p.clone())
+                .display()
+                .to_string(),
+            ImageSource::Embedded { name, .. } | ImageSource::Missing { name, .. } => name.clone(),
+        }
+    }
+
+    /// A name for the user.
+    pub fn name(&self) -> String {
+        match self {
+            ImageSource::File(p) => p.display().to_string(),
+            ImageSource::Embedded { name, .. } | ImageSource::Missing { name, .. } => name.clone(),
+        }
+    }
 }
 
 /// glTF 2.0's metallic-roughness parameters (fractions in 0..=1, linear RGB).

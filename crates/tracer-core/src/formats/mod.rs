@@ -19,7 +19,7 @@ mod scene_file;
 pub mod shp;
 
 pub use description::{
-    CameraDescription, EmissionDescription, LightDescription, LightDistribution,
+    CameraDescription, EmissionDescription, ImageSource, LightDescription, LightDistribution,
     MaterialDescription, MeshDescription, MetalRoughDescription, PartDescription,
     PlacementDescription, SceneDescription, SceneFormat, TransmissionDescription,
 };

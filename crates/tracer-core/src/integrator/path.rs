@@ -40,6 +40,8 @@ pub const MAX_VERTICES: u32 = 4096;
 #[derive(Clone, Copy, Debug)]
 struct Vertex {
     prim: u32,
+    /// Barycentrics (u, v) of the hit on `prim` (textures are read there).
+    bary: [f32; 2],
     /// The surface point itself (distances to lights are measured from here).
     point: Vec3,
     /// Origin for rays leaving the facing side.
@@ -189,7 +191,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
             }
             return sample;
         };
-        let mat = self.lit.material_of(v.prim);
+        let mat = self.lit.material_at(v.prim, v.bary);
         if self.max_bounces == 0 {
             sample.rgb = le * through;
             sample.rays = rays;
@@ -348,6 +350,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         }
         let v = Vertex {
             prim: hit.prim,
+            bary: [hit.u, hit.v],
             point: p,
             origin: surface.origin,
             n: surface.ns,
@@ -381,7 +384,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         let mut v = v;
         let mut bounces = bounces;
         for _ in 0..MAX_VERTICES {
-            let bsdf: S = scatter_at(lit, v.prim, v.wo, false);
+            let bsdf: S = scatter_at(lit, v.prim, v.bary, v.wo, false);
             if bsdf.is_black() {
                 break;
             }

@@ -5,6 +5,7 @@
 
 mod light_sampler;
 mod lights;
+mod surface_maps;
 mod visibility;
 
 pub use light_sampler::{LightSampler, TreeLight};
@@ -47,6 +48,8 @@ pub struct LitScene<'a> {
     metal_rough: bool,
     /// Whether some material is a pane (shadow rays then pass panes, weighted).
     panes: bool,
+    /// Which slots textures shade or cut.
+    maps: surface_maps::SlotMaps,
 }
 
 impl<'a> LitScene<'a> {
@@ -74,6 +77,7 @@ impl<'a> LitScene<'a> {
             })
             .collect();
         let materials: Vec<PreparedMaterial> = clamped.iter().map(PreparedMaterial::new).collect();
+        let maps = surface_maps::SlotMaps::new(scene, &clamped);
         let hidden: Vec<bool> = (0..scene.slots.len())
             .map(|s| setup.is_hidden(s as u32))
             .collect();
@@ -125,6 +129,7 @@ impl<'a> LitScene<'a> {
             hidden,
             metal_rough,
             panes,
+            maps,
         }
     }
 

@@ -14,6 +14,15 @@ const MIN_PACKET: usize = 4;
 impl LitScene<'_> {
     /// Closest hit on a drawn surface.
     pub fn closest_visible(&self, ray: &Ray) -> Option<Hit> {
+        if self.any_cutout() {
+            return self.closest_uncut(ray, |r| self.closest_shown(r));
+        }
+        self.closest_shown(ray)
+    }
+
+    /// Closest hit on a surface that is not hidden (alpha aside).
+    #[inline]
+    fn closest_shown(&self, ray: &Ray) -> Option<Hit> {
         if self.any_hidden {
             self.scene.closest_drawn(ray, &self.hidden)
         } else {
@@ -21,10 +30,16 @@ impl LitScene<'_> {
         }
     }
 
+    /// Whether rays must be tested one by one against hidden parts and alpha.
+    #[inline]
+    fn one_by_one(&self) -> bool {
+        self.any_hidden || self.any_cutout()
+    }
+
     /// [`LitScene::closest_visible`] of each of `rays` into `out` (as long), eight at a time
     /// through the tree (the same hits bit for bit).
     pub fn closest_visible_many(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
-        if self.any_hidden {
+        if self.one_by_one() {
             for (o, r) in out.iter_mut().zip(rays) {
                 *o = self.closest_visible(r);
             }
@@ -52,7 +67,7 @@ impl LitScene<'_> {
     /// [`LitScene::occluded`] of each shadow ray (see [`LitScene::shadow_ray`]) into `out`,
     /// eight at a time through the tree.
     pub fn occluded_many(&self, rays: &[Ray], out: &mut [bool]) {
-        if self.any_hidden {
+        if self.one_by_one() {
             for (o, r) in out.iter_mut().zip(rays) {
                 *o = self.closest_visible(r).is_some();
             }
@@ -73,10 +88,10 @@ impl LitScene<'_> {
     /// the end point).
     pub fn occluded(&self, origin: Vec3, to_target: Vec3) -> bool {
         let ray = Self::shadow_ray(origin, to_target);
-        if !self.any_hidden {
+        if !self.one_by_one() {
             return self.scene.bvh.occluded(&ray);
         }
-        // With hidden breps, walk the closest hits and ignore hidden ones.
+        // With hidden breps or alpha, walk the closest hits and skip what is not there.
         self.closest_visible(&ray).is_some()
     }
 

@@ -130,8 +130,9 @@ pub fn trace_guide(lit: &LitScene<'_>, ray: &Ray, rng: &mut SampleRng) -> Guide 
             return Guide::default();
         };
         let (surface, wo) = frame(lit, &hit, &ray);
-        let bsdf = bsdf_at(lit, hit.prim, wo, false);
-        let mat = lit.material_of(hit.prim);
+        let bary = [hit.u, hit.v];
+        let bsdf = bsdf_at(lit, hit.prim, bary, wo, false);
+        let mat = lit.material_at(hit.prim, bary);
         let guide = |albedo: Vec3| Guide {
             albedo: (throughput * albedo).clamp(Vec3::ZERO, Vec3::ONE),
             normal: surface.ns,

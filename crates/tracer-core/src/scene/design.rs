@@ -31,16 +31,22 @@ pub struct Design {
 impl Design {
     /// Maps the description's materials onto the material slots (`slot_count` in all; mesh i's
     /// parts start at `first_slots[i]`), and its lights, camera and unit onto the model.
+    /// `texture_sets[i]` is the scene's texture set of described material i, if any.
     pub fn from_description(
         desc: &SceneDescription,
         first_slots: &[u32],
         slot_count: usize,
+        texture_sets: &[Option<u32>],
     ) -> Design {
         let mut notes = desc.notes.clone();
         let models: Vec<Material> = desc
             .materials
             .iter()
-            .map(|m| material_from_description(m, &mut notes))
+            .enumerate()
+            .map(|(i, m)| Material {
+                textures: texture_sets.get(i).copied().flatten(),
+                ..material_from_description(m, &mut notes)
+            })
             .collect();
         let mut materials = vec![None; slot_count];
         for (mesh, &first_slot) in desc.meshes.iter().zip(first_slots) {

@@ -6,7 +6,7 @@ use super::error::SceneError;
 use crate::bvh::Bvh;
 use crate::formats::SceneDescription;
 use crate::geometry::Aabb;
-use glam::{DMat4, Vec3};
+use glam::{DMat4, Vec2, Vec3};
 use std::borrow::Cow;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -50,6 +50,13 @@ pub struct Scene {
     pub corner_normals: Vec<[Vec3; 3]>,
     /// The crease angle the vertex normals were averaged with, degrees (0: all flat).
     pub smooth_angle_deg: f32,
+    /// Texture coordinates per triangle corner, UV set 0 and set 1 (the image's frame, v = 0
+    /// at its top row); each empty when no mesh has that set.
+    pub uvs: [Vec<[Vec2; 3]>; 2],
+    /// The images the materials' maps read, each file once.
+    pub textures: std::sync::Arc<[crate::texture::Texture]>,
+    /// The maps of the file's textured materials (`Material::textures` indexes them).
+    pub texture_sets: Vec<crate::texture::TextureSet>,
     /// Material slot of each triangle.
     pub triangle_slots: Vec<u32>,
     /// Owner of each material slot.
@@ -89,6 +96,7 @@ impl Scene {
         let total = desc.triangle_count();
         let mut triangles = Vec::with_capacity(total);
         let mut triangle_slots = Vec::with_capacity(total);
+        let mut uvs: [Vec<[Vec2; 3]>; 2] = [Vec::new(), Vec::new()];
         for (brep_index, mesh) in desc.meshes.iter().enumerate() {
             let m = mesh
                 .placement
@@ -154,6 +162,19 @@ impl Scene {
                     });
                 };
                 triangles.push([a, b, c]);
+                for (set, out) in uvs.iter_mut().enumerate() {
+                    let given = &mesh.uvs[set];
+                    if given.is_empty() && out.is_empty() {
+                        continue;
+                    }
+                    // Meshes before the first with this set, and corners without, read (0, 0).
+                    out.resize(triangles.len() - 1, [Vec2::ZERO; 3]);
+                    out.push(tri.map(|i| {
+                        given
+                            .get(i as usize)
+                            .map_or(Vec2::ZERO, |&uv| Vec2::from(uv))
+                    }));
+                }
                 let part = mesh
                     .triangle_parts
                     .get(t)
@@ -203,6 +224,28 @@ impl Scene {
         if any_smooth {
             corner_normals.resize(triangles.len(), [Vec3::ZERO; 3]);
         }
+        for out in &mut uvs {
+            if !out.is_empty() {
+                out.resize(triangles.len(), [Vec2::ZERO; 3]);
+            }
+        }
+        // The images each material names, loaded once each; a map that cannot be used is
+        // noted and left out.
+        let mut library = crate::texture::Library::default();
+        let mut texture_sets = Vec::new();
+        let mut texture_notes = Vec::new();
+        let set_of_material: Vec<Option<u32>> = desc
+            .materials
+            .iter()
+            .map(|m| {
+                let set = library.resolve(m.maps.as_deref()?, &mut texture_notes);
+                if set.is_empty() {
+                    return None;
+                }
+                texture_sets.push(set);
+                Some((texture_sets.len() - 1) as u32)
+            })
+            .collect();
         let normals = triangles
             .iter()
             .map(|[a, b, c]| (*b - *a).cross(*c - *a).normalize_or_zero())
@@ -215,7 +258,9 @@ impl Scene {
         let bvh = Bvh::build(&triangles);
         let bvh_build_secs = started.elapsed().as_secs_f64();
         let first_slots: Vec<u32> = breps.iter().map(|b| b.first_slot).collect();
-        let design = Design::from_description(&desc, &first_slots, slots.len());
+        let mut design =
+            Design::from_description(&desc, &first_slots, slots.len(), &set_of_material);
+        design.notes.extend(texture_notes);
         Ok(Scene {
             name: name.to_owned(),
             source: (!desc.path.as_os_str().is_empty()).then(|| desc.path.clone()),
@@ -223,6 +268,9 @@ impl Scene {
             triangles,
             normals,
             corner_normals,
+            uvs,
+            textures: library.textures.into(),
+            texture_sets,
             smooth_angle_deg: smooth_angle_deg.max(0.0),
             triangle_slots,
             slots,

@@ -69,6 +69,12 @@ impl Scene {
             // Flat: zero corner normals.
             corner_normals.extend([[Vec3::ZERO; 3]; 2]);
         }
+        let mut uvs = self.uvs.clone();
+        for set in &mut uvs {
+            if !set.is_empty() {
+                set.extend([[glam::Vec2::ZERO; 3]; 2]);
+            }
+        }
         let mut design = self.design.clone();
         design.materials.push(Some(ground_material()));
         let started = std::time::Instant::now();
@@ -80,6 +86,9 @@ impl Scene {
             triangles,
             normals,
             corner_normals,
+            uvs,
+            textures: self.textures.clone(),
+            texture_sets: self.texture_sets.clone(),
             smooth_angle_deg: self.smooth_angle_deg,
             triangle_slots,
             slots,

@@ -50,6 +50,10 @@ pub struct Material {
     pub pbr: Option<Pbr>,
     /// A thin glass pane (a window as one polygon) of index `ior` instead of every lobe.
     pub pane: Option<Glazing>,
+    /// The file's image textures and alpha for this material: an index into the scene's
+    /// `texture_sets` (the maps multiply the factors above). The sidecar does not write it and
+    /// its materials keep the slot's.
+    pub textures: Option<u32>,
 }
 
 /// A thin pane's glazing (see `crate::shading::Pane`): its index is the material's `ior`.
@@ -101,6 +105,7 @@ impl Default for Material {
             emission_sides: EmissionSides::Both,
             pbr: None,
             pane: None,
+            textures: None,
         }
     }
 }
@@ -196,6 +201,7 @@ impl Material {
                     .filter(|t| t.is_finite())
                     .map(|t| t.clamp(1e-4, 1.0)),
             }),
+            textures: self.textures,
         };
         (out, out != *self)
     }

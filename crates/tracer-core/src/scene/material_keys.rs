@@ -135,6 +135,7 @@ impl TryFrom<MaterialKeys> for Material {
             emission_sides: k.emission_sides.unwrap_or_default(),
             pbr,
             pane: None,
+            textures: None,
         })
     }
 }

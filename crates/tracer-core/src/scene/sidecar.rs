@@ -110,7 +110,11 @@ fn set_material(
     }
     for &s in slots {
         if let Some(slot) = setup.materials.get_mut(s as usize) {
-            *slot = clamped;
+            // The file's textures stay: the sidecar sets the factors they multiply.
+            *slot = Material {
+                textures: slot.textures,
+                ..clamped
+            };
         }
     }
 }

@@ -23,9 +23,9 @@ pub use surface::Surface;
 use crate::lit_scene::LitScene;
 use glam::Vec3;
 
-/// The scattering at triangle `prim` for light leaving along unit `wo` ([`scatter_at`] with
-/// the full model).
+/// The scattering at barycentrics `bary` of triangle `prim` for light leaving along unit `wo`
+/// ([`scatter_at`] with the full model).
 #[inline]
-pub fn bsdf_at(lit: &LitScene<'_>, prim: u32, wo: Vec3, importance: bool) -> Bsdf {
-    scatter_at(lit, prim, wo, importance)
+pub fn bsdf_at(lit: &LitScene<'_>, prim: u32, bary: [f32; 2], wo: Vec3, importance: bool) -> Bsdf {
+    scatter_at(lit, prim, bary, wo, importance)
 }

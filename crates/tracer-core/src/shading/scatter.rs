@@ -26,12 +26,19 @@ pub trait Scatter: Copy + std::fmt::Debug {
     fn sample(&self, n: Vec3, wo: Vec3, rng: &mut SampleRng) -> Option<BsdfSample>;
 }
 
-/// The scattering at triangle `prim` for light leaving along unit `wo` (glass knows whether
-/// `wo` is outside, in front of the front face, or inside); `importance` for light paths.
+/// The scattering at barycentrics `bary` of triangle `prim` (textures vary it) for light
+/// leaving along unit `wo` (glass knows whether `wo` is outside, in front of the front face,
+/// or inside); `importance` for light paths.
 #[inline]
-pub fn scatter_at<S: Scatter>(lit: &LitScene<'_>, prim: u32, wo: Vec3, importance: bool) -> S {
+pub fn scatter_at<S: Scatter>(
+    lit: &LitScene<'_>,
+    prim: u32,
+    bary: [f32; 2],
+    wo: Vec3,
+    importance: bool,
+) -> S {
     let inside = lit.front_normal(prim).dot(wo) < 0.0;
-    S::at(lit.material_of(prim), inside, importance)
+    S::at(&lit.material_at(prim, bary), inside, importance)
 }
 
 impl Scatter for Classic {

@@ -8,6 +8,7 @@ mod bvh_support;
 mod gi_support;
 
 mod adaptive;
+mod alpha;
 mod area_luminaires;
 mod bdpt_analytic;
 mod bvh_differential;
@@ -44,3 +45,4 @@ mod shp_speed;
 mod std_error_honesty;
 mod stress_limits;
 mod stress_session;
+mod textures;

@@ -52,7 +52,7 @@ fn appendix_b_parts(
 /// A(θo) = ∫ f cos θi dωi: the diffuse base over ωi (midpoint rule), the GGX terms over half
 /// vectors h (dωi = 4 (ωo·h) dωh), θh on GGX's own inverse CDF so that even α = 0.01 is
 /// resolved.
-fn albedo(c: f64, metallic: f64, roughness: f64, t: f64, theta_o: f64) -> f64 {
+pub(crate) fn albedo(c: f64, metallic: f64, roughness: f64, t: f64, theta_o: f64) -> f64 {
     let a = (roughness * roughness).max(1e-3);
     let wo = [theta_o.sin(), 0.0, theta_o.cos()];
     let q = 400;

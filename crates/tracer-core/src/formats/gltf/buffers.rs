@@ -56,6 +56,65 @@ pub(super) fn load(
     Ok(out)
 }
 
+/// Where each image of the file is: inside a buffer view or a `data:` URI (its bytes, named
+/// `FILE#imageN`), a file beside the `.gltf`, or missing with the reason. Decoding waits
+/// until a material uses the image.
+pub(super) fn images(
+    doc: &::gltf::Document,
+    buffers: &[Vec<u8>],
+    path: &Path,
+) -> Vec<crate::formats::ImageSource> {
+    use crate::formats::ImageSource;
+    let file = path
+        .file_name()
+        .map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+    let folder = path.parent().unwrap_or(Path::new(""));
+    // From the JSON itself: gltf 1.4's `Image::source` unwraps a missing `mimeType` or `uri`.
+    let json = doc.as_json();
+    json.images
+        .iter()
+        .enumerate()
+        .map(|(i, image)| {
+            let name = format!("{file}#image{i}");
+            let missing = |why: String| ImageSource::Missing {
+                name: name.clone(),
+                why,
+            };
+            if let Some(view) = &image.buffer_view {
+                let bytes = json.buffer_views.get(view.value()).and_then(|v| {
+                    let start = v.byte_offset.map_or(0, |o| o.0) as usize;
+                    let end = start.checked_add(v.byte_length.0 as usize)?;
+                    buffers.get(v.buffer.value())?.get(start..end)
+                });
+                match bytes {
+                    Some(b) => ImageSource::Embedded {
+                        name,
+                        bytes: b.into(),
+                    },
+                    None => missing("its buffer view is missing or runs past its buffer".into()),
+                }
+            } else if let Some(uri) = &image.uri {
+                if let Some(rest) = uri.strip_prefix("data:") {
+                    match decode_data_uri(rest) {
+                        Ok(b) => ImageSource::Embedded {
+                            name,
+                            bytes: b.into(),
+                        },
+                        Err(why) => missing(format!("data URI: {why}")),
+                    }
+                } else {
+                    match relative_path(uri) {
+                        Ok(relative) => ImageSource::File(folder.join(relative)),
+                        Err(why) => missing(why),
+                    }
+                }
+            } else {
+                missing("the image has neither a uri nor a bufferView".into())
+            }
+        })
+        .collect()
+}
+
 /// Reads a buffer file beside the `.gltf` (for [`load`]'s `external`).
 pub fn read_beside(folder: &Path, relative: &Path) -> Result<Vec<u8>, String> {
     let file = folder.join(relative);
@@ -187,6 +246,50 @@ pub(super) fn read_vec3(
                 f32::from_le_bytes([b[0], b[1], b[2], b[3]])
             };
             let v = [f(0), f(1), f(2)];
+            if v.iter().all(|c| c.is_finite()) {
+                Ok(v)
+            } else {
+                Err(format!("element {i} is not finite"))
+            }
+        })
+        .collect()
+}
+
+/// An accessor of texture coordinates: 2-vectors of f32, or of normalised u8 or u16. Values
+/// that are not finite are an error.
+pub(super) fn read_vec2(
+    accessor: &::gltf::Accessor<'_>,
+    buffers: &[Vec<u8>],
+) -> Result<Vec<[f32; 2]>, String> {
+    let size = match accessor.data_type() {
+        DataType::F32 => 4,
+        DataType::U16 if accessor.normalized() => 2,
+        DataType::U8 if accessor.normalized() => 1,
+        other => {
+            return Err(format!(
+                "{other:?}: raygine reads texture coordinates as f32 or normalised u8 or u16"
+            ));
+        }
+    };
+    if accessor.dimensions() != Dimensions::Vec2 {
+        return Err(format!(
+            "{:?}: texture coordinates are 2-vectors",
+            accessor.dimensions()
+        ));
+    }
+    let (bytes, stride) = view_bytes(accessor, buffers)?;
+    (0..accessor.count())
+        .map(|i| {
+            let at = i * stride;
+            let f = |k: usize| {
+                let b = &bytes[at + size * k..at + size * k + size];
+                match size {
+                    4 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+                    2 => f32::from(u16::from_le_bytes([b[0], b[1]])) / 65535.0,
+                    _ => f32::from(b[0]) / 255.0,
+                }
+            };
+            let v = [f(0), f(1)];
             if v.iter().all(|c| c.is_finite()) {
                 Ok(v)
             } else {

@@ -8,7 +8,13 @@
 //!   spread drawn smooth, noted);
 //! - emission: emissive factor × `KHR_materials_emissive_strength`, read as
 //!   `emission_scale` cd/m² per unit (1 by default: nits), noted once per material;
-//! - textures, alpha blending and masks are not used (noted).
+//! - `baseColorTexture` (sRGB; its alpha times the factor's is the alpha) and
+//!   `metallicRoughnessTexture` (roughness in G, metallic in B) multiply their factors, read
+//!   with their UV set, `KHR_texture_transform` and sampler (wrap modes; a NEAREST
+//!   magnification filter, else bilinear);
+//! - `alphaMode` MASK cuts the surface where alpha < `alphaCutoff` (0.5), for every ray; BLEND
+//!   makes it present with probability alpha (stochastic transparency);
+//! - normal, emissive and occlusion textures are not used (noted).
 //!
 //! The description also carries a Blinn-Phong approximation for readers that want one: Kd =
 //! c (1 − metallic)(1 − T)(1 − F0), Ks = c metallic + F0 (1 − metallic) with glossiness
@@ -16,9 +22,11 @@
 //! above 10 000 a mirror).
 
 use crate::formats::{
-    EmissionDescription, MaterialDescription, MetalRoughDescription, TransmissionDescription,
+    EmissionDescription, ImageSource, MaterialDescription, MetalRoughDescription,
+    TransmissionDescription,
 };
 use crate::light::EmissionSides;
+use crate::texture::{AlphaMode, Filter, Maps, TextureRef, UvTransform, Wrap};
 use std::path::Path;
 
 /// Dielectric reflectance at normal incidence of glTF's metallic-roughness model.
@@ -28,6 +36,7 @@ pub(super) fn to_description(
     m: &::gltf::Material<'_>,
     path: &Path,
     emission_scale: f32,
+    images: &[ImageSource],
     notes: &mut Vec<String>,
 ) -> MaterialDescription {
     let index = m
@@ -98,20 +107,7 @@ pub(super) fn to_description(
     };
     let emission =
         EmissionDescription::from_unitless(emissive, emission_scale, sides, &at, "emissive", notes);
-    let textured = pbr.base_color_texture().is_some()
-        || pbr.metallic_roughness_texture().is_some()
-        || m.emissive_texture().is_some()
-        || m.normal_texture().is_some();
-    if textured {
-        notes.push(format!(
-            "{at}: textures are not supported; drawn untextured"
-        ));
-    }
-    if m.alpha_mode() != ::gltf::material::AlphaMode::Opaque {
-        notes.push(format!(
-            "{at}: alpha blending and masks are not supported; drawn opaque"
-        ));
-    }
+    let maps = maps(m, images, &at, notes);
     MaterialDescription {
         name,
         source: path.to_owned(),
@@ -122,7 +118,97 @@ pub(super) fn to_description(
         transmission,
         emission,
         metal_rough: Some(metal_rough),
+        maps: (!maps.is_empty()).then(|| Box::new(maps)),
     }
+}
+
+/// The material's textures and alpha.
+fn maps(
+    m: &::gltf::Material<'_>,
+    images: &[ImageSource],
+    at: &str,
+    notes: &mut Vec<String>,
+) -> Maps<TextureRef<ImageSource>> {
+    let pbr = m.pbr_metallic_roughness();
+    let mut out = Maps {
+        material: m.name().map_or_else(
+            || format!("material{}", m.index().unwrap_or(0)),
+            str::to_owned,
+        ),
+        alpha_factor: pbr.base_color_factor()[3].clamp(0.0, 1.0),
+        ..Maps::default()
+    };
+    let mut one = |info: Option<::gltf::texture::Info<'_>>| {
+        let info = info?;
+        let transform = info.texture_transform();
+        let set = transform
+            .as_ref()
+            .and_then(|t| t.tex_coord())
+            .unwrap_or(info.tex_coord());
+        let transform = transform.map_or(UvTransform::IDENTITY, |t| {
+            UvTransform::from_offset_rotation_scale(t.offset(), t.rotation(), t.scale())
+        });
+        texture_ref(&info.texture(), set, transform, images, at, notes)
+    };
+    out.base_color = one(pbr.base_color_texture());
+    out.metal_rough = one(pbr.metallic_roughness_texture());
+    out.alpha_mode = match m.alpha_mode() {
+        ::gltf::material::AlphaMode::Opaque => AlphaMode::Opaque,
+        ::gltf::material::AlphaMode::Mask => AlphaMode::Mask {
+            cutoff: m.alpha_cutoff().unwrap_or(0.5).clamp(0.0, 1.0),
+        },
+        ::gltf::material::AlphaMode::Blend => AlphaMode::Blend,
+    };
+    let unused: Vec<&str> = [
+        (m.normal_texture().is_some(), "normalTexture"),
+        (m.emissive_texture().is_some(), "emissiveTexture"),
+        (
+            m.occlusion_texture().is_some(),
+            "occlusionTexture (a path tracer computes it)",
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(has, name)| has.then_some(name))
+    .collect();
+    if !unused.is_empty() {
+        notes.push(format!("{at}: not used: {}", unused.join(", ")));
+    }
+    out
+}
+
+/// One texture as raygine reads it: its image, UV set, transform and sampler.
+fn texture_ref(
+    texture: &::gltf::Texture<'_>,
+    set: u32,
+    transform: UvTransform,
+    images: &[ImageSource],
+    at: &str,
+    notes: &mut Vec<String>,
+) -> Option<TextureRef<ImageSource>> {
+    use ::gltf::texture::{MagFilter, WrappingMode};
+    let image = images.get(texture.source().index())?.clone();
+    if set > 1 {
+        notes.push(format!(
+            "{at}: texture {} reads TEXCOORD_{set}; raygine reads sets 0 and 1, so it reads set 0",
+            texture.index()
+        ));
+    }
+    let sampler = texture.sampler();
+    let wrap = |w: WrappingMode| match w {
+        WrappingMode::Repeat => Wrap::Repeat,
+        WrappingMode::ClampToEdge => Wrap::Clamp,
+        WrappingMode::MirroredRepeat => Wrap::Mirror,
+    };
+    Some(TextureRef {
+        texture: image,
+        set: if set == 1 { 1 } else { 0 },
+        transform,
+        wrap: [wrap(sampler.wrap_s()), wrap(sampler.wrap_t())],
+        filter: match sampler.mag_filter() {
+            Some(MagFilter::Nearest) => Filter::Nearest,
+            _ => Filter::Linear,
+        },
+    })
 }
 
 #[cfg(test)]
@@ -136,7 +222,7 @@ mod tests {
         )
         .expect("valid");
         let m = doc.materials().next().expect("one material");
-        to_description(&m, Path::new("t.gltf"), 1.0, &mut Vec::new())
+        to_description(&m, Path::new("t.gltf"), 1.0, &[], &mut Vec::new())
     }
 
     #[test]

@@ -73,9 +73,11 @@ pub fn parse(
     }
     let gltf = ::gltf::Document::from_json(json).map_err(|e| invalid(e.to_string()))?;
     let buffers = buffers::load(&gltf, blob.as_deref(), path, external)?;
+    let images = buffers::images(&gltf, &buffers, path);
     let mut reader = Reader {
         path,
         buffers: &buffers,
+        images: &images,
         emission_scale: options.emission_scale(),
         desc: SceneDescription {
             path: path.to_owned(),
@@ -141,6 +143,8 @@ pub fn parse(
 struct Reader<'r> {
     path: &'r Path,
     buffers: &'r [Vec<u8>],
+    /// Where each of the file's images is.
+    images: &'r [super::ImageSource],
     emission_scale: f32,
     desc: SceneDescription,
     /// glTF material index (None: the default material) to description index.
@@ -259,6 +263,23 @@ impl Reader<'_> {
                 ),
                 None => None,
             };
+            let mut uvs: [Option<Vec<[f32; 2]>>; 2] = [None, None];
+            for (set, uv) in uvs.iter_mut().enumerate() {
+                if let Some(a) = primitive.get(&::gltf::Semantic::TexCoords(set as u32)) {
+                    match buffers::read_vec2(&a, self.buffers) {
+                        Ok(v) if v.len() == positions.len() => *uv = Some(v),
+                        Ok(v) => self.desc.notes.push(at(format!(
+                            "TEXCOORD_{set}: {} coordinates for {} vertices; textures there \
+                             read at (0, 0)",
+                            v.len(),
+                            positions.len()
+                        ))),
+                        Err(e) => self.desc.notes.push(at(format!(
+                            "TEXCOORD_{set}: {e}; textures there read at (0, 0)"
+                        ))),
+                    }
+                }
+            }
             let indices = match primitive.indices() {
                 Some(a) => buffers::read_indices(&a, self.buffers)
                     .map_err(|e| self.error(at(format!("indices: {e}"))))?,
@@ -301,6 +322,7 @@ impl Reader<'_> {
                         &primitive.material(),
                         self.path,
                         self.emission_scale,
+                        self.images,
                         &mut self.desc.notes,
                     );
                     self.desc.materials.push(d);
@@ -329,6 +351,15 @@ impl Reader<'_> {
                 }
             };
             let first = out.positions.len() as u32;
+            for (set, uv) in uvs.iter().enumerate() {
+                if uv.is_some() || !out.uvs[set].is_empty() {
+                    out.uvs[set].resize(first as usize, [0.0; 2]);
+                    match uv {
+                        Some(v) => out.uvs[set].extend_from_slice(v),
+                        None => out.uvs[set].resize(first as usize + positions.len(), [0.0; 2]),
+                    }
+                }
+            }
             out.positions.extend(positions.iter().map(|p| {
                 world
                     .transform_point3(DVec3::from(p.map(f64::from)))
@@ -351,6 +382,11 @@ impl Reader<'_> {
             for t in triangles {
                 out.triangles.push(t.map(|i| i + first));
                 out.triangle_parts.push(part as u32);
+            }
+        }
+        for uv in &mut out.uvs {
+            if !uv.is_empty() {
+                uv.resize(out.positions.len(), [0.0; 2]);
             }
         }
         if !out.triangles.is_empty() {

@@ -108,6 +108,7 @@ pub fn material_from_attr(
         transmission,
         emission,
         metal_rough: None,
+        maps: None,
     }
 }
 

@@ -236,7 +236,7 @@ fn assign_parts(
     if !mapped.is_empty() {
         desc.notes.push(format!(
             "{}:{}: parts {} have texture maps whose image files are not in the bundle \
-             (raygine has no textures yet); drawn untextured",
+             (Integra `mapp` / `.tpa` maps are not read); drawn untextured",
             prb_path.display(),
             prb.mapp[0].line,
             mapped.join(", ")

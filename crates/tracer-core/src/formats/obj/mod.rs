@@ -10,6 +10,7 @@
 //!   Right-handed, Y up.
 //! - Materials map as `mtl` documents; `emission_scale` turns `Ke` into cd/m².
 
+mod maps;
 mod mtl;
 mod scan;
 
@@ -168,6 +169,19 @@ pub fn parse(
                 .extend(mesh.normals.chunks_exact(3).map(|n| [n[0], n[1], n[2]]));
         } else {
             out.normals.clear();
+        }
+        // Texture coordinates (OBJ's v up the image, stored as the image's 1 − v), when the
+        // brep has them; vertices without read (0, 0).
+        if mesh.texcoords.len() == count * 2 || !out.uvs[0].is_empty() {
+            out.uvs[0].resize(base as usize, [0.0; 2]);
+            if mesh.texcoords.len() == count * 2 {
+                out.uvs[0].extend(mesh.texcoords.chunks_exact(2).map(|t| {
+                    let fix = |x: f32| if x.is_finite() { x } else { 0.0 };
+                    [fix(t[0]), 1.0 - fix(t[1])]
+                }));
+            } else {
+                out.uvs[0].resize(base as usize + count, [0.0; 2]);
+            }
         }
         for t in mesh.indices.chunks_exact(3) {
             out.triangles.push([t[0] + base, t[1] + base, t[2] + base]);

@@ -9,7 +9,8 @@
 //! | `d` < 1 (or `Tr` > 0) | clear transmission Kt = 1 − d with index `Ni` (default 1: a thin sheet) |
 //! | `Ke` | a Lambertian emitter of luminance `emission_scale` × Y(Ke) cd/m² (noted) |
 //! | `Pr`, `Pm` (the PBR extension) | glTF's metallic-roughness model instead of the lobes above: base colour Kd, roughness Pr (default 1), metallic Pm (default 0), transmission 1 − d, F0 from `Ni` (default 1.5) |
-//! | `Ka`, texture maps | not used (textures noted) |
+//! | `Ka` | not used |
+//! | texture maps | see `super::maps` |
 //!
 //! MTL's Ks with Ns is the legacy, unnormalised Phong highlight; raygine's lobe is normalised,
 //! so a highlight's peak differs while Ks stays the fraction of light the lobe reflects.
@@ -135,19 +136,7 @@ pub(super) fn to_description(
             notes,
         )
     });
-    let textures = [
-        &m.diffuse_texture,
-        &m.specular_texture,
-        &m.normal_texture,
-        &m.ambient_texture,
-        &m.shininess_texture,
-        &m.dissolve_texture,
-    ];
-    if textures.iter().any(|t| t.is_some()) {
-        notes.push(format!(
-            "{at}: texture maps are not supported; drawn untextured"
-        ));
-    }
+    let maps = super::maps::maps(m, source, &at, notes);
     let number = |key: &str| {
         m.unknown_param
             .get(key)
@@ -175,6 +164,7 @@ pub(super) fn to_description(
         transmission,
         emission,
         metal_rough,
+        maps: (!maps.is_empty()).then(|| Box::new(maps)),
     }
 }
 

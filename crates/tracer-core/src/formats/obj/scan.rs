@@ -1,8 +1,9 @@
 //! The line-by-line check of an OBJ file before `tobj` reads it, so every problem is reported
 //! with its line: numbers must parse and be finite, face corners must name vertices that exist.
-//! Its output is the same file cleaned of what raygine does not draw (texture coordinates,
-//! lines, points) with every face corner as an absolute `v` or `v//vn` reference, which `tobj`
-//! then reads without surprises.
+//! Its output is the same file cleaned of what raygine does not draw (lines, points, curves)
+//! with every face corner as an absolute `v`, `v/vt`, `v//vn` or `v/vt/vn` reference, which
+//! `tobj` then reads without surprises. A texture coordinate that is not a finite number reads
+//! as 0 (noted with its line): it only moves a texture, so the file still opens.
 
 use crate::formats::error::{FormatError, check_memory};
 use std::fmt::Write;
@@ -48,13 +49,14 @@ pub(super) fn scan(bytes: &[u8], path: &Path) -> Result<Scan, FormatError> {
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     // First pass: how many positions and normals the file defines (faces may name later ones),
     // and how many triangles it will make, checked against memory before anything is built.
-    let (mut total_v, mut total_vn, mut triangles) = (0u64, 0u64, 0u64);
+    let (mut total_v, mut total_vn, mut total_vt, mut triangles) = (0u64, 0u64, 0u64, 0u64);
     for (line, text) in lines(bytes) {
         let text = text.map_err(|()| FormatError::new(path, line, "not UTF-8 text"))?;
         let mut words = text.split_whitespace();
         match words.next() {
             Some("v") => total_v += 1,
             Some("vn") => total_vn += 1,
+            Some("vt") => total_vt += 1,
             Some("f") => triangles += (words.count() as u64).saturating_sub(2),
             _ => {}
         }
@@ -64,8 +66,10 @@ pub(super) fn scan(bytes: &[u8], path: &Path) -> Result<Scan, FormatError> {
         text: String::with_capacity(bytes.len().min(1 << 30)),
         ..Scan::default()
     };
-    let (mut v, mut vn) = (0u64, 0u64);
-    let (mut skipped_lines, mut skipped_faces, mut textures) = (0usize, 0usize, false);
+    let (mut v, mut vn, mut vt) = (0u64, 0u64, 0u64);
+    let (mut skipped_lines, mut skipped_faces) = (0usize, 0usize);
+    // Lines of texture coordinates that were not finite numbers.
+    let mut bad_vt: Vec<usize> = Vec::new();
     for (line, text) in lines(bytes) {
         let text = text.map_err(|()| FormatError::new(path, line, "not UTF-8 text"))?;
         let words: Vec<&str> = text.split_whitespace().collect();
@@ -106,27 +110,66 @@ pub(super) fn scan(bytes: &[u8], path: &Path) -> Result<Scan, FormatError> {
                 vn += 1;
                 let _ = write!(out.text, "vn {} {} {}", xs[0], xs[1], xs[2]);
             }
-            "vt" | "vp" => {
+            "vt" => {
+                if rest.is_empty() || rest.len() > 3 {
+                    return Err(FormatError::new(
+                        path,
+                        line,
+                        format!("vt takes u (v (w)), found {} numbers", rest.len()),
+                    ));
+                }
+                let mut uv = [0.0f64; 2];
+                for (x, w) in uv.iter_mut().zip(rest) {
+                    match w.parse::<f64>() {
+                        Ok(n) if n.is_finite() => *x = n,
+                        Ok(_) => bad_vt.push(line),
+                        Err(_) => {
+                            return Err(FormatError::new(
+                                path,
+                                line,
+                                format!("vt: `{w}` is not a number"),
+                            ));
+                        }
+                    }
+                }
+                vt += 1;
+                let _ = write!(out.text, "vt {} {}", uv[0], uv[1]);
+            }
+            "vp" => {
                 numbers(rest, path, line, key)?;
-                textures |= key == "vt";
             }
             "f" => {
                 if rest.len() < 3 {
                     skipped_faces += 1;
                 } else {
-                    let corners: Vec<(u64, Option<u64>)> = rest
+                    let so_far = Counts { v, vt, vn };
+                    let total = Counts {
+                        v: total_v,
+                        vt: total_vt,
+                        vn: total_vn,
+                    };
+                    let corners: Vec<Corner> = rest
                         .iter()
-                        .map(|c| corner(c, v, vn, total_v, total_vn, path, line))
+                        .map(|c| corner(c, &so_far, &total, path, line))
                         .collect::<Result<_, _>>()?;
-                    // tobj gives each corner one index: normals on every corner or on none.
-                    let normals = corners.iter().all(|c| c.1.is_some());
+                    // tobj gives each corner one index: texture coordinates and normals on
+                    // every corner or on none.
+                    let textures = corners.iter().all(|c| c.texture.is_some());
+                    let normals = corners.iter().all(|c| c.normal.is_some());
                     out.text.push('f');
-                    for (p, n) in corners {
-                        match n.filter(|_| normals) {
-                            Some(n) => {
+                    for c in corners {
+                        let p = c.position;
+                        match (c.texture.filter(|_| textures), c.normal.filter(|_| normals)) {
+                            (Some(t), Some(n)) => {
+                                let _ = write!(out.text, " {p}/{t}/{n}");
+                            }
+                            (Some(t), None) => {
+                                let _ = write!(out.text, " {p}/{t}");
+                            }
+                            (None, Some(n)) => {
                                 let _ = write!(out.text, " {p}//{n}");
                             }
-                            None => {
+                            (None, None) => {
                                 let _ = write!(out.text, " {p}");
                             }
                         }
@@ -169,26 +212,47 @@ pub(super) fn scan(bytes: &[u8], path: &Path) -> Result<Scan, FormatError> {
             skipped_faces
         ));
     }
-    if textures {
+    if let Some(first) = bad_vt.first() {
         out.notes.push(format!(
-            "{}: texture coordinates are not used (raygine has no textures yet)",
-            path.display()
+            "{}:{first}: {} texture coordinates are not finite numbers (lines {}); they read \
+             as 0",
+            path.display(),
+            bad_vt.len(),
+            bad_vt
+                .iter()
+                .take(5)
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+                + if bad_vt.len() > 5 { ", ..." } else { "" }
         ));
     }
     Ok(out)
 }
 
-/// One face corner `v`, `v/vt`, `v//vn` or `v/vt/vn` as absolute 1-based (position, normal)
-/// indices; negative indices count back from the last defined so far.
+/// How many positions, texture coordinates and normals (so far, or in the file).
+struct Counts {
+    v: u64,
+    vt: u64,
+    vn: u64,
+}
+
+/// A face corner's absolute 1-based indices.
+struct Corner {
+    position: u64,
+    texture: Option<u64>,
+    normal: Option<u64>,
+}
+
+/// One face corner `v`, `v/vt`, `v//vn` or `v/vt/vn` as absolute 1-based indices; negative
+/// indices count back from the last defined so far.
 fn corner(
     text: &str,
-    v_so_far: u64,
-    vn_so_far: u64,
-    v_total: u64,
-    vn_total: u64,
+    so_far: &Counts,
+    total: &Counts,
     path: &Path,
     line: usize,
-) -> Result<(u64, Option<u64>), FormatError> {
+) -> Result<Corner, FormatError> {
     let mut parts = text.split('/');
     let resolve = |word: &str, so_far: u64, total: u64, what: &str| -> Result<u64, FormatError> {
         let bad = |why: String| FormatError::new(path, line, format!("f: corner `{text}`: {why}"));
@@ -207,10 +271,13 @@ fn corner(
         }
         Ok(absolute as u64)
     };
-    let p = resolve(parts.next().unwrap_or(""), v_so_far, v_total, "vertex")?;
-    let _texture = parts.next();
-    let n = match parts.next() {
-        Some(w) if !w.is_empty() => Some(resolve(w, vn_so_far, vn_total, "normal")?),
+    let position = resolve(parts.next().unwrap_or(""), so_far.v, total.v, "vertex")?;
+    let texture = match parts.next() {
+        Some(w) if !w.is_empty() => Some(resolve(w, so_far.vt, total.vt, "texture coordinate")?),
+        _ => None,
+    };
+    let normal = match parts.next() {
+        Some(w) if !w.is_empty() => Some(resolve(w, so_far.vn, total.vn, "normal")?),
         _ => None,
     };
     if parts.next().is_some() {
@@ -220,7 +287,11 @@ fn corner(
             format!("f: corner `{text}` has more than v/vt/vn"),
         ));
     }
-    Ok((p, n))
+    Ok(Corner {
+        position,
+        texture,
+        normal,
+    })
 }
 
 #[cfg(test)]
@@ -268,7 +339,19 @@ mod tests {
         )
         .expect("valid");
         let faces: Vec<&str> = s.text.lines().filter(|l| l.starts_with('f')).collect();
-        assert_eq!(faces, ["f 1//1 2//1 3//1", "f 1 2 3"]);
-        assert_eq!(s.notes.len(), 2, "{:?}", s.notes);
+        assert_eq!(faces, ["f 1/1/1 2/1/1 3/1/1", "f 1 2 3"]);
+        assert_eq!(s.notes.len(), 1, "{:?}", s.notes);
+        // A NaN texture coordinate is noted with its line and reads as 0.
+        let s = scan(b"v 0 0 0\nvt 0.5 nan\nvt inf 1\n", Path::new("m.obj")).expect("valid");
+        assert!(s.text.contains("vt 0.5 0\nvt 0 1"), "{}", s.text);
+        assert!(
+            s.notes[0].starts_with("m.obj:2: 2 texture coordinates"),
+            "{:?}",
+            s.notes
+        );
+        assert!(err("vt 1 2 3 4\n").contains("vt takes u"));
+        assert!(
+            err("v 0 0 0\nvt 0 0\nf 1/2 1/1 1/1\n").contains("texture coordinate 2 does not exist")
+        );
     }
 }

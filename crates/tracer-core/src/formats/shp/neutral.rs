@@ -32,6 +32,7 @@ impl ShpDescription {
                     line: brep.line,
                     positions: brep.vertices.clone(),
                     normals: Vec::new(),
+                    uvs: [Vec::new(), Vec::new()],
                     triangles: brep.triangles.clone(),
                     parts: vec![PartDescription::default(); brep.part_count.max(1) as usize],
                     triangle_parts: brep.parts.clone(),

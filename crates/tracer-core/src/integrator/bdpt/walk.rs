@@ -140,7 +140,7 @@ impl Bidirectional<'_, '_> {
             v.origin = surface.origin;
             v.adjoint = importance;
             v.wo = -ray.dir;
-            let bsdf = scatter_at::<S>(lit, prim, v.wo, importance);
+            let bsdf = scatter_at::<S>(lit, prim, [hit.u, hit.v], v.wo, importance);
             v.bsdf = Some(bsdf);
             let Some(prev) = path.last() else {
                 break;

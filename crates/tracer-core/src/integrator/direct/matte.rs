@@ -89,7 +89,10 @@ pub(super) fn shade_first_hits(
     let max_depth = lit.max_depth;
     scratch
         .matte
-        .extend(lit.materials.iter().map(|m| is_matte(m, max_depth)));
+        .extend(lit.materials.iter().enumerate().map(|(slot, m)| {
+            // Textured slots take the walk, which reads their texture coordinates.
+            is_matte(m, max_depth) && !lit.is_textured(slot)
+        }));
     if !scratch.matte.contains(&true) {
         // Every surface mirrors, glows or shines (a hall of mirrors): all walk.
         rest.extend(0..rays.len() as u32);

@@ -104,7 +104,7 @@ impl Walk {
         let p = ray.at(hit.t);
         let surface = Surface::at(lit, &hit, p, ray.dir);
         let n = surface.ns;
-        let mat = lit.material_of(hit.prim);
+        let mat = lit.material_at(hit.prim, [hit.u, hit.v]);
         if let Some(pane) = &mat.pane {
             // A window is looked through: the ray goes on along its line, weighted by T(θ),
             // without counting as a step of the mirror chain (direct mode leaves the pane's
@@ -133,7 +133,7 @@ impl Walk {
         let before = shadows.len();
         direct_light(
             lit,
-            mat,
+            &mat,
             &surface,
             view,
             &mut self.rng,

@@ -1,0 +1,293 @@
+//! Image textures against answers worked out here: a quad carrying a checker of known sRGB
+//! codes, under a uniform sky of luminance L (illuminance E = πL), seen straight down through an
+//! orthographic camera so every pixel's texture coordinates are known. Where bilinear filtering
+//! is constant over a pixel's whole footprint, the pixel reads E · ρ / π = L · ρ for a Lambertian
+//! OBJ material (`map_Kd`), and L · A(0°) with A the directional albedo of glTF's model for a
+//! glTF base colour texture read through `KHR_texture_transform`. ρ comes from the sRGB codes
+//! by IEC 61966-2-1, written again below (188 → 0.5029, 94 → 0.1119).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use base64::Engine;
+use std::path::{Path, PathBuf};
+use tracer_core::integrator::IntegratorKind;
+use tracer_core::light::{Environment, EnvironmentSource};
+use tracer_core::render::{RenderSettings, render};
+use tracer_core::scene::{Camera, LoadOptions, Projection, load};
+
+const SKY_CD_M2: f64 = 100.0;
+/// The texture: 8 x 8 texels in 2 x 2 blocks of 4 x 4, alternating two colours.
+const TEXELS: u32 = 8;
+const BLOCK: u32 = 4;
+const CODES: [[u8; 3]; 2] = [[188, 94, 30], [94, 188, 250]];
+/// Image side, pixels (4 per texel).
+const SIDE: u32 = 32;
+
+/// The sRGB transfer function's inverse, IEC 61966-2-1.
+fn srgb(code: u8) -> f64 {
+    let c = f64::from(code) / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn checker_png() -> Vec<u8> {
+    let mut img = image::RgbImage::new(TEXELS, TEXELS);
+    for (x, y, p) in img.enumerate_pixels_mut() {
+        p.0 = CODES[((x / BLOCK + y / BLOCK) % 2) as usize];
+    }
+    let mut out = Vec::new();
+    img.write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
+        .unwrap();
+    out
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("raygine-tex-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Which colour of [`CODES`] a pixel reads, when bilinear filtering (with repeat) is the same
+/// over its whole footprint: the footprint's corners, mapped by `to_uv` (pixel coordinates to
+/// texture coordinates), all lie where the four texels around them are one block's.
+fn block_of_pixel(px: u32, py: u32, to_uv: &dyn Fn(f64, f64) -> [f64; 2]) -> Option<usize> {
+    let mut found = None;
+    for (cx, cy) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+        let [u, v] = to_uv(f64::from(px) + cx, f64::from(py) + cy);
+        // Texel space, centres at integers: the four texels around are floor and floor + 1.
+        let (x, y) = (u * f64::from(TEXELS) - 0.5, v * f64::from(TEXELS) - 0.5);
+        let blocks = |t: f64| {
+            let a = (t.floor() as i64).rem_euclid(i64::from(TEXELS)) / i64::from(BLOCK);
+            let b = (t.floor() as i64 + 1).rem_euclid(i64::from(TEXELS)) / i64::from(BLOCK);
+            (a == b).then_some(a)
+        };
+        let (bx, by) = (blocks(x)?, blocks(y)?);
+        let b = ((bx + by) % 2) as usize;
+        if found.is_some_and(|f| f != b) {
+            return None;
+        }
+        found = Some(b);
+    }
+    found
+}
+
+/// Renders `path` straight down onto the unit quad (x right, z down the image) under the sky,
+/// and returns each pixel's RGB mean and the relative standard error of its luminance.
+fn render_down(path: &Path, spp: u32) -> (Vec<glam::Vec3>, Vec<f64>, Vec<String>) {
+    let mut loaded = load(path, &LoadOptions::default()).unwrap();
+    let setup = &mut loaded.setup;
+    setup.camera = Camera {
+        position: [0.5, 5.0, 0.5],
+        look_at: [0.5, 0.0, 0.5],
+        up: [0.0, 0.0, -1.0],
+        projection: Projection::Orthographic,
+        width: Some(1.0),
+        ..Camera::default()
+    };
+    setup.lights.clear();
+    setup.environment = Some(Environment {
+        source: EnvironmentSource::Uniform {
+            luminance_cd_m2: SKY_CD_M2 as f32,
+            color: [1.0; 3],
+        },
+        scale: 1.0,
+        rotation_deg: 0.0,
+        background: true,
+    });
+    let settings = RenderSettings {
+        width: SIDE,
+        height: SIDE,
+        samples_per_pixel: spp,
+        integrator: IntegratorKind::Path,
+        ..RenderSettings::default()
+    };
+    let (film, _) = render(&loaded.scene, &loaded.setup, &settings);
+    let n = (SIDE * SIDE) as usize;
+    let rgb = (0..n).map(|i| film.mean_rgb(i)).collect();
+    // The standard error relative to the pixel's luminance (every channel of a Lambertian
+    // pixel under a grey sky carries the same relative noise).
+    let se = (0..n)
+        .map(|i| film.luminance_std_error(i).unwrap_or(f64::INFINITY) / film.mean_luminance(i))
+        .collect();
+    (rgb, se, loaded.warnings)
+}
+
+/// Checks every pixel with a known block against `expected(block)` per channel; returns how
+/// many pixels were checked.
+fn check_pixels(
+    what: &str,
+    rgb: &[glam::Vec3],
+    se: &[f64],
+    to_uv: &dyn Fn(f64, f64) -> [f64; 2],
+    expected: &dyn Fn(usize) -> [f64; 3],
+) -> usize {
+    let mut checked = 0;
+    let mut worst = 0.0f64;
+    // Sum of got / want − 1 and the count per block and channel.
+    let mut sums = [[0.0f64; 3]; 2];
+    let mut counts = [0usize; 2];
+    for py in 0..SIDE {
+        for px in 0..SIDE {
+            let Some(b) = block_of_pixel(px, py, to_uv) else {
+                continue;
+            };
+            let i = (py * SIDE + px) as usize;
+            let want = expected(b);
+            counts[b] += 1;
+            for c in 0..3 {
+                let got = f64::from(rgb[i][c]);
+                let rel = got / want[c] - 1.0;
+                sums[b][c] += rel;
+                worst = worst.max(rel.abs());
+                // 1 % or 5 standard errors of the pixel (the sky's sampling noise).
+                assert!(
+                    rel.abs() < 0.01 || rel.abs() < 5.0 * se[i],
+                    "{what}: pixel ({px}, {py}) channel {c}: {got} vs {} (block {b})",
+                    want[c]
+                );
+            }
+            checked += 1;
+        }
+    }
+    println!(
+        "{what}: {checked} pixels at known texels, worst {:.3} % off",
+        worst * 100.0
+    );
+    // Over each block's pixels the noise averages out: the mean is within 0.5 %.
+    for (b, (sum, count)) in sums.iter().zip(counts).enumerate() {
+        for (c, s) in sum.iter().enumerate() {
+            let mean = s / count.max(1) as f64;
+            println!(
+                "{what}: block {b} channel {c}: mean {:+.3} % off",
+                mean * 100.0
+            );
+            assert!(mean.abs() < 0.005, "{what}: block {b} channel {c}: {mean}");
+        }
+    }
+    checked
+}
+
+#[test]
+fn an_obj_quad_with_map_kd_reads_l_times_the_decoded_texel() {
+    // The decode by hand, as the issue states it.
+    assert!((srgb(188) - 0.5029).abs() < 5e-5 && (srgb(94) - 0.1119).abs() < 5e-5);
+    let dir = scratch("obj");
+    std::fs::write(dir.join("checker.png"), checker_png()).unwrap();
+    std::fs::write(
+        dir.join("quad.mtl"),
+        "newmtl checker\nKd 1 1 1\nmap_Kd checker.png\n",
+    )
+    .unwrap();
+    // OBJ's v points up the image: the image's top row (v = 1 in OBJ) at z = 0.
+    std::fs::write(
+        dir.join("quad.obj"),
+        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\n\
+         usemtl checker\nf 1/1 4/4 3/3 2/2\n",
+    )
+    .unwrap();
+    let (rgb, se, warnings) = render_down(&dir.join("quad.obj"), 64);
+    assert!(
+        !warnings.iter().any(|w| w.contains("texture")),
+        "{warnings:?}"
+    );
+    let to_uv = |x: f64, y: f64| [x / f64::from(SIDE), y / f64::from(SIDE)];
+    let checked = check_pixels("OBJ map_Kd", &rgb, &se, &to_uv, &|b| {
+        CODES[b].map(|c| SKY_CD_M2 * srgb(c))
+    });
+    // In each of the 4 blocks, 11 x 11 pixels lie wholly where its texels are constant.
+    assert_eq!(checked, 4 * 11 * 11);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// KHR_texture_transform as its specification writes it: translation · rotation · scale, the
+/// rotation matrix with rows (cos, sin) and (−sin, cos), applied to (u, v, 1).
+fn khr_transform(
+    offset: [f64; 2],
+    rotation: f64,
+    scale: [f64; 2],
+) -> impl Fn([f64; 2]) -> [f64; 2] {
+    let t =
+        glam::DMat3::from_cols_array(&[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset[0], offset[1], 1.0]);
+    let (s, c) = rotation.sin_cos();
+    let r = glam::DMat3::from_cols_array(&[c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0]);
+    let sc = glam::DMat3::from_diagonal(glam::DVec3::new(scale[0], scale[1], 1.0));
+    let m = t * r * sc;
+    move |uv: [f64; 2]| {
+        let p = m * glam::DVec3::new(uv[0], uv[1], 1.0);
+        [p.x, p.y]
+    }
+}
+
+#[test]
+fn a_gltf_base_colour_texture_is_read_through_khr_texture_transform() {
+    let dir = scratch("gltf");
+    let png = checker_png();
+    // Positions, then texture coordinates (the image's frame), then indices.
+    let positions: [[f32; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [0.0, 0.0, 1.0],
+    ];
+    let uvs: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let indices: [u16; 6] = [0, 3, 2, 0, 2, 1];
+    let mut bin = Vec::new();
+    positions
+        .iter()
+        .flatten()
+        .for_each(|f| bin.extend(f.to_le_bytes()));
+    uvs.iter()
+        .flatten()
+        .for_each(|f| bin.extend(f.to_le_bytes()));
+    indices.iter().for_each(|i| bin.extend(i.to_le_bytes()));
+    let b64 = |b: &[u8]| base64::engine::general_purpose::STANDARD.encode(b);
+    let (offset, rotation, scale) = ([0.5f64, 0.25], std::f64::consts::FRAC_PI_2, [1.0f64, 2.0]);
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"extensionsUsed":["KHR_texture_transform"],
+        "scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"TEXCOORD_0":1}},"indices":2,"material":0}}]}}],
+        "materials":[{{"name":"checker","pbrMetallicRoughness":{{"metallicFactor":0.0,"roughnessFactor":1.0,
+            "baseColorTexture":{{"index":0,"extensions":{{"KHR_texture_transform":
+                {{"offset":[{},{}],"rotation":{},"scale":[{},{}]}}}}}}}}}}],
+        "textures":[{{"source":0,"sampler":0}}],"samplers":[{{"wrapS":10497,"wrapT":10497}}],
+        "images":[{{"uri":"data:image/png;base64,{}"}}],
+        "buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}],
+        "bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":48}},{{"buffer":0,"byteOffset":48,"byteLength":32}},
+            {{"buffer":0,"byteOffset":80,"byteLength":12}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,0,1]}},
+            {{"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"}},
+            {{"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}}]}}"#,
+        offset[0],
+        offset[1],
+        rotation,
+        scale[0],
+        scale[1],
+        b64(&png),
+        bin.len(),
+        b64(&bin)
+    );
+    std::fs::write(dir.join("quad.gltf"), json).unwrap();
+    let (rgb, se, warnings) = render_down(&dir.join("quad.gltf"), 256);
+    assert!(
+        !warnings.iter().any(|w| w.contains("texture")),
+        "{warnings:?}"
+    );
+    let transform = khr_transform(offset, rotation, scale);
+    let to_uv = |x: f64, y: f64| transform([x / f64::from(SIDE), y / f64::from(SIDE)]);
+    // Straight down, glTF's model (metallic 0, roughness 1) reflects L · A(0°) of the colour.
+    let per_block = CODES
+        .map(|b| b.map(|c| SKY_CD_M2 * crate::metal_rough::albedo(srgb(c), 0.0, 1.0, 0.0, 0.0)));
+    let expected = |b: usize| per_block[b];
+    let checked = check_pixels("glTF KHR_texture_transform", &rgb, &se, &to_uv, &expected);
+    assert!(checked >= 200, "{checked}");
+    // Without the transform the pattern would differ: the test can tell.
+    let plain = |x: f64, y: f64| [x / f64::from(SIDE), y / f64::from(SIDE)];
+    let differs = (0..SIDE * SIDE).any(|i| {
+        let (px, py) = (i % SIDE, i / SIDE);
+        matches!((block_of_pixel(px, py, &to_uv), block_of_pixel(px, py, &plain)), (Some(a), Some(b)) if a != b)
+    });
+    assert!(differs);
+    let _ = std::fs::remove_dir_all(&dir);
+}
