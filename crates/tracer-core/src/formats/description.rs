@@ -68,6 +68,9 @@ pub struct MeshDescription {
     /// Texture coordinates per position, set 0 and set 1 (glTF `TEXCOORD_0/1`, OBJ `vt` as
     /// set 0), in the image's frame: v = 0 at the image's top row. Empty when the mesh has none.
     pub uvs: [Vec<[f32; 2]>; 2],
+    /// Tangents per position (xyz unit, w ±1: B = w · N × T), when the file gives them (glTF
+    /// `TANGENT`); else empty and computed where a normal map needs them.
+    pub tangents: Vec<[f32; 4]>,
     /// Vertex indices into `positions`, three per triangle.
     pub triangles: Vec<[u32; 3]>,
     /// The parts, at least one when the mesh has triangles.

@@ -13,7 +13,8 @@ use crate::bvh::Hit;
 use crate::geometry::Ray;
 use crate::shading::PreparedMaterial;
 use crate::texture::AlphaMode;
-use glam::Vec2;
+use crate::texture::SurfaceDerivatives;
+use glam::{Vec2, Vec3, Vec4};
 use std::borrow::Cow;
 
 /// At most this many alpha-cut surfaces are passed along one ray (then it stops there).
@@ -26,6 +27,8 @@ pub(super) struct SlotMaps {
     pub shading: Vec<Option<u32>>,
     /// Per slot: the texture set that cuts it (empty: none does).
     pub cutting: Vec<Option<u32>>,
+    /// Per slot: the texture set that bends its normals (empty: none does).
+    pub bending: Vec<Option<u32>>,
     /// Per slot: the clamped material the maps multiply (empty without shading maps).
     pub factors: Vec<crate::scene::Material>,
 }
@@ -44,6 +47,10 @@ impl SlotMaps {
             .iter()
             .map(|m| set_of(m, crate::texture::TextureSet::cuts))
             .collect();
+        let bending: Vec<Option<u32>> = materials
+            .iter()
+            .map(|m| set_of(m, crate::texture::TextureSet::bends))
+            .collect();
         let any_shading = shading.iter().any(Option::is_some);
         SlotMaps {
             factors: if any_shading {
@@ -52,6 +59,11 @@ impl SlotMaps {
                 Vec::new()
             },
             shading: if any_shading { shading } else { Vec::new() },
+            bending: if bending.iter().any(Option::is_some) {
+                bending
+            } else {
+                Vec::new()
+            },
             cutting: if cutting.iter().any(Option::is_some) {
                 cutting
             } else {
@@ -114,10 +126,54 @@ impl LitScene<'_> {
         PreparedMaterial::new(&m)
     }
 
-    /// Whether maps vary the shading of material slot `slot`.
+    /// Whether maps vary the shading or the normals of material slot `slot`.
     #[inline]
     pub fn is_textured(&self, slot: usize) -> bool {
         self.maps.shading.get(slot).is_some_and(Option::is_some)
+            || self.maps.bending.get(slot).is_some_and(Option::is_some)
+    }
+
+    /// Whether some material bends its shading normals (normal or bump maps).
+    #[inline(always)]
+    pub fn bends_normals(&self) -> bool {
+        !self.maps.bending.is_empty()
+    }
+
+    /// The unit normal `n` (on the side the mesh's normals face) at barycentrics `bary` of
+    /// triangle `prim`, bent by its material's normal and bump maps (`n` itself without).
+    #[cold]
+    #[inline(never)]
+    pub fn bent_normal(&self, prim: u32, bary: [f32; 2], n: Vec3) -> Vec3 {
+        let scene = self.scene;
+        let slot = scene.triangle_slots[prim as usize] as usize;
+        let Some(Some(set)) = self.maps.bending.get(slot) else {
+            return n;
+        };
+        let Some(maps) = scene.texture_sets.get(*set as usize) else {
+            return n;
+        };
+        let uv_set = usize::from(maps.normal.or(maps.bump).map_or(0, |m| m.set.min(1)));
+        let Some(corner_uvs) = scene.uvs[uv_set].get(prim as usize) else {
+            return n;
+        };
+        let Some((dp_du, dp_dv)) =
+            SurfaceDerivatives::of_triangle(scene.triangles[prim as usize], *corner_uvs)
+        else {
+            return n;
+        };
+        let [u, v] = bary;
+        let tangent = scene
+            .corner_tangents
+            .get(prim as usize)
+            .filter(|t| t[0] != Vec4::ZERO)
+            .map(|t| t[0] * (1.0 - u - v) + t[1] * u + t[2] * v)
+            .filter(|t| t.truncate().length_squared() > 1e-12);
+        let d = SurfaceDerivatives {
+            dp_du,
+            dp_dv,
+            tangent,
+        };
+        maps.bend(&scene.textures, self.uv_at(prim, bary), n, &d)
     }
 
     /// Whether some surface is alpha-cut (rays then test alpha at every hit).

@@ -53,6 +53,9 @@ pub struct Scene {
     /// Texture coordinates per triangle corner, UV set 0 and set 1 (the image's frame, v = 0
     /// at its top row); each empty when no mesh has that set.
     pub uvs: [Vec<[Vec2; 3]>; 2],
+    /// Tangent (xyz unit, w the handedness: B = w · N × T) per triangle corner where a normal
+    /// map needs one (scene coordinates); zero elsewhere, empty when no normal map is used.
+    pub corner_tangents: Vec<[glam::Vec4; 3]>,
     /// The images the materials' maps read, each file once.
     pub textures: std::sync::Arc<[crate::texture::Texture]>,
     /// The maps of the file's textured materials (`Material::textures` indexes them).
@@ -97,6 +100,7 @@ impl Scene {
         let mut triangles = Vec::with_capacity(total);
         let mut triangle_slots = Vec::with_capacity(total);
         let mut uvs: [Vec<[Vec2; 3]>; 2] = [Vec::new(), Vec::new()];
+        let mut corner_tangents: Vec<[glam::Vec4; 3]> = Vec::new();
         for (brep_index, mesh) in desc.meshes.iter().enumerate() {
             let m = mesh
                 .placement
@@ -144,6 +148,25 @@ impl Scene {
                 }
                 if any_smooth {
                     corner_normals.push(world.unwrap_or([Vec3::ZERO; 3]));
+                }
+            }
+            // Tangents where a part's material has a normal map (in the map's UV set).
+            let normal_set = mesh.parts.iter().find_map(|p| {
+                let maps = desc.materials.get(p.material?)?.maps.as_ref()?;
+                maps.normal.as_ref().map(|n| usize::from(n.set.min(1)))
+            });
+            if let Some(set) = normal_set {
+                let local = super::tangents::mesh_tangents(mesh, &mesh_normals, set);
+                if !local.is_empty() {
+                    let linear = glam::DMat3::from_mat4(m);
+                    let handedness = linear.determinant().signum() as f32;
+                    corner_tangents.resize(first_triangle, [glam::Vec4::ZERO; 3]);
+                    corner_tangents.extend(local.iter().map(|t| {
+                        t.map(|c| {
+                            let xyz = (linear * c.truncate().as_dvec3()).normalize_or_zero();
+                            xyz.as_vec3().extend(c.w * handedness)
+                        })
+                    }));
                 }
             }
             let first_slot = slots.len() as u32;
@@ -229,6 +252,9 @@ impl Scene {
                 out.resize(triangles.len(), [Vec2::ZERO; 3]);
             }
         }
+        if !corner_tangents.is_empty() {
+            corner_tangents.resize(triangles.len(), [glam::Vec4::ZERO; 3]);
+        }
         // The images each material names, loaded once each; a map that cannot be used is
         // noted and left out.
         let mut library = crate::texture::Library::default();
@@ -269,6 +295,7 @@ impl Scene {
             normals,
             corner_normals,
             uvs,
+            corner_tangents,
             textures: library.textures.into(),
             texture_sets,
             smooth_angle_deg: smooth_angle_deg.max(0.0),

@@ -75,6 +75,10 @@ impl Scene {
                 set.extend([[glam::Vec2::ZERO; 3]; 2]);
             }
         }
+        let mut corner_tangents = self.corner_tangents.clone();
+        if !corner_tangents.is_empty() {
+            corner_tangents.extend([[glam::Vec4::ZERO; 3]; 2]);
+        }
         let mut design = self.design.clone();
         design.materials.push(Some(ground_material()));
         let started = std::time::Instant::now();
@@ -87,6 +91,7 @@ impl Scene {
             normals,
             corner_normals,
             uvs,
+            corner_tangents,
             textures: self.textures.clone(),
             texture_sets: self.texture_sets.clone(),
             smooth_angle_deg: self.smooth_angle_deg,

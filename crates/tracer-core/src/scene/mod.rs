@@ -21,6 +21,7 @@ mod setup;
 mod sidecar;
 mod sidecar_open;
 mod smoothing;
+mod tangents;
 mod units;
 
 pub use builtin::{BUILTIN_NAME, builtin_cornell_box};

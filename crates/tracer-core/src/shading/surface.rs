@@ -45,10 +45,17 @@ impl Surface {
             .get(prim)
             .filter(|c| c[0] != Vec3::ZERO);
         let Some(c) = corners else {
+            let ns = if lit.bends_normals() {
+                // The map bends the face's own normal, then it turns to the ray's side.
+                let bent = lit.bent_normal(hit.prim, [hit.u, hit.v], n);
+                crate::texture::above_surface(if ng == n { bent } else { -bent }, ng)
+            } else {
+                ng
+            };
             return Surface {
                 p,
                 ng,
-                ns: ng,
+                ns,
                 origin: p + ng * lit.epsilon,
             };
         };
@@ -61,7 +68,12 @@ impl Surface {
         } else {
             1.0
         };
-        let ns = (interpolated * sign).try_normalize().unwrap_or(ng);
+        let mut ns = (interpolated * sign).try_normalize().unwrap_or(ng);
+        if lit.bends_normals() {
+            // Maps bend the vertex normals' own side (their tangent space), then it turns.
+            let bent = lit.bent_normal(hit.prim, [hit.u, hit.v], ns * sign);
+            ns = crate::texture::above_surface(bent * sign, ng);
+        }
         let t = &scene.triangles[prim];
         let lift = |k: usize| {
             let nk = c[k] * sign;

@@ -9,11 +9,13 @@
 //! minified texture towards its blur level and make texel values depend on distance; a few
 //! samples more where a texture is minified are the price (see `docs/formats.md`).
 
+mod bend;
 mod image_file;
 mod library;
 mod lookup;
 mod set;
 
+pub use bend::{MIN_COS, SurfaceDerivatives, above_surface};
 pub use image_file::{MAX_TEXELS, MAX_TEXTURE_SIDE, Texture, TextureError};
 pub use library::Library;
 pub use lookup::{Encoding, Filter, TextureRef, UvTransform, Wrap, srgb_to_linear};

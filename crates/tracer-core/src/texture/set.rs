@@ -38,6 +38,15 @@ pub struct Maps<T> {
     pub metallic: Option<T>,
     /// MTL `map_d`: alpha from the image's alpha channel, or its red channel when it has none.
     pub alpha_map: Option<T>,
+    /// A tangent-space normal map (glTF `normalTexture`, MTL `norm`): RGB = (x, y, z) · ½ + ½,
+    /// x along the tangent (increasing u), y up the image, z out of the surface; x and y times
+    /// `normal_scale`.
+    pub normal: Option<T>,
+    pub normal_scale: f32,
+    /// A height map (MTL `bump` / `map_Bump`, red channel, linear) in scene units times
+    /// `bump_scale` (`-bm`).
+    pub bump: Option<T>,
+    pub bump_scale: f32,
     /// glTF's base colour factor alpha (1 for OBJ).
     pub alpha_factor: f32,
     pub alpha_mode: AlphaMode,
@@ -53,6 +62,10 @@ impl<T> Default for Maps<T> {
             roughness: None,
             metallic: None,
             alpha_map: None,
+            normal: None,
+            normal_scale: 1.0,
+            bump: None,
+            bump_scale: 1.0,
             alpha_factor: 1.0,
             alpha_mode: AlphaMode::Opaque,
         }
@@ -86,14 +99,23 @@ impl<T> Maps<T> {
             roughness: one("roughness", &self.roughness),
             metallic: one("metallic", &self.metallic),
             alpha_map: one("alpha", &self.alpha_map),
+            normal: one("normal", &self.normal),
+            normal_scale: self.normal_scale,
+            bump: one("bump", &self.bump),
+            bump_scale: self.bump_scale,
             alpha_factor: self.alpha_factor,
             alpha_mode: self.alpha_mode,
         }
     }
 
+    /// Whether the maps bend the shading normal (normal or bump map).
+    pub fn bends(&self) -> bool {
+        self.normal.is_some() || self.bump.is_some()
+    }
+
     /// Whether the set has no map and no alpha.
     pub fn is_empty(&self) -> bool {
-        !self.shades() && self.alpha_map.is_none() && !self.cuts()
+        !self.shades() && !self.bends() && self.alpha_map.is_none() && !self.cuts()
     }
 }
 

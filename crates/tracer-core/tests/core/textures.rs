@@ -291,3 +291,162 @@ fn a_gltf_base_colour_texture_is_read_through_khr_texture_transform() {
     assert!(differs);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A 1 m OBJ quad (u along +x, the image's v along +z, normal +y) whose material `mtl` names
+/// `image` as `file`; rendered straight down in direct mode under a point light of `cd`
+/// candela at `light`. Returns the pixels' luminance (SIDE x SIDE).
+fn lit_quad(
+    name: &str,
+    mtl: &str,
+    file: &str,
+    image: image::DynamicImage,
+    light: [f32; 3],
+    cd: f32,
+) -> Vec<f64> {
+    let dir = scratch(name);
+    let mut bytes = Vec::new();
+    image
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .unwrap();
+    std::fs::write(dir.join(file), bytes).unwrap();
+    std::fs::write(dir.join("quad.mtl"), mtl).unwrap();
+    std::fs::write(
+        dir.join("quad.obj"),
+        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\n\
+         usemtl m\nf 1/1 4/4 3/3 2/2\n",
+    )
+    .unwrap();
+    let mut loaded = load(&dir.join("quad.obj"), &LoadOptions::default()).unwrap();
+    assert!(
+        !loaded.warnings.iter().any(|w| w.contains("texture")),
+        "{:?}",
+        loaded.warnings
+    );
+    loaded.setup.camera = Camera {
+        position: [0.5, 5.0, 0.5],
+        look_at: [0.5, 0.0, 0.5],
+        up: [0.0, 0.0, -1.0],
+        projection: Projection::Orthographic,
+        width: Some(1.0),
+        ..Camera::default()
+    };
+    loaded.setup.lights = vec![tracer_core::scene::Light::point(light, cd)];
+    loaded.setup.unit = tracer_core::scene::LengthUnit::M;
+    let settings = RenderSettings {
+        width: SIDE,
+        height: SIDE,
+        samples_per_pixel: 16,
+        integrator: IntegratorKind::Direct,
+        ..RenderSettings::default()
+    };
+    let (film, _) = render(&loaded.scene, &loaded.setup, &settings);
+    let _ = std::fs::remove_dir_all(&dir);
+    (0..(SIDE * SIDE) as usize)
+        .map(|i| film.mean_luminance(i))
+        .collect()
+}
+
+/// The luminance of a Lambertian point of reflectance `rho` and unit normal `n` at `p` under
+/// a point light: ρ/π · I max(0, n·l) / R².
+fn lambert(rho: f64, n: glam::DVec3, p: glam::DVec3, light: glam::DVec3, cd: f64) -> f64 {
+    let d = light - p;
+    rho / std::f64::consts::PI * cd * n.normalize().dot(d.normalize()).max(0.0) / d.length_squared()
+}
+
+/// The centre of pixel (x, y) on the quad.
+fn pixel_point(x: u32, y: u32) -> glam::DVec3 {
+    glam::DVec3::new(
+        (f64::from(x) + 0.5) / f64::from(SIDE),
+        0.0,
+        (f64::from(y) + 0.5) / f64::from(SIDE),
+    )
+}
+
+#[test]
+fn a_normal_mapped_plane_shades_like_the_tilted_plane_its_map_encodes() {
+    let light = [4.0f32, 8.0, 5.0];
+    let cd = 100.0;
+    // Tilts of 30° towards the tangent (+x) and towards the bitangent (up the image: −z).
+    for (name, code) in [
+        ("tangent", [191u8, 128, 221]),
+        ("bitangent", [128u8, 191, 221]),
+    ] {
+        let img = image::RgbImage::from_pixel(4, 4, image::Rgb(code));
+        let seen = lit_quad(
+            &format!("normal-{name}"),
+            "newmtl m\nKd 0.5 0.5 0.5\nnorm n.png\n",
+            "n.png",
+            img.into(),
+            light,
+            cd,
+        );
+        // The normal the codes encode (linear data: 2 · code / 255 − 1), in the world.
+        let [tx, ty, tz] = code.map(|c| 2.0 * f64::from(c) / 255.0 - 1.0);
+        // T = +x (u), B = −z (up the image), N = +y.
+        let n = glam::DVec3::new(tx, tz, -ty);
+        let flat = glam::DVec3::Y;
+        let l = glam::DVec3::from(light.map(f64::from));
+        let mut worst = 0.0f64;
+        let mut differs_from_flat = 0.0f64;
+        for y in 4..SIDE - 4 {
+            for x in 4..SIDE - 4 {
+                let p = pixel_point(x, y);
+                let want = lambert(0.5, n, p, l, f64::from(cd));
+                let got = seen[(y * SIDE + x) as usize];
+                worst = worst.max((got / want - 1.0).abs());
+                differs_from_flat = differs_from_flat
+                    .max((lambert(0.5, flat, p, l, f64::from(cd)) / want - 1.0).abs());
+            }
+        }
+        println!(
+            "normal map tilted towards the {name}: worst {:.3} % from the tilted plane (the flat \
+             plane is up to {:.1} % off)",
+            worst * 100.0,
+            differs_from_flat * 100.0
+        );
+        assert!(worst < 0.005, "{name}: {worst}");
+        assert!(
+            differs_from_flat > 0.05,
+            "the test cannot tell: {differs_from_flat}"
+        );
+    }
+}
+
+#[test]
+fn a_bump_map_ramp_tilts_the_normal_by_its_slope() {
+    let light = [4.0f32, 8.0, 5.0];
+    let cd = 100.0;
+    // Heights rise along u: code x in texel x, so h = bm · (u · 256 − ½) / 255 between the
+    // first and last texel centres: slope bm · 256 / 255 per metre along +x.
+    let img = image::GrayImage::from_fn(256, 1, |x, _| image::Luma([x as u8]));
+    let bm = 0.25;
+    let seen = lit_quad(
+        "bump",
+        &format!("newmtl m\nKd 0.5 0.5 0.5\nbump -bm {bm} h.png\n"),
+        "h.png",
+        img.into(),
+        light,
+        cd,
+    );
+    let slope = bm * 256.0 / 255.0;
+    let n = glam::DVec3::new(-slope, 1.0, 0.0);
+    let l = glam::DVec3::from(light.map(f64::from));
+    let mut worst = 0.0f64;
+    // Away from u = 0 and 1, where the repeating ramp jumps.
+    for y in 2..SIDE - 2 {
+        for x in 4..SIDE - 4 {
+            let p = pixel_point(x, y);
+            let want = lambert(0.5, n, p, l, f64::from(cd));
+            let got = seen[(y * SIDE + x) as usize];
+            worst = worst.max((got / want - 1.0).abs());
+        }
+    }
+    println!(
+        "bump ramp of slope {slope:.4}: worst {:.3} % from the tilted plane",
+        worst * 100.0
+    );
+    assert!(worst < 0.005, "{worst}");
+}

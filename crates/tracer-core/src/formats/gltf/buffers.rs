@@ -299,6 +299,36 @@ pub(super) fn read_vec2(
         .collect()
 }
 
+/// An accessor of tangents: 4-vectors of f32, finite.
+pub(super) fn read_vec4(
+    accessor: &::gltf::Accessor<'_>,
+    buffers: &[Vec<u8>],
+) -> Result<Vec<[f32; 4]>, String> {
+    if accessor.dimensions() != Dimensions::Vec4 || accessor.data_type() != DataType::F32 {
+        return Err(format!(
+            "{:?} of {:?}: raygine reads 4-vectors of f32",
+            accessor.dimensions(),
+            accessor.data_type()
+        ));
+    }
+    let (bytes, stride) = view_bytes(accessor, buffers)?;
+    (0..accessor.count())
+        .map(|i| {
+            let at = i * stride;
+            let f = |k: usize| {
+                let b = &bytes[at + 4 * k..at + 4 * k + 4];
+                f32::from_le_bytes([b[0], b[1], b[2], b[3]])
+            };
+            let v = [f(0), f(1), f(2), f(3)];
+            if v.iter().all(|c| c.is_finite()) {
+                Ok(v)
+            } else {
+                Err(format!("element {i} is not finite"))
+            }
+        })
+        .collect()
+}
+
 /// An index accessor (scalars of u8, u16 or u32).
 pub(super) fn read_indices(
     accessor: &::gltf::Accessor<'_>,

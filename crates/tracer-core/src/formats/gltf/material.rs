@@ -14,7 +14,9 @@
 //!   magnification filter, else bilinear);
 //! - `alphaMode` MASK cuts the surface where alpha < `alphaCutoff` (0.5), for every ray; BLEND
 //!   makes it present with probability alpha (stochastic transparency);
-//! - normal, emissive and occlusion textures are not used (noted).
+//! - `normalTexture` with its `scale`: a tangent-space normal map, with the file's `TANGENT`s or
+//!   MikkTSpace's;
+//! - emissive and occlusion textures are not used (noted).
 //!
 //! The description also carries a Blinn-Phong approximation for readers that want one: Kd =
 //! c (1 − metallic)(1 − T)(1 − F0), Ks = c metallic + F0 (1 − metallic) with glossiness
@@ -152,6 +154,21 @@ fn maps(
     };
     out.base_color = one(pbr.base_color_texture());
     out.metal_rough = one(pbr.metallic_roughness_texture());
+    if let Some(normal) = m.normal_texture() {
+        out.normal = texture_ref(
+            &normal.texture(),
+            normal.tex_coord(),
+            UvTransform::IDENTITY,
+            images,
+            at,
+            notes,
+        );
+        out.normal_scale = if normal.scale().is_finite() {
+            normal.scale()
+        } else {
+            1.0
+        };
+    }
     out.alpha_mode = match m.alpha_mode() {
         ::gltf::material::AlphaMode::Opaque => AlphaMode::Opaque,
         ::gltf::material::AlphaMode::Mask => AlphaMode::Mask {
@@ -160,7 +177,6 @@ fn maps(
         ::gltf::material::AlphaMode::Blend => AlphaMode::Blend,
     };
     let unused: Vec<&str> = [
-        (m.normal_texture().is_some(), "normalTexture"),
         (m.emissive_texture().is_some(), "emissiveTexture"),
         (
             m.occlusion_texture().is_some(),

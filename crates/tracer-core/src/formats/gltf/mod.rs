@@ -280,6 +280,18 @@ impl Reader<'_> {
                     }
                 }
             }
+            let tangents = match primitive.get(&::gltf::Semantic::Tangents) {
+                Some(a) => match buffers::read_vec4(&a, self.buffers) {
+                    Ok(t) if t.len() == positions.len() => Some(t),
+                    Ok(_) | Err(_) => {
+                        self.desc.notes.push(at(
+                            "TANGENT is unusable; tangents are computed (MikkTSpace)".into(),
+                        ));
+                        None
+                    }
+                },
+                None => None,
+            };
             let indices = match primitive.indices() {
                 Some(a) => buffers::read_indices(&a, self.buffers)
                     .map_err(|e| self.error(at(format!("indices: {e}"))))?,
@@ -378,6 +390,28 @@ impl Reader<'_> {
                     all_normals = false;
                     out.normals.clear();
                 }
+            }
+            // Tangents only when every primitive so far gave them.
+            match tangents {
+                Some(ts) if out.tangents.len() == first as usize => {
+                    out.tangents.extend(ts.iter().map(|t| {
+                        let xyz = world
+                            .transform_vector3(DVec3::new(
+                                f64::from(t[0]),
+                                f64::from(t[1]),
+                                f64::from(t[2]),
+                            ))
+                            .normalize_or_zero()
+                            .as_vec3();
+                        let flip = if DMat3::from_mat4(world).determinant() < 0.0 {
+                            -1.0
+                        } else {
+                            1.0
+                        };
+                        [xyz.x, xyz.y, xyz.z, t[3] * flip]
+                    }))
+                }
+                _ => out.tangents.clear(),
             }
             for t in triangles {
                 out.triangles.push(t.map(|i| i + first));

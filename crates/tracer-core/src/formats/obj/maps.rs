@@ -6,11 +6,13 @@
 //! | `map_Ks` | multiplies Ks, sRGB |
 //! | `map_d` | alpha: the image's alpha channel, or its red channel when it has none; the surface is there with that probability (stochastic: a 0/1 mask cuts out exactly) |
 //! | `map_Pr`, `map_Pm` | multiply roughness and metallic (red channel, linear) |
-//! | `norm`, `bump`, `map_Bump`, `map_Ke`, `map_Ka`, `map_Ns`, `refl`, `disp` | not used yet (noted) |
+//! | `norm` | a tangent-space normal map (MikkTSpace tangents) |
+//! | `bump`, `map_Bump` | a height map (red channel, linear) in scene units times `-bm` |
+//! | `map_Ke`, `map_Ka`, `map_Ns`, `refl`, `disp` | not used (noted) |
 //!
 //! Options: `-s u v` and `-o u v` scale and offset the texture coordinates, `-clamp on` clamps
-//! them (else they repeat); others (`-bm`, `-imfchan`, `-blendu`, `-mm`, ...) are skipped with
-//! a note. File names are relative to the MTL file's folder; `\` separators are read as `/`.
+//! them (else they repeat), `-bm` scales a bump map's heights; others (`-imfchan`, `-blendu`,
+//! `-mm`, ...) are skipped with a note. File names are relative to the MTL file's folder; `\` separators are read as `/`.
 //! OBJ's `v` points up the image, so the reader stores `1 − v` (the image's frame) and the
 //! transform here works in that frame.
 
@@ -25,6 +27,8 @@ struct Statement {
     scale: [f32; 2],
     offset: [f32; 2],
     clamp: bool,
+    /// `-bm`: the bump multiplier.
+    bump_multiplier: Option<f32>,
     /// Options read but not used, for the note.
     skipped: Vec<String>,
 }
@@ -37,6 +41,7 @@ fn statement(text: &str) -> Result<Statement, String> {
         scale: [1.0; 2],
         offset: [0.0; 2],
         clamp: false,
+        bump_multiplier: None,
         skipped: Vec::new(),
     };
     let mut i = 0;
@@ -85,7 +90,11 @@ fn statement(text: &str) -> Result<Statement, String> {
                 out.skipped.push(w.to_owned());
                 i += 1;
             }
-            "-bm" | "-boost" | "-texres" => {
+            "-bm" => {
+                let v = numbers(&mut i, 1);
+                out.bump_multiplier = Some(*v.first().ok_or("-bm takes a number")?);
+            }
+            "-boost" | "-texres" => {
                 out.skipped.push(w.to_owned());
                 numbers(&mut i, 1);
             }
@@ -115,6 +124,7 @@ pub(super) fn maps(
     notes: &mut Vec<String>,
 ) -> Maps<TextureRef<ImageSource>> {
     let folder = source.parent().unwrap_or(Path::new(""));
+    let mut bump_multiplier = None;
     let mut one = |key: &str, value: Option<&String>| {
         let value = value?;
         let s = match statement(value) {
@@ -129,6 +139,9 @@ pub(super) fn maps(
                 "{at}: {key}: options {} are not used",
                 s.skipped.join(", ")
             ));
+        }
+        if s.bump_multiplier.is_some() {
+            bump_multiplier = s.bump_multiplier;
         }
         let [su, sv] = s.scale;
         let [ou, ov] = s.offset;
@@ -151,12 +164,14 @@ pub(super) fn maps(
     out.roughness = one("map_Pr", param("map_Pr"));
     out.metallic = one("map_Pm", param("map_Pm"));
     out.alpha_map = one("map_d", m.dissolve_texture.as_ref());
+    out.normal = one("norm", param("norm"));
+    // tobj files `bump` and `map_Bump` as its "normal texture": they are height maps.
+    out.bump = one("bump", m.normal_texture.as_ref());
+    out.bump_scale = bump_multiplier.unwrap_or(1.0);
     if out.alpha_map.is_some() {
         out.alpha_mode = AlphaMode::Blend;
     }
     let unused: Vec<&str> = [
-        ("norm", param("norm").is_some()),
-        ("bump", m.normal_texture.is_some()),
         ("map_Ke", param("map_Ke").is_some()),
         ("map_Ka", m.ambient_texture.is_some()),
         ("map_Ns", m.shininess_texture.is_some()),
@@ -187,7 +202,8 @@ mod tests {
         );
         let s = statement("-bm 0.5 -imfchan l bump.png").unwrap();
         assert_eq!(s.file, "bump.png");
-        assert_eq!(s.skipped, vec!["-bm", "-imfchan"]);
+        assert_eq!(s.bump_multiplier, Some(0.5));
+        assert_eq!(s.skipped, vec!["-imfchan"]);
         assert!(statement("-s 2").unwrap_err().contains("two or three"));
         assert!(
             statement("-clamp maybe a.png")

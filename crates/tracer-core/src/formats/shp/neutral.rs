@@ -33,6 +33,7 @@ impl ShpDescription {
                     positions: brep.vertices.clone(),
                     normals: Vec::new(),
                     uvs: [Vec::new(), Vec::new()],
+                    tangents: Vec::new(),
                     triangles: brep.triangles.clone(),
                     parts: vec![PartDescription::default(); brep.part_count.max(1) as usize],
                     triangle_parts: brep.parts.clone(),
