@@ -61,9 +61,40 @@ pub fn describe(loaded: &LoadedScene) -> Value {
                 .get(slot as usize)
                 .copied()
                 .unwrap_or_default();
-            material_json(&scene.slot_label(slot), &m)
+            let mut j = material_json(&scene.slot_label(slot), &m);
+            if let Some(set) = m.textures.and_then(|s| scene.texture_sets.get(s as usize)) {
+                j["maps"] = set
+                    .named()
+                    .into_iter()
+                    .map(|(name, t)| {
+                        let file = scene
+                            .textures
+                            .get(t.texture as usize)
+                            .map_or("?", |x| x.name.as_str());
+                        json!({"map": name, "texture": file})
+                    })
+                    .collect();
+                if set.cuts() {
+                    j["alpha"] = json!(format!("{:?}", set.alpha_mode).to_lowercase());
+                }
+            }
+            j
         })
         .collect();
+    let textures: Vec<Value> = scene
+        .textures
+        .iter()
+        .map(|t| {
+            json!({
+                "name": t.name,
+                "width": t.width,
+                "height": t.height,
+                "channels": t.channels,
+                "bytes": t.bytes(),
+            })
+        })
+        .collect();
+    let texture_bytes: usize = scene.textures.iter().map(|t| t.bytes()).sum();
     let lights: Vec<Value> = setup.lights.iter().map(|l| json!(l.summary())).collect();
     // (+ 0.0: no lights sum to −0.0, printed as such.)
     let total_flux_lm: f32 = setup.lights.iter().map(|l| l.flux_lm()).sum::<f32>() + 0.0;
@@ -78,6 +109,8 @@ pub fn describe(loaded: &LoadedScene) -> Value {
         "bounds": {"min": b.min.to_array(), "max": b.max.to_array()},
         "triangles": scene.triangle_count(),
         "materials": materials,
+        "textures": textures,
+        "texture_bytes": texture_bytes,
         "lights": lights,
         "total_flux_lm": total_flux_lm,
         "camera": {
@@ -189,7 +222,35 @@ fn print_text(v: &Value) {
                 m["emission_cd_m2"], m["emission_sides"]
             ));
         }
+        for map in m["maps"].as_array().into_iter().flatten() {
+            line.push_str(&format!(
+                ", {} map {}",
+                map["map"].as_str().unwrap_or("?"),
+                map["texture"].as_str().unwrap_or("?")
+            ));
+        }
+        if let Some(a) = m["alpha"].as_str() {
+            line.push_str(&format!(", alpha {a}"));
+        }
         println!("{line}");
+    }
+    let textures = v["textures"].as_array().map_or(&[][..], |a| a.as_slice());
+    if !textures.is_empty() {
+        println!(
+            "textures: {} images, {:.1} MB of texels",
+            textures.len(),
+            v["texture_bytes"].as_f64().unwrap_or(0.0) / 1e6
+        );
+        for t in textures {
+            println!(
+                "  {}: {} x {} texels, {} channels, {:.2} MB",
+                t["name"].as_str().unwrap_or("?"),
+                t["width"],
+                t["height"],
+                t["channels"],
+                t["bytes"].as_f64().unwrap_or(0.0) / 1e6
+            );
+        }
     }
     println!(
         "lights: {:.1} lm in all",

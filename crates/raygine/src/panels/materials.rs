@@ -33,6 +33,7 @@ pub fn materials_ui(
     doc: &mut Document,
     selected_slot: Option<u32>,
     filter: &mut String,
+    thumbnails: &mut super::texture_maps::TextureThumbnails,
     out: &mut Commands,
 ) {
     let scene = std::sync::Arc::clone(&doc.scene);
@@ -187,6 +188,7 @@ pub fn materials_ui(
                 }
             });
     }
+    super::texture_maps::texture_maps_ui(ui, &scene, m, thumbnails);
     let (clamped, changed) = m.clamped();
     let sums: [f32; 3] = std::array::from_fn(|c| m.kd[c] + m.ks[c] + m.kt[c]);
     if changed {

@@ -16,6 +16,7 @@ mod polar;
 mod reflectance;
 mod render;
 mod status;
+mod texture_maps;
 mod widgets;
 mod windows;
 
@@ -47,6 +48,8 @@ pub struct PanelState {
     pub show_notes: bool,
     /// The Materials panel's filter of breps and parts.
     pub part_filter: String,
+    /// Thumbnails of the open scene's textures.
+    pub texture_thumbnails: texture_maps::TextureThumbnails,
     /// The Environment section's last sky of each kind.
     pub environment: EnvironmentMemory,
     /// The Daylight section's draft of `[daylight]`.
@@ -147,7 +150,14 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
     egui::CollapsingHeader::new("Materials")
         .default_open(true)
         .show(ui, |ui| {
-            materials::materials_ui(ui, doc, selected_slot, &mut state.part_filter, out)
+            materials::materials_ui(
+                ui,
+                doc,
+                selected_slot,
+                &mut state.part_filter,
+                &mut state.texture_thumbnails,
+                out,
+            )
         });
     egui::CollapsingHeader::new("Measure")
         .default_open(false)

@@ -264,7 +264,12 @@ impl Scene {
             .materials
             .iter()
             .map(|m| {
-                let set = library.resolve(m.maps.as_deref()?, &mut texture_notes);
+                let at = if m.line > 0 {
+                    format!("{}:{}: material {}", m.source.display(), m.line, m.name)
+                } else {
+                    format!("{}: material {}", m.source.display(), m.name)
+                };
+                let set = library.resolve(m.maps.as_deref()?, &at, &mut texture_notes);
                 if set.is_empty() {
                     return None;
                 }

@@ -33,18 +33,19 @@ impl Library {
     }
 
     /// The maps of a described material with their images loaded. Every map whose image
-    /// cannot be used adds a note to `notes` and is left out.
+    /// cannot be used adds a note to `notes` (starting with `at`: the material's file, line
+    /// and name) and is left out.
     pub fn resolve(
         &mut self,
         maps: &Maps<TextureRef<ImageSource>>,
+        at: &str,
         notes: &mut Vec<String>,
     ) -> TextureSet {
         maps.try_map(|name, r| match self.texture(&r.texture) {
             Ok(i) => Some(r.with_texture(i)),
             Err(why) => {
                 notes.push(format!(
-                    "material {}: {name} texture {}: {why}; the material keeps its factor",
-                    maps.material,
+                    "{at}: {name} texture {}: {why}; the material keeps its factor",
                     r.texture.name()
                 ));
                 None

@@ -108,6 +108,23 @@ impl<T> Maps<T> {
         }
     }
 
+    /// Each map present, named (`base colour`, `normal`, ...), in a fixed order.
+    pub fn named(&self) -> Vec<(&'static str, &T)> {
+        [
+            ("base colour", &self.base_color),
+            ("metallic-roughness", &self.metal_rough),
+            ("specular", &self.specular),
+            ("roughness", &self.roughness),
+            ("metallic", &self.metallic),
+            ("alpha", &self.alpha_map),
+            ("normal", &self.normal),
+            ("bump", &self.bump),
+        ]
+        .into_iter()
+        .filter_map(|(name, t)| t.as_ref().map(|t| (name, t)))
+        .collect()
+    }
+
     /// Whether the maps bend the shading normal (normal or bump map).
     pub fn bends(&self) -> bool {
         self.normal.is_some() || self.bump.is_some()
