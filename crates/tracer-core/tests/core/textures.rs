@@ -450,3 +450,83 @@ fn a_bump_map_ramp_tilts_the_normal_by_its_slope() {
     );
     assert!(worst < 0.005, "{worst}");
 }
+
+#[test]
+fn missing_corrupt_and_huge_textures_are_noted_and_the_material_keeps_its_factor() {
+    let dir = scratch("bad");
+    std::fs::write(dir.join("corrupt.png"), b"\x89PNG\r\n\x1a\nnot really").unwrap();
+    // A PNG header that declares 100 000 x 100 000 texels.
+    let mut huge = Vec::new();
+    image::RgbImage::new(1, 1)
+        .write_to(
+            &mut std::io::Cursor::new(&mut huge),
+            image::ImageFormat::Png,
+        )
+        .unwrap();
+    huge[16..20].copy_from_slice(&100_000u32.to_be_bytes());
+    huge[20..24].copy_from_slice(&100_000u32.to_be_bytes());
+    // The IHDR chunk's CRC-32 (over type and data), so the header itself is valid.
+    let crc = crc32(&huge[12..29]);
+    huge[29..33].copy_from_slice(&crc.to_be_bytes());
+    std::fs::write(dir.join("huge.png"), huge).unwrap();
+    std::fs::write(
+        dir.join("quad.mtl"),
+        "newmtl lost\nKd 0.25 0.5 0.75\nmap_Kd missing.png\nnewmtl broken\nKd 0.5 0.5 0.5\n\
+         map_Kd corrupt.png\nnewmtl big\nKd 0.5 0.5 0.5\nmap_Kd huge.png\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("quad.obj"),
+        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+         o a\nusemtl lost\nf 1/1 4/4 3/3\no b\nusemtl broken\nf 1/1 3/3 2/2\no c\nusemtl big\n\
+         f 1/1 2/2 4/4\n",
+    )
+    .unwrap();
+    let loaded = load(&dir.join("quad.obj"), &LoadOptions::default()).unwrap();
+    let notes = loaded.warnings.join("\n");
+    println!("{notes}");
+    for (line, material, file) in [
+        (1, "lost", "missing.png"),
+        (4, "broken", "corrupt.png"),
+        (7, "big", "huge.png"),
+    ] {
+        assert!(
+            loaded.warnings.iter().any(|w| w.contains(&format!(
+                "quad.mtl:{line}: material {material}: base colour texture"
+            )) && w.contains(file)
+                && w.ends_with("the material keeps its factor")),
+            "{material}: {notes}"
+        );
+    }
+    assert!(
+        notes.contains("100000 x 100000 texels is too large"),
+        "{notes}"
+    );
+    // No texture loaded, and every material keeps its factor.
+    assert!(loaded.scene.textures.is_empty());
+    assert!(loaded.setup.materials.iter().all(|m| m.textures.is_none()));
+    assert!(
+        loaded
+            .setup
+            .materials
+            .iter()
+            .any(|m| m.kd == [0.25, 0.5, 0.75])
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// CRC-32 (IEEE 802.3, reflected, as PNG uses), bit by bit.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut c = 0xffff_ffffu32;
+    for &b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                (c >> 1) ^ 0xedb8_8320
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
