@@ -333,7 +333,7 @@ impl<'p, 'a> PathTracer<'p, 'a> {
         let mat = lit.material_of(hit.prim);
         let mut le = Vec3::ZERO;
         if mat.emission.max_element() > 0.0 {
-            let radiance = lit.glow(hit.prim, wo);
+            let radiance = lit.glow(hit.prim, p, wo);
             let w = match came {
                 Came::Delta => 1.0,
                 Came::Pdf { pdf, n } => {

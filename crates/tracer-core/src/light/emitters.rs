@@ -52,6 +52,8 @@ pub(super) struct Emitter {
 /// A point sampled on an emitter, seen from a shading point.
 #[derive(Clone, Copy, Debug)]
 pub struct EmitterSample {
+    /// The scene triangle the point lies on.
+    pub triangle: u32,
     pub point: Vec3,
     /// Unit direction from the shading point to `point`.
     pub wi: Vec3,
@@ -252,6 +254,7 @@ pub(super) fn sample_from(
         Vec3::ZERO
     };
     Some(EmitterSample {
+        triangle: e.triangle,
         point,
         wi,
         distance,

@@ -133,6 +133,9 @@ impl LitScene<'_> {
         };
         let mut s = light.sample_incident(Receiver { p, origin }, u)?;
         s.pdf *= pmf * (1.0 - env_pick);
+        if let TreeLight::Triangle(t) = id {
+            s.tint *= self.emission_factor(t, s.target);
+        }
         Some(s)
     }
 
@@ -189,7 +192,10 @@ impl LitScene<'_> {
             let u_pick = rng.next_f32();
             let (u, v) = rng.next_2d();
             if let Some(s) = self.emitters.sample(origin, u_pick, u, v) {
-                f(Incident::from(s));
+                let factor = self.emission_factor(s.triangle, s.point);
+                let mut incident = Incident::from(s);
+                incident.tint *= factor;
+                f(incident);
             }
         }
         if let Some(env) = &self.environment {
@@ -200,11 +206,13 @@ impl LitScene<'_> {
         }
     }
 
-    /// Luminance glowing triangle `prim` sends along unit `dir` (0 when it does not glow).
+    /// Luminance glowing triangle `prim` sends along unit `dir` from its point `p` (0 when it
+    /// does not glow).
     #[inline]
-    pub fn glow(&self, prim: u32, dir: Vec3) -> Vec3 {
+    pub fn glow(&self, prim: u32, p: Vec3, dir: Vec3) -> Vec3 {
         self.light(TreeLight::Triangle(prim))
             .map_or(Vec3::ZERO, |l| l.emitted(dir))
+            * self.emission_factor(prim, p)
     }
 
     /// Density (1/sr) with which [`LitScene::each_incident`] from `origin` reaches glowing

@@ -29,6 +29,8 @@ pub(super) struct SlotMaps {
     pub cutting: Vec<Option<u32>>,
     /// Per slot: the texture set that bends its normals (empty: none does).
     pub bending: Vec<Option<u32>>,
+    /// Per slot: the texture set whose map varies its emission (empty: none does).
+    pub glowing: Vec<Option<u32>>,
     /// Per slot: the clamped material the maps multiply (empty without shading maps).
     pub factors: Vec<crate::scene::Material>,
 }
@@ -51,6 +53,10 @@ impl SlotMaps {
             .iter()
             .map(|m| set_of(m, crate::texture::TextureSet::bends))
             .collect();
+        let glowing: Vec<Option<u32>> = materials
+            .iter()
+            .map(|m| set_of(m, crate::texture::TextureSet::glows))
+            .collect();
         let any_shading = shading.iter().any(Option::is_some);
         SlotMaps {
             factors: if any_shading {
@@ -59,6 +65,11 @@ impl SlotMaps {
                 Vec::new()
             },
             shading: if any_shading { shading } else { Vec::new() },
+            glowing: if glowing.iter().any(Option::is_some) {
+                glowing
+            } else {
+                Vec::new()
+            },
             bending: if bending.iter().any(Option::is_some) {
                 bending
             } else {
@@ -174,6 +185,53 @@ impl LitScene<'_> {
             tangent,
         };
         maps.bend(&scene.textures, self.uv_at(prim, bary), n, &d)
+    }
+
+    /// What an emissive map multiplies triangle `prim`'s emission by at its point `p` (1 per
+    /// channel without one). Light sampling picks triangles by their factor's flux and points
+    /// uniformly, so every estimate stays unbiased with the map applied where the point is.
+    #[inline]
+    pub fn emission_factor(&self, prim: u32, p: Vec3) -> Vec3 {
+        if self.maps.glowing.is_empty() {
+            return Vec3::ONE;
+        }
+        self.textured_emission(prim, p)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn textured_emission(&self, prim: u32, p: Vec3) -> Vec3 {
+        let scene = self.scene;
+        let Some(&slot) = scene.triangle_slots.get(prim as usize) else {
+            return Vec3::ONE;
+        };
+        let Some(Some(set)) = self.maps.glowing.get(slot as usize) else {
+            return Vec3::ONE;
+        };
+        let Some(map) = scene
+            .texture_sets
+            .get(*set as usize)
+            .and_then(|s| s.emissive)
+        else {
+            return Vec3::ONE;
+        };
+        // The point's barycentrics on its triangle.
+        let [a, b, c] = scene.triangles[prim as usize];
+        let (e1, e2, d) = (b - a, c - a, p - a);
+        let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let (d20, d21) = (d.dot(e1), d.dot(e2));
+        let den = d00 * d11 - d01 * d01;
+        if den.abs() < 1e-30 || !den.is_finite() {
+            return Vec3::ONE;
+        }
+        let u = (d11 * d20 - d01 * d21) / den;
+        let v = (d00 * d21 - d01 * d20) / den;
+        map.read(
+            &scene.textures,
+            self.uv_at(prim, [u, v]),
+            crate::texture::Encoding::Srgb,
+        )
+        .truncate()
     }
 
     /// Whether some surface is alpha-cut (rays then test alpha at every hit).

@@ -47,6 +47,8 @@ pub struct Maps<T> {
     /// `bump_scale` (`-bm`).
     pub bump: Option<T>,
     pub bump_scale: f32,
+    /// Multiplies the emission (glTF `emissiveTexture`, MTL `map_Ke`). sRGB.
+    pub emissive: Option<T>,
     /// glTF's base colour factor alpha (1 for OBJ).
     pub alpha_factor: f32,
     pub alpha_mode: AlphaMode,
@@ -66,6 +68,7 @@ impl<T> Default for Maps<T> {
             normal_scale: 1.0,
             bump: None,
             bump_scale: 1.0,
+            emissive: None,
             alpha_factor: 1.0,
             alpha_mode: AlphaMode::Opaque,
         }
@@ -103,6 +106,7 @@ impl<T> Maps<T> {
             normal_scale: self.normal_scale,
             bump: one("bump", &self.bump),
             bump_scale: self.bump_scale,
+            emissive: one("emissive", &self.emissive),
             alpha_factor: self.alpha_factor,
             alpha_mode: self.alpha_mode,
         }
@@ -119,6 +123,7 @@ impl<T> Maps<T> {
             ("alpha", &self.alpha_map),
             ("normal", &self.normal),
             ("bump", &self.bump),
+            ("emissive", &self.emissive),
         ]
         .into_iter()
         .filter_map(|(name, t)| t.as_ref().map(|t| (name, t)))
@@ -130,9 +135,14 @@ impl<T> Maps<T> {
         self.normal.is_some() || self.bump.is_some()
     }
 
+    /// Whether a map varies the emission.
+    pub fn glows(&self) -> bool {
+        self.emissive.is_some()
+    }
+
     /// Whether the set has no map and no alpha.
     pub fn is_empty(&self) -> bool {
-        !self.shades() && !self.bends() && self.alpha_map.is_none() && !self.cuts()
+        !self.shades() && !self.bends() && !self.glows() && self.alpha_map.is_none() && !self.cuts()
     }
 }
 

@@ -530,3 +530,125 @@ fn crc32(bytes: &[u8]) -> u32 {
     }
     !c
 }
+
+/// A 1 m square emitter 1 m above a floor, its `map_Ke` white on the left half and black on the
+/// right (64 x 1 texels: the bilinear step is symmetric about the middle). Below its centre
+/// the illuminance is half the untextured square's, E = π L F / 2 with F by Lambert's contour
+/// formula, in every integrator; seen from below, the left half glows at L and the right does
+/// not.
+#[test]
+fn an_emissive_map_varies_the_emission_over_the_surface_in_every_integrator() {
+    let dir = scratch("emissive");
+    let img = image::GrayImage::from_fn(64, 1, |x, _| image::Luma([if x < 32 { 255 } else { 0 }]));
+    let mut bytes = Vec::new();
+    image::DynamicImage::from(img)
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .unwrap();
+    std::fs::write(dir.join("half.png"), bytes).unwrap();
+    std::fs::write(
+        dir.join("lamp.mtl"),
+        "newmtl glow\nKd 0 0 0\nKe 1 1 1\nmap_Ke -clamp on half.png\nnewmtl floor\nKd 0.5 0.5 0.5\n",
+    )
+    .unwrap();
+    // The emitter faces down (its front towards −y), u along +x.
+    std::fs::write(
+        dir.join("lamp.obj"),
+        "mtllib lamp.mtl\no lamp\nv -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n\
+         vt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\nusemtl glow\nf 1/1 2/2 3/3 4/4\n\
+         o floor\nv -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\nusemtl floor\nf 5 8 7 6\n",
+    )
+    .unwrap();
+    let luminance = 1000.0f32;
+    let exact_full = std::f64::consts::PI
+        * f64::from(luminance)
+        * crate::gi_support::form_factor(
+            glam::DVec3::ZERO,
+            glam::DVec3::Y,
+            &[
+                glam::DVec3::new(-0.5, 1.0, -0.5),
+                glam::DVec3::new(0.5, 1.0, -0.5),
+                glam::DVec3::new(0.5, 1.0, 0.5),
+                glam::DVec3::new(-0.5, 1.0, 0.5),
+            ],
+        );
+    let render_with = |camera: Camera, integrator: IntegratorKind, spp: u32, side: u32| {
+        let mut loaded = load(&dir.join("lamp.obj"), &LoadOptions::default()).unwrap();
+        let lamp = loaded
+            .scene
+            .breps
+            .iter()
+            .find(|b| b.name == "lamp")
+            .unwrap()
+            .first_slot;
+        let m = &mut loaded.setup.materials[lamp as usize];
+        assert!(m.textures.is_some(), "{:?}", loaded.warnings);
+        m.emission_cd_m2 = luminance;
+        m.emission_color = [1.0; 3];
+        loaded.setup.unit = tracer_core::scene::LengthUnit::M;
+        loaded.setup.lights.clear();
+        loaded.setup.camera = camera;
+        let settings = RenderSettings {
+            width: side,
+            height: side,
+            samples_per_pixel: spp,
+            integrator,
+            ..RenderSettings::default()
+        };
+        render(&loaded.scene, &loaded.setup, &settings).0
+    };
+    // The floor's centre through a 1° camera from under the emitter (a spot 1.7 cm across,
+    // where E is flat to 0.01 %): ρ/π · E.
+    let floor_view = Camera {
+        position: [0.0, 0.9, 0.3],
+        look_at: [0.0, 0.0, 0.0],
+        up: [0.0, 1.0, 0.0],
+        fov_deg: 1.0,
+        ..Camera::default()
+    };
+    let want = 0.5 / std::f64::consts::PI * exact_full / 2.0;
+    for (integrator, spp) in [
+        (IntegratorKind::Direct, 16384),
+        (IntegratorKind::Path, 16384),
+        (IntegratorKind::Bidirectional, 16384),
+    ] {
+        let film = render_with(floor_view, integrator, spp, 4);
+        let (mean, se) = crate::gi_support::film_mean_luminance(&film);
+        println!(
+            "{integrator}: floor under the half-lit emitter {mean:.3} ± {se:.3} cd/m², exact {want:.3} \
+             ({:+.2} %)",
+            (mean / want - 1.0) * 100.0
+        );
+        assert!(
+            (mean / want - 1.0).abs() < 0.01 && (mean - want).abs() < 4.0 * se + 1e-9,
+            "{integrator}: {mean} ± {se} vs {want}"
+        );
+    }
+    // From below, looking up at the emitter: the left half (x < 0) glows at L, the right not.
+    let up_view = Camera {
+        position: [0.0, 0.2, 0.0],
+        look_at: [0.0, 1.0, 0.0],
+        up: [0.0, 0.0, -1.0],
+        projection: Projection::Orthographic,
+        width: Some(1.0),
+        ..Camera::default()
+    };
+    let film = render_with(up_view, IntegratorKind::Direct, 4, 8);
+    // Image right is +x or −x depending on the view; find the bright side, then check both.
+    let column = |x: u32| {
+        (0..8)
+            .map(|y| film.mean_luminance((y * 8 + x) as usize))
+            .sum::<f64>()
+            / 8.0
+    };
+    let (a, b) = (column(1), column(6));
+    let (bright, dark) = if a > b { (a, b) } else { (b, a) };
+    assert!(
+        (bright / f64::from(luminance) - 1.0).abs() < 1e-3,
+        "{bright}"
+    );
+    assert!(dark < 1e-6, "{dark}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

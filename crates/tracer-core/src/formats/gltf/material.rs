@@ -16,7 +16,8 @@
 //!   makes it present with probability alpha (stochastic transparency);
 //! - `normalTexture` with its `scale`: a tangent-space normal map, with the file's `TANGENT`s or
 //!   MikkTSpace's;
-//! - emissive and occlusion textures are not used (noted).
+//! - `emissiveTexture` (sRGB) multiplies the emission;
+//! - occlusion textures are not used (noted: a path tracer computes occlusion).
 //!
 //! The description also carries a Blinn-Phong approximation for readers that want one: Kd =
 //! c (1 − metallic)(1 − T)(1 − F0), Ks = c metallic + F0 (1 − metallic) with glossiness
@@ -154,6 +155,7 @@ fn maps(
     };
     out.base_color = one(pbr.base_color_texture());
     out.metal_rough = one(pbr.metallic_roughness_texture());
+    out.emissive = one(m.emissive_texture());
     if let Some(normal) = m.normal_texture() {
         out.normal = texture_ref(
             &normal.texture(),
@@ -176,13 +178,10 @@ fn maps(
         },
         ::gltf::material::AlphaMode::Blend => AlphaMode::Blend,
     };
-    let unused: Vec<&str> = [
-        (m.emissive_texture().is_some(), "emissiveTexture"),
-        (
-            m.occlusion_texture().is_some(),
-            "occlusionTexture (a path tracer computes it)",
-        ),
-    ]
+    let unused: Vec<&str> = [(
+        m.occlusion_texture().is_some(),
+        "occlusionTexture (a path tracer computes it)",
+    )]
     .into_iter()
     .filter_map(|(has, name)| has.then_some(name))
     .collect();

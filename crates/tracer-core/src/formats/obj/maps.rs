@@ -8,7 +8,8 @@
 //! | `map_Pr`, `map_Pm` | multiply roughness and metallic (red channel, linear) |
 //! | `norm` | a tangent-space normal map (MikkTSpace tangents) |
 //! | `bump`, `map_Bump` | a height map (red channel, linear) in scene units times `-bm` |
-//! | `map_Ke`, `map_Ka`, `map_Ns`, `refl`, `disp` | not used (noted) |
+//! | `map_Ke` | multiplies the emission (`Ke`), sRGB |
+//! | `map_Ka`, `map_Ns`, `refl`, `disp` | not used (noted) |
 //!
 //! Options: `-s u v` and `-o u v` scale and offset the texture coordinates, `-clamp on` clamps
 //! them (else they repeat), `-bm` scales a bump map's heights; others (`-imfchan`, `-blendu`,
@@ -165,6 +166,7 @@ pub(super) fn maps(
     out.metallic = one("map_Pm", param("map_Pm"));
     out.alpha_map = one("map_d", m.dissolve_texture.as_ref());
     out.normal = one("norm", param("norm"));
+    out.emissive = one("map_Ke", param("map_Ke"));
     // tobj files `bump` and `map_Bump` as its "normal texture": they are height maps.
     out.bump = one("bump", m.normal_texture.as_ref());
     out.bump_scale = bump_multiplier.unwrap_or(1.0);
@@ -172,7 +174,6 @@ pub(super) fn maps(
         out.alpha_mode = AlphaMode::Blend;
     }
     let unused: Vec<&str> = [
-        ("map_Ke", param("map_Ke").is_some()),
         ("map_Ka", m.ambient_texture.is_some()),
         ("map_Ns", m.shininess_texture.is_some()),
         ("refl", param("refl").is_some()),

@@ -181,10 +181,15 @@ impl LightPicker {
     }
 }
 
-/// What light `light` sends along unit `dir` (see [`LightSource::emitted`]).
+/// What light `light` sends along unit `dir` from its point `p` (see
+/// [`LightSource::emitted`]; an emissive map varies it over a glowing triangle).
 #[inline]
-pub fn emitted(lit: &LitScene<'_>, light: TreeLight, dir: Vec3) -> Vec3 {
-    lit.light(light).map_or(Vec3::ZERO, |l| l.emitted(dir))
+pub fn emitted(lit: &LitScene<'_>, light: TreeLight, p: Vec3, dir: Vec3) -> Vec3 {
+    let le = lit.light(light).map_or(Vec3::ZERO, |l| l.emitted(dir));
+    match light {
+        TreeLight::Triangle(t) => le * lit.emission_factor(t, p),
+        TreeLight::Placed(_) => le,
+    }
 }
 
 /// The cosine a light vertex's emission carries along `dir` from a point with normal `n` (1 for

@@ -149,7 +149,7 @@ impl<S: Scatter> Vertex<S> {
                 }
                 None => Vec3::ZERO,
             },
-            Kind::Light(light) => emitted(bd.lit, light, w),
+            Kind::Light(light) => emitted(bd.lit, light, self.p, w),
             Kind::Environment => Vec3::ZERO,
             Kind::Eye => Vec3::splat(bd.eye_importance(self, w)),
         }
@@ -215,7 +215,7 @@ impl<S: Scatter> Vertex<S> {
     /// Luminance this surface vertex emits towards the previous vertex (0 for non-emitters).
     pub fn emission(&self, bd: &Bidirectional<'_, '_>) -> Vec3 {
         match self.kind {
-            Kind::Surface(prim) => bd.lit.glow(prim, self.wo),
+            Kind::Surface(prim) => bd.lit.glow(prim, self.p, self.wo),
             _ => Vec3::ZERO,
         }
     }

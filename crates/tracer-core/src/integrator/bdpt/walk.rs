@@ -44,7 +44,7 @@ impl Bidirectional<'_, '_> {
         if pdf_dir <= 0.0 {
             return;
         }
-        let le = emitted(self.lit, start.light, dir);
+        let le = emitted(self.lit, start.light, start.p, dir);
         let beta = beta0 * le * (emission_cosine(self.lit, start.light, start.n, dir) / pdf_dir);
         if beta.max_element() <= 0.0 {
             return;

@@ -128,7 +128,7 @@ impl Walk {
         // division per hit saved on matte surfaces).
         let view = || -ray.dir.normalize();
         if mat.emission.max_element() > 0.0 {
-            self.sample.rgb += self.weight * lit.glow(hit.prim, view());
+            self.sample.rgb += self.weight * lit.glow(hit.prim, p, view());
         }
         let before = shadows.len();
         direct_light(
