@@ -652,3 +652,42 @@ fn an_emissive_map_varies_the_emission_over_the_surface_in_every_integrator() {
     assert!(dark < 1e-6, "{dark}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Two materials naming one image share one texture; the denoiser's albedo guide of a texel
+/// is the decoded texel times the factor.
+#[test]
+fn one_image_is_loaded_once_and_the_albedo_guide_takes_the_textured_colour() {
+    let dir = scratch("shared");
+    std::fs::write(dir.join("checker.png"), checker_png()).unwrap();
+    std::fs::write(
+        dir.join("quad.mtl"),
+        "newmtl a\nKd 1 1 1\nmap_Kd checker.png\nnewmtl b\nKd 0.5 0.5 0.5\nmap_Kd checker.png\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("quad.obj"),
+        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\n\
+         o a\nusemtl a\nf 1/1 4/4 3/3\no b\nusemtl b\nf 1/1 3/3 2/2\n",
+    )
+    .unwrap();
+    let loaded = load(&dir.join("quad.obj"), &LoadOptions::default()).unwrap();
+    assert_eq!(loaded.scene.textures.len(), 1);
+    assert_eq!(loaded.scene.texture_sets.len(), 2);
+    let lit = tracer_core::lit_scene::LitScene::new(&loaded.scene, &loaded.setup, 4);
+    let mut rng = tracer_core::sampling::SampleRng::new(1, 0);
+    // Straight down onto texel (0, 2) (block 0) of material a (the triangle where z > x) and
+    // texel (6, 2) (block 1) of material b (where x > z); u = x, v = z.
+    for (x, z, factor, block) in [(0.1f32, 0.3f32, 1.0, 0usize), (0.81, 0.31, 0.5, 1)] {
+        let ray = tracer_core::geometry::Ray::new(glam::Vec3::new(x, 1.0, z), glam::Vec3::NEG_Y);
+        let guide = tracer_core::render::trace_guide(&lit, &ray, &mut rng);
+        for (c, &code) in CODES[block].iter().enumerate() {
+            let want = factor * srgb(code);
+            assert!(
+                (f64::from(guide.albedo[c]) - want).abs() < 1e-4,
+                "({x}, {z}) channel {c}: {} vs {want}",
+                guide.albedo[c]
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
