@@ -157,10 +157,14 @@ fn maps(
     out.metal_rough = one(pbr.metallic_roughness_texture());
     out.emissive = one(m.emissive_texture());
     if let Some(normal) = m.normal_texture() {
+        // gltf 1.4 types KHR_texture_transform on texture infos only: here it is JSON.
+        let (transform, set) = normal
+            .extension_value("KHR_texture_transform")
+            .map_or((UvTransform::IDENTITY, None), transform_of_json);
         out.normal = texture_ref(
             &normal.texture(),
-            normal.tex_coord(),
-            UvTransform::IDENTITY,
+            set.unwrap_or(normal.tex_coord()),
+            transform,
             images,
             at,
             notes,
@@ -189,6 +193,29 @@ fn maps(
         notes.push(format!("{at}: not used: {}", unused.join(", ")));
     }
     out
+}
+
+/// `KHR_texture_transform` from its JSON: the transform and the texCoord override.
+fn transform_of_json(v: &::gltf::json::Value) -> (UvTransform, Option<u32>) {
+    let number = |x: &::gltf::json::Value| x.as_f64().filter(|x| x.is_finite()).map(|x| x as f32);
+    let pair = |key: &str, default: [f32; 2]| {
+        v.get(key)
+            .and_then(|a| Some([number(a.get(0)?)?, number(a.get(1)?)?]))
+            .unwrap_or(default)
+    };
+    let rotation = v.get("rotation").and_then(number).unwrap_or(0.0);
+    let set = v
+        .get("texCoord")
+        .and_then(::gltf::json::Value::as_u64)
+        .map(|s| s.min(u64::from(u32::MAX)) as u32);
+    (
+        UvTransform::from_offset_rotation_scale(
+            pair("offset", [0.0; 2]),
+            rotation,
+            pair("scale", [1.0; 2]),
+        ),
+        set,
+    )
 }
 
 /// One texture as raygine reads it: its image, UV set, transform and sampler.
@@ -238,6 +265,44 @@ mod tests {
         .expect("valid");
         let m = doc.materials().next().expect("one material");
         to_description(&m, Path::new("t.gltf"), 1.0, &[], &mut Vec::new())
+    }
+
+    /// Every map with its sampler, set and transform; the normal map's transform comes from its
+    /// JSON.
+    #[test]
+    fn maps_keep_their_sets_samplers_and_transforms() {
+        let doc = ::gltf::Gltf::from_slice(
+            br#"{"asset":{"version":"2.0"},"images":[{"uri":"a.png"},{"uri":"n.png"}],
+                "samplers":[{"wrapS":33071,"wrapT":33648,"magFilter":9728}],
+                "textures":[{"source":0,"sampler":0},{"source":1}],
+                "materials":[{"alphaMode":"MASK","alphaCutoff":0.3,
+                  "pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.5],"baseColorTexture":{"index":0,"texCoord":1}},
+                  "normalTexture":{"index":1,"scale":0.5,"extensions":{"KHR_texture_transform":{"offset":[0.5,0],"scale":[2,2],"texCoord":1}}},
+                  "emissiveTexture":{"index":0}}]}"#,
+        )
+        .expect("valid");
+        let images = [
+            ImageSource::File("a.png".into()),
+            ImageSource::File("n.png".into()),
+        ];
+        let m = doc.materials().next().unwrap();
+        let mut notes = Vec::new();
+        let d = to_description(&m, Path::new("t.gltf"), 1.0, &images, &mut notes);
+        let maps = d.maps.expect("maps");
+        let base = maps.base_color.as_ref().unwrap();
+        assert_eq!(base.texture, images[0]);
+        assert_eq!((base.set, base.filter), (1, Filter::Nearest));
+        assert_eq!(base.wrap, [Wrap::Clamp, Wrap::Mirror]);
+        let normal = maps.normal.as_ref().unwrap();
+        assert_eq!((normal.set, maps.normal_scale), (1, 0.5));
+        assert_eq!(
+            normal.transform.apply(glam::Vec2::new(0.25, 0.5)),
+            glam::Vec2::new(1.0, 1.0)
+        );
+        assert!(maps.emissive.is_some());
+        assert_eq!(maps.alpha_mode, AlphaMode::Mask { cutoff: 0.3 });
+        assert_eq!(maps.alpha_factor, 0.5);
+        assert!(notes.is_empty(), "{notes:?}");
     }
 
     #[test]

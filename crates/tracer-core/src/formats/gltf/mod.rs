@@ -264,18 +264,24 @@ impl Reader<'_> {
                 None => None,
             };
             let mut uvs: [Option<Vec<[f32; 2]>>; 2] = [None, None];
+            // Notes on texture coordinates name the material whose textures they move.
+            let material_name = primitive.material().name().map_or_else(
+                || format!("material{}", primitive.material().index().unwrap_or(0)),
+                str::to_owned,
+            );
             for (set, uv) in uvs.iter_mut().enumerate() {
                 if let Some(a) = primitive.get(&::gltf::Semantic::TexCoords(set as u32)) {
                     match buffers::read_vec2(&a, self.buffers) {
                         Ok(v) if v.len() == positions.len() => *uv = Some(v),
                         Ok(v) => self.desc.notes.push(at(format!(
-                            "TEXCOORD_{set}: {} coordinates for {} vertices; textures there \
-                             read at (0, 0)",
+                            "TEXCOORD_{set}: {} coordinates for {} vertices; material \
+                             {material_name}'s textures there read at (0, 0)",
                             v.len(),
                             positions.len()
                         ))),
                         Err(e) => self.desc.notes.push(at(format!(
-                            "TEXCOORD_{set}: {e}; textures there read at (0, 0)"
+                            "TEXCOORD_{set}: {e}; material {material_name}'s textures there \
+                             read at (0, 0)"
                         ))),
                     }
                 }
