@@ -37,49 +37,33 @@ pub(super) struct SlotMaps {
 
 impl SlotMaps {
     pub fn new(scene: &crate::scene::Scene, materials: &[crate::scene::Material]) -> Self {
-        let set_of = |m: &crate::scene::Material, want: fn(&crate::texture::TextureSet) -> bool| {
-            m.textures
-                .filter(|&s| scene.texture_sets.get(s as usize).is_some_and(want))
+        use crate::texture::TextureSet;
+        // Per slot, the set that does `what`; empty when no slot's does.
+        let slots_where = |what: fn(&TextureSet) -> bool| -> Vec<Option<u32>> {
+            let per_slot: Vec<Option<u32>> = materials
+                .iter()
+                .map(|m| {
+                    m.textures
+                        .filter(|&s| scene.texture_sets.get(s as usize).is_some_and(what))
+                })
+                .collect();
+            if per_slot.iter().any(Option::is_some) {
+                per_slot
+            } else {
+                Vec::new()
+            }
         };
-        let shading: Vec<Option<u32>> = materials
-            .iter()
-            .map(|m| set_of(m, crate::texture::TextureSet::shades))
-            .collect();
-        let cutting: Vec<Option<u32>> = materials
-            .iter()
-            .map(|m| set_of(m, crate::texture::TextureSet::cuts))
-            .collect();
-        let bending: Vec<Option<u32>> = materials
-            .iter()
-            .map(|m| set_of(m, crate::texture::TextureSet::bends))
-            .collect();
-        let glowing: Vec<Option<u32>> = materials
-            .iter()
-            .map(|m| set_of(m, crate::texture::TextureSet::glows))
-            .collect();
-        let any_shading = shading.iter().any(Option::is_some);
+        let shading = slots_where(TextureSet::shades);
         SlotMaps {
-            factors: if any_shading {
+            factors: if shading.is_empty() {
+                Vec::new()
+            } else {
                 materials.to_vec()
-            } else {
-                Vec::new()
             },
-            shading: if any_shading { shading } else { Vec::new() },
-            glowing: if glowing.iter().any(Option::is_some) {
-                glowing
-            } else {
-                Vec::new()
-            },
-            bending: if bending.iter().any(Option::is_some) {
-                bending
-            } else {
-                Vec::new()
-            },
-            cutting: if cutting.iter().any(Option::is_some) {
-                cutting
-            } else {
-                Vec::new()
-            },
+            shading,
+            cutting: slots_where(TextureSet::cuts),
+            bending: slots_where(TextureSet::bends),
+            glowing: slots_where(TextureSet::glows),
         }
     }
 }

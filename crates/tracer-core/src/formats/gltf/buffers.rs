@@ -225,14 +225,16 @@ fn view_bytes<'b>(
     Ok((&bytes[accessor.offset().min(bytes.len())..], stride))
 }
 
-/// An accessor of 3-vectors of f32 (positions, normals).
-pub(super) fn read_vec3(
+/// An accessor of `N`-vectors of f32 (`dimensions`: positions and normals are 3-vectors,
+/// tangents 4-vectors), every component finite.
+fn read_floats<const N: usize>(
     accessor: &::gltf::Accessor<'_>,
     buffers: &[Vec<u8>],
-) -> Result<Vec<[f32; 3]>, String> {
-    if accessor.dimensions() != Dimensions::Vec3 || accessor.data_type() != DataType::F32 {
+    dimensions: Dimensions,
+) -> Result<Vec<[f32; N]>, String> {
+    if accessor.dimensions() != dimensions || accessor.data_type() != DataType::F32 {
         return Err(format!(
-            "{:?} of {:?}: raygine reads 3-vectors of f32",
+            "{:?} of {:?}: raygine reads {N}-vectors of f32",
             accessor.dimensions(),
             accessor.data_type()
         ));
@@ -241,11 +243,10 @@ pub(super) fn read_vec3(
     (0..accessor.count())
         .map(|i| {
             let at = i * stride;
-            let f = |k: usize| {
+            let v: [f32; N] = std::array::from_fn(|k| {
                 let b = &bytes[at + 4 * k..at + 4 * k + 4];
                 f32::from_le_bytes([b[0], b[1], b[2], b[3]])
-            };
-            let v = [f(0), f(1), f(2)];
+            });
             if v.iter().all(|c| c.is_finite()) {
                 Ok(v)
             } else {
@@ -253,6 +254,22 @@ pub(super) fn read_vec3(
             }
         })
         .collect()
+}
+
+/// An accessor of 3-vectors of f32 (positions, normals).
+pub(super) fn read_vec3(
+    accessor: &::gltf::Accessor<'_>,
+    buffers: &[Vec<u8>],
+) -> Result<Vec<[f32; 3]>, String> {
+    read_floats(accessor, buffers, Dimensions::Vec3)
+}
+
+/// An accessor of tangents: 4-vectors of f32.
+pub(super) fn read_vec4(
+    accessor: &::gltf::Accessor<'_>,
+    buffers: &[Vec<u8>],
+) -> Result<Vec<[f32; 4]>, String> {
+    read_floats(accessor, buffers, Dimensions::Vec4)
 }
 
 /// An accessor of texture coordinates: 2-vectors of f32, or of normalised u8 or u16. Values
@@ -290,36 +307,6 @@ pub(super) fn read_vec2(
                 }
             };
             let v = [f(0), f(1)];
-            if v.iter().all(|c| c.is_finite()) {
-                Ok(v)
-            } else {
-                Err(format!("element {i} is not finite"))
-            }
-        })
-        .collect()
-}
-
-/// An accessor of tangents: 4-vectors of f32, finite.
-pub(super) fn read_vec4(
-    accessor: &::gltf::Accessor<'_>,
-    buffers: &[Vec<u8>],
-) -> Result<Vec<[f32; 4]>, String> {
-    if accessor.dimensions() != Dimensions::Vec4 || accessor.data_type() != DataType::F32 {
-        return Err(format!(
-            "{:?} of {:?}: raygine reads 4-vectors of f32",
-            accessor.dimensions(),
-            accessor.data_type()
-        ));
-    }
-    let (bytes, stride) = view_bytes(accessor, buffers)?;
-    (0..accessor.count())
-        .map(|i| {
-            let at = i * stride;
-            let f = |k: usize| {
-                let b = &bytes[at + 4 * k..at + 4 * k + 4];
-                f32::from_le_bytes([b[0], b[1], b[2], b[3]])
-            };
-            let v = [f(0), f(1), f(2), f(3)];
             if v.iter().all(|c| c.is_finite()) {
                 Ok(v)
             } else {
