@@ -152,6 +152,22 @@ mod tests {
     }
 
     #[test]
+    fn jpeg_files_decode_too() {
+        let rgb: Vec<u8> = (0..16 * 8 * 3)
+            .map(|i| if i % 3 == 0 { 200 } else { 40 })
+            .collect();
+        let mut jpeg = Vec::new();
+        image::codecs::jpeg::JpegEncoder::new_with_quality(&mut jpeg, 95)
+            .encode(&rgb, 16, 8, image::ExtendedColorType::Rgb8)
+            .unwrap();
+        let t = Texture::decode("t.jpg", &jpeg).unwrap();
+        assert_eq!((t.width, t.height, t.channels), (16, 8, 3));
+        // Lossy, but near the colour written.
+        let [r, g, b, a] = t.texel(5, 3);
+        assert!(r.abs_diff(200) < 8 && g.abs_diff(40) < 8 && b.abs_diff(40) < 8 && a == 255);
+    }
+
+    #[test]
     fn garbage_and_truncated_files_are_errors_not_panics() {
         assert!(matches!(
             Texture::decode("x.png", b"not an image"),
