@@ -5,6 +5,7 @@
 //! For MTL `map_d` (stochastic transparency) the expected lit fraction is 1 − mean alpha.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use crate::textures::png_bytes as png;
 use base64::Engine;
 use std::path::{Path, PathBuf};
 use tracer_core::integrator::IntegratorKind;
@@ -19,13 +20,6 @@ fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("raygine-alpha-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-fn png(img: image::DynamicImage) -> Vec<u8> {
-    let mut out = Vec::new();
-    img.write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
-        .unwrap();
-    out
 }
 
 fn mask_png() -> Vec<u8> {

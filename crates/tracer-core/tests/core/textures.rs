@@ -32,15 +32,34 @@ fn srgb(code: u8) -> f64 {
     }
 }
 
+/// `img` as PNG bytes.
+pub(crate) fn png_bytes(img: image::DynamicImage) -> Vec<u8> {
+    let mut out = Vec::new();
+    img.write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
+        .unwrap();
+    out
+}
+
 fn checker_png() -> Vec<u8> {
     let mut img = image::RgbImage::new(TEXELS, TEXELS);
     for (x, y, p) in img.enumerate_pixels_mut() {
         p.0 = CODES[((x / BLOCK + y / BLOCK) % 2) as usize];
     }
-    let mut out = Vec::new();
-    img.write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
-        .unwrap();
-    out
+    png_bytes(img.into())
+}
+
+/// The unit quad in OBJ: x right, z down the image, y up; OBJ's v points up the image, so the
+/// image's top row (v = 1 in OBJ) lies at z = 0. Faces follow.
+const QUAD_OBJ: &str =
+    "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\n";
+
+/// Writes `quad.mtl` (`mtl`) and `quad.obj` ([`QUAD_OBJ`] then `faces`) into `dir`; the OBJ's
+/// path.
+fn write_quad(dir: &Path, mtl: &str, faces: &str) -> PathBuf {
+    std::fs::write(dir.join("quad.mtl"), mtl).unwrap();
+    let path = dir.join("quad.obj");
+    std::fs::write(&path, format!("{QUAD_OBJ}{faces}")).unwrap();
+    path
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -175,19 +194,12 @@ fn an_obj_quad_with_map_kd_reads_l_times_the_decoded_texel() {
     assert!((srgb(188) - 0.5029).abs() < 5e-5 && (srgb(94) - 0.1119).abs() < 5e-5);
     let dir = scratch("obj");
     std::fs::write(dir.join("checker.png"), checker_png()).unwrap();
-    std::fs::write(
-        dir.join("quad.mtl"),
+    let path = write_quad(
+        &dir,
         "newmtl checker\nKd 1 1 1\nmap_Kd checker.png\n",
-    )
-    .unwrap();
-    // OBJ's v points up the image: the image's top row (v = 1 in OBJ) at z = 0.
-    std::fs::write(
-        dir.join("quad.obj"),
-        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\n\
-         usemtl checker\nf 1/1 4/4 3/3 2/2\n",
-    )
-    .unwrap();
-    let (rgb, se, warnings) = render_down(&dir.join("quad.obj"), 64);
+        "usemtl checker\nf 1/1 4/4 3/3 2/2\n",
+    );
+    let (rgb, se, warnings) = render_down(&path, 64);
     assert!(
         !warnings.iter().any(|w| w.contains("texture")),
         "{warnings:?}"
@@ -304,22 +316,9 @@ fn lit_quad(
     cd: f32,
 ) -> Vec<f64> {
     let dir = scratch(name);
-    let mut bytes = Vec::new();
-    image
-        .write_to(
-            &mut std::io::Cursor::new(&mut bytes),
-            image::ImageFormat::Png,
-        )
-        .unwrap();
-    std::fs::write(dir.join(file), bytes).unwrap();
-    std::fs::write(dir.join("quad.mtl"), mtl).unwrap();
-    std::fs::write(
-        dir.join("quad.obj"),
-        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\n\
-         usemtl m\nf 1/1 4/4 3/3 2/2\n",
-    )
-    .unwrap();
-    let mut loaded = load(&dir.join("quad.obj"), &LoadOptions::default()).unwrap();
+    std::fs::write(dir.join(file), png_bytes(image)).unwrap();
+    let path = write_quad(&dir, mtl, "usemtl m\nf 1/1 4/4 3/3 2/2\n");
+    let mut loaded = load(&path, &LoadOptions::default()).unwrap();
     assert!(
         !loaded.warnings.iter().any(|w| w.contains("texture")),
         "{:?}",
@@ -456,33 +455,21 @@ fn missing_corrupt_and_huge_textures_are_noted_and_the_material_keeps_its_factor
     let dir = scratch("bad");
     std::fs::write(dir.join("corrupt.png"), b"\x89PNG\r\n\x1a\nnot really").unwrap();
     // A PNG header that declares 100 000 x 100 000 texels.
-    let mut huge = Vec::new();
-    image::RgbImage::new(1, 1)
-        .write_to(
-            &mut std::io::Cursor::new(&mut huge),
-            image::ImageFormat::Png,
-        )
-        .unwrap();
+    let mut huge = png_bytes(image::RgbImage::new(1, 1).into());
     huge[16..20].copy_from_slice(&100_000u32.to_be_bytes());
     huge[20..24].copy_from_slice(&100_000u32.to_be_bytes());
     // The IHDR chunk's CRC-32 (over type and data), so the header itself is valid.
     let crc = crc32(&huge[12..29]);
     huge[29..33].copy_from_slice(&crc.to_be_bytes());
     std::fs::write(dir.join("huge.png"), huge).unwrap();
-    std::fs::write(
-        dir.join("quad.mtl"),
+    let path = write_quad(
+        &dir,
         "newmtl lost\nKd 0.25 0.5 0.75\nmap_Kd missing.png\nnewmtl broken\nKd 0.5 0.5 0.5\n\
          map_Kd corrupt.png\nnewmtl big\nKd 0.5 0.5 0.5\nmap_Kd huge.png\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("quad.obj"),
-        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
-         o a\nusemtl lost\nf 1/1 4/4 3/3\no b\nusemtl broken\nf 1/1 3/3 2/2\no c\nusemtl big\n\
+        "o a\nusemtl lost\nf 1/1 4/4 3/3\no b\nusemtl broken\nf 1/1 3/3 2/2\no c\nusemtl big\n\
          f 1/1 2/2 4/4\n",
-    )
-    .unwrap();
-    let loaded = load(&dir.join("quad.obj"), &LoadOptions::default()).unwrap();
+    );
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
     let notes = loaded.warnings.join("\n");
     println!("{notes}");
     for (line, material, file) in [
@@ -540,14 +527,7 @@ fn crc32(bytes: &[u8]) -> u32 {
 fn an_emissive_map_varies_the_emission_over_the_surface_in_every_integrator() {
     let dir = scratch("emissive");
     let img = image::GrayImage::from_fn(64, 1, |x, _| image::Luma([if x < 32 { 255 } else { 0 }]));
-    let mut bytes = Vec::new();
-    image::DynamicImage::from(img)
-        .write_to(
-            &mut std::io::Cursor::new(&mut bytes),
-            image::ImageFormat::Png,
-        )
-        .unwrap();
-    std::fs::write(dir.join("half.png"), bytes).unwrap();
+    std::fs::write(dir.join("half.png"), png_bytes(img.into())).unwrap();
     std::fs::write(
         dir.join("lamp.mtl"),
         "newmtl glow\nKd 0 0 0\nKe 1 1 1\nmap_Ke -clamp on half.png\nnewmtl floor\nKd 0.5 0.5 0.5\n",
@@ -659,18 +639,12 @@ fn an_emissive_map_varies_the_emission_over_the_surface_in_every_integrator() {
 fn one_image_is_loaded_once_and_the_albedo_guide_takes_the_textured_colour() {
     let dir = scratch("shared");
     std::fs::write(dir.join("checker.png"), checker_png()).unwrap();
-    std::fs::write(
-        dir.join("quad.mtl"),
+    let path = write_quad(
+        &dir,
         "newmtl a\nKd 1 1 1\nmap_Kd checker.png\nnewmtl b\nKd 0.5 0.5 0.5\nmap_Kd checker.png\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("quad.obj"),
-        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\n\
-         o a\nusemtl a\nf 1/1 4/4 3/3\no b\nusemtl b\nf 1/1 3/3 2/2\n",
-    )
-    .unwrap();
-    let loaded = load(&dir.join("quad.obj"), &LoadOptions::default()).unwrap();
+        "o a\nusemtl a\nf 1/1 4/4 3/3\no b\nusemtl b\nf 1/1 3/3 2/2\n",
+    );
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
     assert_eq!(loaded.scene.textures.len(), 1);
     assert_eq!(loaded.scene.texture_sets.len(), 2);
     let lit = tracer_core::lit_scene::LitScene::new(&loaded.scene, &loaded.setup, 4);
