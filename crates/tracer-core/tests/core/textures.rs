@@ -355,6 +355,18 @@ fn lambert(rho: f64, n: glam::DVec3, p: glam::DVec3, light: glam::DVec3, cd: f64
     rho / std::f64::consts::PI * cd * n.normalize().dot(d.normalize()).max(0.0) / d.length_squared()
 }
 
+/// The largest |a / b − 1| over the pixels of columns `xs` and rows `ys`.
+fn worst_ratio(
+    xs: std::ops::Range<u32>,
+    ys: std::ops::Range<u32>,
+    a: impl Fn(u32, u32) -> f64,
+    b: impl Fn(u32, u32) -> f64,
+) -> f64 {
+    ys.flat_map(|y| xs.clone().map(move |x| (x, y)))
+        .map(|(x, y)| (a(x, y) / b(x, y) - 1.0).abs())
+        .fold(0.0, f64::max)
+}
+
 /// The centre of pixel (x, y) on the quad.
 fn pixel_point(x: u32, y: u32) -> glam::DVec3 {
     glam::DVec3::new(
@@ -388,18 +400,20 @@ fn a_normal_mapped_plane_shades_like_the_tilted_plane_its_map_encodes() {
         let n = glam::DVec3::new(tx, tz, -ty);
         let flat = glam::DVec3::Y;
         let l = glam::DVec3::from(light.map(f64::from));
-        let mut worst = 0.0f64;
-        let mut differs_from_flat = 0.0f64;
-        for y in 4..SIDE - 4 {
-            for x in 4..SIDE - 4 {
-                let p = pixel_point(x, y);
-                let want = lambert(0.5, n, p, l, f64::from(cd));
-                let got = seen[(y * SIDE + x) as usize];
-                worst = worst.max((got / want - 1.0).abs());
-                differs_from_flat = differs_from_flat
-                    .max((lambert(0.5, flat, p, l, f64::from(cd)) / want - 1.0).abs());
-            }
-        }
+        let tilted = |x: u32, y: u32| lambert(0.5, n, pixel_point(x, y), l, f64::from(cd));
+        let inner = 4..SIDE - 4;
+        let worst = worst_ratio(
+            inner.clone(),
+            inner.clone(),
+            |x, y| seen[(y * SIDE + x) as usize],
+            tilted,
+        );
+        let differs_from_flat = worst_ratio(
+            inner.clone(),
+            inner,
+            |x, y| lambert(0.5, flat, pixel_point(x, y), l, f64::from(cd)),
+            tilted,
+        );
         println!(
             "normal map tilted towards the {name}: worst {:.3} % from the tilted plane (the flat \
              plane is up to {:.1} % off)",
@@ -433,16 +447,13 @@ fn a_bump_map_ramp_tilts_the_normal_by_its_slope() {
     let slope = bm * 256.0 / 255.0;
     let n = glam::DVec3::new(-slope, 1.0, 0.0);
     let l = glam::DVec3::from(light.map(f64::from));
-    let mut worst = 0.0f64;
     // Away from u = 0 and 1, where the repeating ramp jumps.
-    for y in 2..SIDE - 2 {
-        for x in 4..SIDE - 4 {
-            let p = pixel_point(x, y);
-            let want = lambert(0.5, n, p, l, f64::from(cd));
-            let got = seen[(y * SIDE + x) as usize];
-            worst = worst.max((got / want - 1.0).abs());
-        }
-    }
+    let worst = worst_ratio(
+        4..SIDE - 4,
+        2..SIDE - 2,
+        |x, y| seen[(y * SIDE + x) as usize],
+        |x, y| lambert(0.5, n, pixel_point(x, y), l, f64::from(cd)),
+    );
     println!(
         "bump ramp of slope {slope:.4}: worst {:.3} % from the tilted plane",
         worst * 100.0
