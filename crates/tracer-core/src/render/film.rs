@@ -76,6 +76,21 @@ impl Film {
         film
     }
 
+    /// Pixels: width × height.
+    pub fn len(&self) -> usize {
+        self.pixels.len()
+    }
+
+    /// True for a film of no pixels.
+    pub fn is_empty(&self) -> bool {
+        self.pixels.is_empty()
+    }
+
+    /// The sums of pixel `i` (row-major).
+    pub fn pixel(&self, i: usize) -> PixelSum {
+        self.pixels[i]
+    }
+
     pub fn index(&self, x: u32, y: u32) -> usize {
         y as usize * self.width as usize + x as usize
     }

@@ -2,36 +2,36 @@
 //! and do not depend on the order samples arrive in.
 //!
 //! Scales: luminance and illuminance in units of 2⁻³² cd/m² (lx), squared luminance in units of
-//! 2⁻¹⁶ (cd/m²)². One sample may be at most 2⁶² cd/m² (lx) and its luminance at most 2³⁹ cd/m²;
-//! a sample beyond that, or not a finite number, cannot be represented.
+//! 2⁻⁴⁸ (cd/m²)² ([`super::square_sum`]). One sample may be at most 2⁶² cd/m² (lx) and its
+//! luminance at most 2³⁹ cd/m²; a sample beyond that, or not a finite number, cannot be
+//! represented.
 
+use super::square_sum::SquareSum;
 use crate::integrator::Sample;
 use crate::light::LUMINANCE_WEIGHTS;
 
 /// Fixed-point units per cd/m² (and per lx).
 pub const VALUE_SCALE: f64 = 4_294_967_296.0; // 2^32
-/// Fixed-point units per (cd/m²)² of the squared-luminance sums.
-pub const SQUARE_SCALE: f64 = 65_536.0; // 2^16
 /// Largest fixed-point magnitude one sample may contribute (2^94): 2^33 samples fit in i128.
 pub(super) const SAMPLE_LIMIT: f64 = 19_807_040_628_566_084_398_385_987_584.0;
 
-/// A sample's five values in fixed point: r, g, b and illuminance in units of 2⁻³², luminance
-/// squared in units of 2⁻¹⁶; None when one of them cannot be represented.
-/// (All five converted before any is tested: one branch, not five.)
+/// A sample's values in fixed point: r, g, b and illuminance in units of 2⁻³², and its
+/// luminance squared; None when one of them cannot be represented.
+/// (All converted before any is tested: one branch, not five.)
 #[inline(always)]
-pub(super) fn fixed_values(s: &Sample) -> Option<[i128; 5]> {
+pub(super) fn fixed_values(s: &Sample) -> Option<([i128; 4], SquareSum)> {
     let y = f64::from(s.rgb.dot(LUMINANCE_WEIGHTS));
     let fixed = (
         to_fixed(f64::from(s.rgb.x), VALUE_SCALE),
         to_fixed(f64::from(s.rgb.y), VALUE_SCALE),
         to_fixed(f64::from(s.rgb.z), VALUE_SCALE),
         to_fixed(f64::from(s.illuminance_lx), VALUE_SCALE),
-        to_fixed(y * y, SQUARE_SCALE),
+        SquareSum::of_luminance(y),
     );
     let (Some(r), Some(g), Some(b), Some(e), Some(q)) = fixed else {
         return None;
     };
-    Some([r, g, b, e, q])
+    Some(([r, g, b, e], q))
 }
 
 pub(super) fn to_fixed(v: f64, scale: f64) -> Option<i128> {
@@ -123,7 +123,7 @@ mod tests {
             values.push(sign * ((bits % 1_000_000) as f64 + 0.5) / VALUE_SCALE);
         }
         for v in values {
-            for scale in [VALUE_SCALE, SQUARE_SCALE] {
+            for scale in [VALUE_SCALE, 65_536.0] {
                 let (fast, slow) = (to_fixed(v, scale), slow_to(v, scale));
                 assert_eq!(fast, slow, "{v:e} x {scale}");
                 if let Some(x) = slow {

@@ -15,10 +15,11 @@ mod progressive_film;
 mod run_sums;
 mod sampler;
 mod session;
+mod square_sum;
 mod tiles;
 
 pub use film::{Film, FilmError};
-pub use fixed_point::{SQUARE_SCALE, VALUE_SCALE};
+pub use fixed_point::VALUE_SCALE;
 pub use guides::{GUIDE_SCALE, Guide, GuideFilm, GuideSum, trace_guide};
 pub use passes::{PREVIEW_BLOCKS, Pass};
 pub use pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler, NO_ILLUMINANCE};
@@ -26,6 +27,7 @@ pub use pixel_sum::{PixelSum, relative_error};
 pub use progressive_film::ProgressiveFilm;
 pub use sampler::{SampleJob, pixel_sample_offset, sample_hash};
 pub use session::{ILLUMINANCE_SAMPLES, Notify, RenderSession, SessionStats, Snapshot};
+pub use square_sum::{FINE_SQUARE_SCALE, SQUARE_SCALE, SquareSum};
 pub use tiles::{Tile, tiles_centre_out};
 
 use crate::integrator::IntegratorKind;

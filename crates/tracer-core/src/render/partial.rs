@@ -7,10 +7,11 @@ use super::RenderSettings;
 use super::film::Film;
 use super::guides::{GuideFilm, GuideSum};
 use super::pixel_sum::PixelSum;
+use super::square_sum::SquareSum;
 use crate::shard::varint::{Decoder, Encoder};
 
 /// Integers a pixel holds in a part.
-pub const PIXEL_FIELDS: usize = 11;
+pub const PIXEL_FIELDS: usize = 13;
 
 /// A pixel's sums in file order.
 pub fn pixel_fields(p: &PixelSum) -> [i128; PIXEL_FIELDS] {
@@ -19,26 +20,35 @@ pub fn pixel_fields(p: &PixelSum) -> [i128; PIXEL_FIELDS] {
         p.rgb[1],
         p.rgb[2],
         p.illuminance,
-        p.luminance_sq,
+        p.luminance_sq.whole,
+        i128::from(p.luminance_sq.fine),
         p.splat_rgb[0],
         p.splat_rgb[1],
         p.splat_rgb[2],
-        p.splat_luminance_sq,
+        p.splat_luminance_sq.whole,
+        i128::from(p.splat_luminance_sq.fine),
         i128::from(p.count),
         i128::from(p.rejected),
     ]
 }
 
-/// The pixel [`pixel_fields`] wrote; None when a count is out of range.
+/// The pixel [`pixel_fields`] wrote; None when a count or a square's fine part is out of
+/// range.
 pub fn pixel_from_fields(f: &[i128; PIXEL_FIELDS]) -> Option<PixelSum> {
+    let square = |whole: i128, fine: i128| {
+        let fine = i64::try_from(fine).ok()?;
+        (0..1 << 32)
+            .contains(&fine)
+            .then_some(SquareSum { whole, fine })
+    };
     Some(PixelSum {
         rgb: [f[0], f[1], f[2]],
         illuminance: f[3],
-        luminance_sq: f[4],
-        splat_rgb: [f[5], f[6], f[7]],
-        splat_luminance_sq: f[8],
-        count: u32::try_from(f[9]).ok()?,
-        rejected: u32::try_from(f[10]).ok()?,
+        luminance_sq: square(f[4], f[5])?,
+        splat_rgb: [f[6], f[7], f[8]],
+        splat_luminance_sq: square(f[9], f[10])?,
+        count: u32::try_from(f[11]).ok()?,
+        rejected: u32::try_from(f[12]).ok()?,
     })
 }
 

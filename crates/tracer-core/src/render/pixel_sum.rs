@@ -2,8 +2,9 @@
 //! splats, with the sample count, in the fixed point of [`super::fixed_point`]. Its mean and
 //! standard error converge as samples accumulate.
 
-use super::fixed_point::{SQUARE_SCALE, VALUE_SCALE, fixed_values, from_fixed, to_fixed};
+use super::fixed_point::{VALUE_SCALE, fixed_values, from_fixed, to_fixed};
 use super::run_sums::{RUN_SAMPLES, run_sums, wide_run_sums};
+use super::square_sum::SquareSum;
 use crate::integrator::Sample;
 use crate::light::LUMINANCE_WEIGHTS;
 use glam::Vec3;
@@ -16,15 +17,15 @@ pub struct PixelSum {
     pub rgb: [i128; 3],
     /// Σ illuminance, units of 2⁻³² lx.
     pub illuminance: i128,
-    /// Σ (Rec. 709 luminance)², units of 2⁻¹⁶ (cd/m²)².
-    pub luminance_sq: i128,
+    /// Σ (Rec. 709 luminance)², exact to 2⁻⁴⁸ (cd/m²)² ([`SquareSum`]).
+    pub luminance_sq: SquareSum,
     /// Σ luminance per channel that light subpaths of every pixel's samples splatted here
     /// (bidirectional mode), units of 2⁻³² cd/m²; divided by this pixel's count like its own.
     pub splat_rgb: [i128; 3],
     /// Σ over light subpaths of the squared Rec. 709 luminance each splatted here (all of one
-    /// subpath's splats into this pixel count as one value), units of 2⁻¹⁶ (cd/m²)²: the
+    /// subpath's splats into this pixel count as one value), exact to 2⁻⁴⁸ (cd/m²)²: the
     /// variance the splats add to the pixel's mean (see [`PixelSum::luminance_std_error`]).
-    pub splat_luminance_sq: i128,
+    pub splat_luminance_sq: SquareSum,
     /// Samples added.
     pub count: u32,
     /// Samples refused (not finite, or beyond the fixed-point range).
@@ -34,7 +35,7 @@ pub struct PixelSum {
 impl PixelSum {
     /// Adds one sample; returns false (and counts it as rejected) when it cannot be represented.
     pub fn add(&mut self, s: &Sample) -> bool {
-        let Some([r, g, b, e, q]) = fixed_values(s) else {
+        let Some(([r, g, b, e], q)) = fixed_values(s) else {
             self.rejected = self.rejected.saturating_add(1);
             return false;
         };
@@ -45,7 +46,7 @@ impl PixelSum {
                 self.rgb[1].checked_add(g)?,
                 self.rgb[2].checked_add(b)?,
                 self.illuminance.checked_add(e)?,
-                self.luminance_sq.checked_add(q)?,
+                self.luminance_sq.checked_add(&q)?,
                 self.count.checked_add(1)?,
             ))
         })();
@@ -81,9 +82,10 @@ impl PixelSum {
                     i128::from(sums[2]),
                 ],
                 illuminance: i128::from(sums[3]),
-                luminance_sq: i128::from(sums[4]),
+                luminance_sq: SquareSum::from_parts(i128::from(sums[4]), sums[5])
+                    .unwrap_or_default(),
                 splat_rgb: [0; 3],
-                splat_luminance_sq: 0,
+                splat_luminance_sq: SquareSum::default(),
                 count: run.len() as u32,
                 rejected: 0,
             };
@@ -106,9 +108,9 @@ impl PixelSum {
         let sum = PixelSum {
             rgb: [sums[0], sums[1], sums[2]],
             illuminance: sums[3],
-            luminance_sq: sums[4],
+            luminance_sq: SquareSum::from_units(sums[4]),
             splat_rgb: [0; 3],
-            splat_luminance_sq: 0,
+            splat_luminance_sq: SquareSum::default(),
             count: run.len() as u32,
             rejected: 0,
         };
@@ -127,7 +129,7 @@ impl PixelSum {
             to_fixed(f64::from(rgb.x), VALUE_SCALE),
             to_fixed(f64::from(rgb.y), VALUE_SCALE),
             to_fixed(f64::from(rgb.z), VALUE_SCALE),
-            to_fixed(y * y, SQUARE_SCALE),
+            SquareSum::of_luminance(y),
         );
         let (Some(r), Some(g), Some(b), Some(q)) = fixed else {
             self.rejected = self.rejected.saturating_add(1);
@@ -138,7 +140,7 @@ impl PixelSum {
                 self.splat_rgb[0].checked_add(r)?,
                 self.splat_rgb[1].checked_add(g)?,
                 self.splat_rgb[2].checked_add(b)?,
-                self.splat_luminance_sq.checked_add(q)?,
+                self.splat_luminance_sq.checked_add(&q)?,
             ))
         })();
         let Some((r, g, b, q)) = sums else {
@@ -161,7 +163,7 @@ impl PixelSum {
                     self.rgb[2].checked_add(other.rgb[2])?,
                 ],
                 illuminance: self.illuminance.checked_add(other.illuminance)?,
-                luminance_sq: self.luminance_sq.checked_add(other.luminance_sq)?,
+                luminance_sq: self.luminance_sq.checked_add(&other.luminance_sq)?,
                 splat_rgb: [
                     self.splat_rgb[0].checked_add(other.splat_rgb[0])?,
                     self.splat_rgb[1].checked_add(other.splat_rgb[1])?,
@@ -169,7 +171,7 @@ impl PixelSum {
                 ],
                 splat_luminance_sq: self
                     .splat_luminance_sq
-                    .checked_add(other.splat_luminance_sq)?,
+                    .checked_add(&other.splat_luminance_sq)?,
                 count: self.count.checked_add(other.count)?,
                 rejected: self.rejected.saturating_add(other.rejected),
             })
@@ -277,7 +279,7 @@ impl PixelSum {
         }
         let n = f64::from(self.count);
         let mean = self.own_mean_luminance();
-        let mean_sq = from_fixed(self.luminance_sq, SQUARE_SCALE) / n;
+        let mean_sq = self.luminance_sq.value() / n;
         Some((mean_sq - mean * mean).max(0.0) * n / (n - 1.0))
     }
 
@@ -304,7 +306,7 @@ impl PixelSum {
         let var = self.own_luminance_variance()?;
         let n = f64::from(self.count);
         let m = light_paths.unwrap_or(n).max(1e-9);
-        let splat_var = from_fixed(self.splat_luminance_sq, SQUARE_SCALE) / (m * m);
+        let splat_var = self.splat_luminance_sq.value() / (m * m);
         Some((var / n + splat_var).sqrt())
     }
 }

@@ -23,8 +23,9 @@ use super::Shard;
 use super::hash::StableHash;
 use std::path::{Path, PathBuf};
 
-/// The part format this build writes and reads.
-pub const PART_FORMAT: u32 = 4;
+/// The part format this build writes and reads (5: squared luminances in two fields each, to
+/// 2⁻⁴⁸).
+pub const PART_FORMAT: u32 = 5;
 
 const MAGIC: &str = "raygine-partial";
 /// Longest header read before deciding a file is not a part.

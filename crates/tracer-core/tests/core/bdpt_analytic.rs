@@ -462,7 +462,11 @@ fn splatting_is_bit_identical_across_threads_and_ranges() {
         let run = |threads| render_on_threads(&loaded.scene, &loaded.setup, &settings, threads);
         let one = run(1);
         assert!(one.pixels.iter().any(|p| p.splat_rgb != [0; 3]));
-        assert!(one.pixels.iter().any(|p| p.splat_luminance_sq != 0));
+        assert!(
+            one.pixels
+                .iter()
+                .any(|p| p.splat_luminance_sq != tracer_core::render::SquareSum::default())
+        );
         assert_eq!(one, run(2), "{kind}");
         let (mut a, _) = render_samples(&loaded.scene, &loaded.setup, &settings, 3..5);
         let (b, _) = render_samples(&loaded.scene, &loaded.setup, &settings, 0..3);

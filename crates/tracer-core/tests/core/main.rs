@@ -20,6 +20,7 @@ mod denoise;
 mod direct_wavefront;
 mod environment;
 mod environment_input;
+mod film_precision;
 mod fuzz_corpus;
 mod gi_analytic;
 mod illuminance_on_demand;
