@@ -174,8 +174,7 @@ fn storm(kind: IntegratorKind, threads: usize, changes: usize) -> anyhow::Result
         .context("no film after the storm")?;
     let (reference, _) = render(&scene, &last, &settings(kind));
     let bits = |f: &tracer_core::render::Film| -> Vec<[i128; 5]> {
-        f.pixels
-            .iter()
+        f.pixels()
             .map(|p| {
                 let [r, g, b] = p.rgb;
                 [r, g, b, p.illuminance, i128::from(p.count)]

@@ -128,7 +128,7 @@ fn merge_render(args: &MergeArgs, first: &PartHeader, started: Instant) -> Resul
         film.height,
         first.samples,
         first.settings,
-        image.luminance_sum / film.pixels.len().max(1) as f64,
+        image.luminance_sum / film.len().max(1) as f64,
         image.luminance_max,
         exposure
     );

@@ -252,7 +252,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             "{:.1} spp on average (adaptive: {} to {})",
             stats.mean_samples_per_pixel,
             stats.samples_per_pixel,
-            film.pixels.iter().map(|p| p.count).max().unwrap_or(0)
+            film.counts().max().unwrap_or(0)
         )
     } else {
         format!("{} spp", stats.samples_per_pixel)
@@ -286,7 +286,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         "rendered in {:.1} ms, {:.2} Mrays/s; luminance mean {:.3} cd/m², max {:.3} cd/m²; exposure {:+.2} stops",
         stats.elapsed_secs * 1e3,
         stats.mrays_per_sec(),
-        image.luminance_sum / film.pixels.len().max(1) as f64,
+        image.luminance_sum / film.len().max(1) as f64,
         image.luminance_max,
         exposure
     );

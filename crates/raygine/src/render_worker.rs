@@ -362,7 +362,7 @@ pub fn map_rect_with(
     rect: Option<Tile>,
     colours: Option<&[Vec3]>,
 ) -> ColorImage {
-    let colours = colours.filter(|c| c.len() == film.accum.pixels.len());
+    let colours = colours.filter(|c| c.len() == film.accum.len());
     let rect = rect.unwrap_or(Tile {
         x0: 0,
         y0: 0,

@@ -60,46 +60,56 @@ pub fn write_exr(path: &Path, film: &Film) -> Result<(), ExportError> {
 /// [`write_exr`], and when `denoised` is given (cd/m² per channel, one per pixel) the denoised
 /// picture beside it as the channels `denoised.R`, `denoised.G`, `denoised.B`. The raw R, G, B
 /// stay the film's unbiased means.
+///
+/// Streamed: each pixel's mean is computed as the encoder asks for it, block by block, so the
+/// export holds no copy of the image (a 3840x2160 picture's floats alone are 100 MB).
 pub fn write_exr_with_denoised(
     path: &Path,
     film: &Film,
     denoised: Option<&[Vec3]>,
 ) -> Result<(), ExportError> {
     use exr::prelude::{
-        AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, SmallVec,
-        WritableImage,
+        Encoding, Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage,
     };
-    let n = film.pixels.len();
+    let n = film.len();
     if denoised.is_some_and(|d| d.len() != n) {
         return Err(ExportError::Encode {
             path: path.to_owned(),
             reason: "the denoised image does not match the film's size".to_owned(),
         });
     }
-    let raw = film.mean_rgb_all();
-    let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
-    let mut add = |prefix: &str, pixels: &[Vec3]| {
-        for (k, name) in ["R", "G", "B"].into_iter().enumerate() {
-            let samples = pixels.iter().map(|p| p[k]).collect();
-            channels.push(AnyChannel::new(
-                format!("{prefix}{name}").as_str(),
-                FlatSamples::F32(samples),
-            ));
-        }
-    };
-    add("", &raw);
-    if let Some(d) = denoised {
-        add("denoised.", d);
-    }
-    let layer = Layer::new(
-        (film.width as usize, film.height as usize),
-        LayerAttributes::default(),
-        Encoding::FAST_LOSSLESS,
-        AnyChannels::sort(channels),
-    );
-    let image = Image::from_layer(layer);
+    let size = (film.width as usize, film.height as usize);
+    let width = size.0;
+    let raw = |p: Vec2<usize>| film.mean_rgb(p.1 * width + p.0);
     write_atomically(path, |w| {
-        image.write().to_buffered(w).map_err(|e| e.to_string())
+        let written = match denoised {
+            None => {
+                let channels = SpecificChannels::rgb(|p: Vec2<usize>| {
+                    let c = raw(p);
+                    (c.x, c.y, c.z)
+                });
+                let attributes = LayerAttributes::default();
+                let layer = Layer::new(size, attributes, Encoding::FAST_LOSSLESS, channels);
+                Image::from_layer(layer).write().to_buffered(w)
+            }
+            Some(d) => {
+                let channels = SpecificChannels::build()
+                    .with_channel("R")
+                    .with_channel("G")
+                    .with_channel("B")
+                    .with_channel("denoised.R")
+                    .with_channel("denoised.G")
+                    .with_channel("denoised.B")
+                    .with_pixel_fn(|p: Vec2<usize>| {
+                        let (c, e) = (raw(p), d[p.1 * width + p.0]);
+                        (c.x, c.y, c.z, e.x, e.y, e.z)
+                    });
+                let attributes = LayerAttributes::default();
+                let layer = Layer::new(size, attributes, Encoding::FAST_LOSSLESS, channels);
+                Image::from_layer(layer).write().to_buffered(w)
+            }
+        };
+        written.map_err(|e| e.to_string())
     })
 }
 
@@ -156,4 +166,68 @@ fn write_atomically(
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    use super::*;
+
+    /// Reads every channel of an EXR: name → samples (row-major).
+    fn channels(path: &Path) -> Vec<(String, Vec<f32>)> {
+        use exr::prelude::*;
+        let image = read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .first_valid_layer()
+            .all_attributes()
+            .from_file(path)
+            .unwrap();
+        image
+            .layer_data
+            .channel_data
+            .list
+            .iter()
+            .map(|c| (c.name.to_string(), c.sample_data.values_as_f32().collect()))
+            .collect()
+    }
+
+    #[test]
+    fn the_streamed_exr_holds_the_film_means_and_the_denoised_picture() {
+        let (w, h) = (70, 9);
+        let rgb: Vec<Vec3> = (0..w * h)
+            .map(|i| Vec3::new(i as f32 * 0.37, 1.0 / (1.0 + i as f32), 3.0e6))
+            .collect();
+        let film = Film::from_values(w, h, &rgb, &vec![0.0; rgb.len()]);
+        let denoised: Vec<Vec3> = rgb.iter().map(|c| *c * 0.5 + Vec3::X).collect();
+        let dir = std::env::temp_dir().join(format!("raygine-exr-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (plain, both) = (dir.join("plain.exr"), dir.join("both.exr"));
+        write_exr(&plain, &film).unwrap();
+        write_exr_with_denoised(&both, &film, Some(&denoised)).unwrap();
+        let expect =
+            |k: usize, pixels: &[Vec3]| -> Vec<f32> { pixels.iter().map(|p| p[k]).collect() };
+        let means: Vec<Vec3> = (0..film.len()).map(|i| film.mean_rgb(i)).collect();
+        let got = channels(&plain);
+        let names: Vec<&str> = got.iter().map(|c| c.0.as_str()).collect();
+        assert_eq!(names, ["B", "G", "R"]);
+        for (name, samples) in &got {
+            let k = ["R", "G", "B"].iter().position(|n| n == name).unwrap();
+            assert_eq!(*samples, expect(k, &means), "{name}");
+        }
+        let got = channels(&both);
+        assert_eq!(got.len(), 6);
+        for (name, samples) in &got {
+            let (source, channel) = match name.strip_prefix("denoised.") {
+                Some(c) => (&denoised, c),
+                None => (&means, name.as_str()),
+            };
+            let k = ["R", "G", "B"].iter().position(|n| *n == channel).unwrap();
+            assert_eq!(*samples, expect(k, source), "{name}");
+        }
+        let short = write_exr_with_denoised(&both, &film, Some(&denoised[1..]));
+        assert!(short.is_err());
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

@@ -269,7 +269,7 @@ impl RaygineApp {
         let denoised = self
             .worker
             .denoised_shown()
-            .filter(|p| p.rgb.len() == film.pixels.len())
+            .filter(|p| p.rgb.len() == film.len())
             .cloned();
         self.writes.push(start_write(ctx, move || {
             let layers = denoised.as_ref().map(|p| p.rgb.as_slice());

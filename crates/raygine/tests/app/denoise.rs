@@ -72,7 +72,7 @@ fn d_flips_the_denoised_picture_without_touching_the_render_or_its_readouts() {
     let sums = |h: &Viewer| {
         h.state()
             .worker()
-            .with_film(|f| f.map(|f| f.accum.pixels.clone()))
+            .with_film(|f| f.map(|f| f.accum.pixels().collect::<Vec<_>>()))
             .unwrap()
     };
     // Let the render finish, so the sums stand still while the toggle is flipped.

@@ -121,7 +121,7 @@ fn starts_in_global_illumination() {
     let mean = |h: &Viewer| {
         h.state().worker().with_film(|f| {
             let f = f.unwrap();
-            (0..f.accum.pixels.len())
+            (0..f.accum.len())
                 .map(|i| f64::from(tracer_core::scene::luminance(f.shown_rgb(i))))
                 .sum::<f64>()
         })
@@ -916,7 +916,7 @@ fn ctrl_drag_measures_the_mean_luminance_of_a_rectangle() {
         let mut sum = 0.0;
         for y in m.y0..m.y1 {
             for x in m.x0..m.x1 {
-                sum += f.accum.pixels[f.accum.index(x, y)].mean_luminance();
+                sum += f.accum.pixel(f.accum.index(x, y)).mean_luminance();
             }
         }
         let n = f64::from((m.x1 - m.x0) * (m.y1 - m.y0));

@@ -58,11 +58,12 @@ impl DisplayMapper {
         let width = (film.width as usize).max(1);
         let skipped = film.illuminance_from;
         let paths = film.splat_paths;
-        let mut out = vec![0u8; film.pixels.len() * CHANNELS];
+        let mut out = vec![0u8; film.len() * CHANNELS];
         out.par_chunks_mut(width * CHANNELS)
-            .zip(film.pixels.par_chunks(width))
-            .for_each(|(row, sums)| {
-                for (o, p) in row.chunks_exact_mut(CHANNELS).zip(sums) {
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, o) in row.chunks_exact_mut(CHANNELS).enumerate() {
+                    let p = film.pixel(y * width + x);
                     let code = self.map(p.mean_rgb_over(paths), p.mean_illuminance_after(skipped));
                     o.copy_from_slice(&code[..CHANNELS]);
                 }
@@ -79,13 +80,14 @@ impl DisplayMapper {
         let width = (film.width as usize).max(1);
         let skipped = film.illuminance_from;
         let paths = film.splat_paths;
-        let mut out = vec![0u8; film.pixels.len() * CHANNELS];
+        let mut out = vec![0u8; film.len() * CHANNELS];
         let rows: Vec<(f64, f32)> = out
             .par_chunks_mut(width * CHANNELS)
-            .zip(film.pixels.par_chunks(width))
-            .map(|(row, sums)| {
+            .enumerate()
+            .map(|(y, row)| {
                 let (mut sum, mut max) = (0.0f64, 0.0f32);
-                for (o, p) in row.chunks_exact_mut(CHANNELS).zip(sums) {
+                for (x, o) in row.chunks_exact_mut(CHANNELS).enumerate() {
+                    let p = film.pixel(y * width + x);
                     let rgb = p.mean_rgb_over(paths);
                     let y = luminance(rgb);
                     sum += f64::from(y);
@@ -107,12 +109,12 @@ impl DisplayMapper {
 pub fn luminance_sum_max(film: &Film) -> (f64, f32) {
     let width = (film.width as usize).max(1);
     let paths = film.splat_paths;
-    let rows: Vec<(f64, f32)> = film
-        .pixels
-        .par_chunks(width)
-        .map(|sums| {
-            sums.iter().fold((0.0f64, 0.0f32), |(sum, max), p| {
-                let y = luminance(p.mean_rgb_over(paths));
+    let rows: Vec<(f64, f32)> = (0..film.len().div_ceil(width))
+        .into_par_iter()
+        .map(|row| {
+            let end = ((row + 1) * width).min(film.len());
+            (row * width..end).fold((0.0f64, 0.0f32), |(sum, max), i| {
+                let y = luminance(film.pixel(i).mean_rgb_over(paths));
                 (sum + f64::from(y), max.max(y))
             })
         })

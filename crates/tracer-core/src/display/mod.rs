@@ -49,7 +49,7 @@ impl Default for DisplaySettings {
 pub fn auto_exposure_stops(film: &Film) -> f32 {
     let mut sum = 0.0f64;
     let mut n = 0u64;
-    for i in 0..film.pixels.len() {
+    for i in 0..film.len() {
         let y = luminance(film.mean_rgb(i));
         if y > 1e-6 && y.is_finite() {
             sum += f64::from(y).ln();

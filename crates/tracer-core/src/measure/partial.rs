@@ -3,10 +3,37 @@
 //! every point's exact sums in grid order. Merging needs no scene: the grids give the points.
 
 use super::grid::Grid;
+use super::sensor_sum::SensorSum;
 use super::sensors::MeasureSettings;
-use crate::render::PixelSum;
-use crate::render::partial::{decode_pixel, encode_pixel};
+use crate::render::SquareSum;
 use crate::shard::varint::{Decoder, Encoder};
+
+/// A point's sums in file order: Σ E, Σ E² (whole, fine), count, rejected.
+fn encode_sum(e: &mut Encoder, s: &SensorSum) {
+    for v in [
+        s.illuminance,
+        s.square.whole,
+        i128::from(s.square.fine),
+        i128::from(s.count),
+        i128::from(s.rejected),
+    ] {
+        e.i128(v);
+    }
+}
+
+/// The sum [`encode_sum`] wrote; None when unreadable or out of range.
+fn decode_sum(d: &mut Decoder<'_>) -> Option<SensorSum> {
+    let (illuminance, whole, fine) = (d.i128()?, d.i128()?, d.i128()?);
+    let fine = i64::try_from(fine)
+        .ok()
+        .filter(|f| (0..1 << 32).contains(f))?;
+    Some(SensorSum {
+        illuminance,
+        square: SquareSum { whole, fine },
+        count: u32::try_from(d.i128()?).ok()?,
+        rejected: u32::try_from(d.i128()?).ok()?,
+    })
+}
 
 /// The sums of some samples of every point of every grid, with what is needed to report them.
 #[derive(Clone, Debug, PartialEq)]
@@ -19,7 +46,7 @@ pub struct MeasurePart {
     pub maintenance_factor: f32,
     pub grids: Vec<Grid>,
     /// One per point, grid after grid, i fastest.
-    pub sums: Vec<PixelSum>,
+    pub sums: Vec<SensorSum>,
 }
 
 fn put_vec3(e: &mut Encoder, v: [f32; 3]) {
@@ -49,7 +76,7 @@ impl MeasurePart {
         }
         e.u64(self.sums.len() as u64);
         for s in &self.sums {
-            encode_pixel(&mut e, s);
+            encode_sum(&mut e, s);
         }
         e.bytes
     }
@@ -90,7 +117,7 @@ impl MeasurePart {
         }
         let mut sums = Vec::with_capacity(n as usize);
         for i in 0..n {
-            sums.push(decode_pixel(&mut d).ok_or_else(|| bad(&format!("point {i}")))?);
+            sums.push(decode_sum(&mut d).ok_or_else(|| bad(&format!("point {i}")))?);
         }
         if !d.is_at_end() {
             return Err("bytes after the last point".to_owned());
@@ -130,9 +157,11 @@ mod tests {
             Some([0.0, 1.0, 0.0]),
         )
         .unwrap();
-        let mut sums = vec![PixelSum::default(); 6];
-        sums[4].rgb = [1 << 100, -5, 7];
+        let mut sums = vec![SensorSum::default(); 6];
+        sums[4].illuminance = 1 << 100;
+        sums[4].square = SquareSum::from_units(1 << 90);
         sums[4].count = 9;
+        sums[5].rejected = 2;
         let part = MeasurePart {
             unit: "m".into(),
             integrator: "path".into(),

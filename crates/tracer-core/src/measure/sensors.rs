@@ -3,9 +3,9 @@
 //! standard error.
 
 use super::grid::{Grid, SensorPoint};
-use crate::integrator::{Integrator, IntegratorKind, IntegratorSettings, Sample};
+use super::sensor_sum::SensorSum;
+use crate::integrator::{Integrator, IntegratorKind, IntegratorSettings};
 use crate::lit_scene::LitScene;
-use crate::render::PixelSum;
 use crate::sampling::SampleRng;
 use crate::scene::{Scene, Setup};
 use glam::Vec3;
@@ -106,7 +106,7 @@ fn integrator_for<'a>(
 fn add_samples(
     integrator: &dyn Integrator,
     points: &Points,
-    sums: &mut [PixelSum],
+    sums: &mut [SensorSum],
     samples: Range<u32>,
 ) -> u64 {
     sums.par_iter_mut()
@@ -117,13 +117,7 @@ fn add_samples(
                 let mut rng = SampleRng::new(sensor_key(*g, *k), s);
                 let (e, r) = integrator.illuminance(p.position, p.normal, &mut rng);
                 rays += u64::from(r);
-                // The luminance of a grey triple is its value: the squared sums are E².
-                sum.add(&Sample {
-                    rgb: Vec3::splat(e),
-                    illuminance_lx: e,
-                    rays: r,
-                    missed: false,
-                });
+                sum.add(e);
             }
             rays
         })
@@ -138,10 +132,10 @@ pub fn measure_samples(
     setup: &Setup,
     settings: &MeasureSettings,
     samples: Range<u32>,
-) -> (Vec<PixelSum>, u64) {
+) -> (Vec<SensorSum>, u64) {
     let integrator = integrator_for(scene, setup, settings);
     let points = sensor_points(&setup.grids);
-    let mut sums = vec![PixelSum::default(); points.len()];
+    let mut sums = vec![SensorSum::default(); points.len()];
     let rays = add_samples(integrator.as_ref(), &points, &mut sums, samples);
     (sums, rays)
 }
@@ -157,7 +151,7 @@ pub fn measure_grids_with_progress(
     let started = Instant::now();
     let integrator = integrator_for(scene, setup, settings);
     let points = sensor_points(&setup.grids);
-    let mut sums = vec![PixelSum::default(); points.len()];
+    let mut sums = vec![SensorSum::default(); points.len()];
     let mut rays_total = 0u64;
     let cap = settings.samples.max(1);
     let mut done = 0u32;
@@ -194,7 +188,12 @@ pub fn measure_grids_with_progress(
 
 /// The readings of `grids` from their points' exact sums (in the order [`measure_samples`]
 /// returns them) after `samples` samples a point; `rays` is shared out by point count.
-pub fn grid_results(grids: &[Grid], sums: &[PixelSum], samples: u32, rays: u64) -> Vec<GridResult> {
+pub fn grid_results(
+    grids: &[Grid],
+    sums: &[SensorSum],
+    samples: u32,
+    rays: u64,
+) -> Vec<GridResult> {
     let points = sensor_points(grids);
     let mut results: Vec<GridResult> = grids
         .iter()
@@ -211,8 +210,8 @@ pub fn grid_results(grids: &[Grid], sums: &[PixelSum], samples: u32, rays: u64) 
             i: p.i,
             j: p.j,
             position: p.position,
-            illuminance_lx: sum.mean_luminance(),
-            std_error_lx: sum.luminance_std_error().unwrap_or(f64::NAN),
+            illuminance_lx: sum.mean(),
+            std_error_lx: sum.std_error().unwrap_or(f64::NAN),
             buried: false,
         });
     }
@@ -224,17 +223,17 @@ pub fn grid_results(grids: &[Grid], sums: &[PixelSum], samples: u32, rays: u64) 
 }
 
 /// The largest standard error over max(E_i, 0.1 × Eavg of its grid), over all points.
-fn worst_relative_error(sums: &[PixelSum], points: &Points, grids: usize) -> f64 {
+fn worst_relative_error(sums: &[SensorSum], points: &Points, grids: usize) -> f64 {
     let mut total = vec![(0.0f64, 0usize); grids];
     for ((g, _, _), s) in points.iter().zip(sums) {
-        total[*g].0 += s.mean_luminance();
+        total[*g].0 += s.mean();
         total[*g].1 += 1;
     }
     let mut worst = 0.0f64;
     for ((g, _, _), s) in points.iter().zip(sums) {
         let avg = total[*g].0 / total[*g].1.max(1) as f64;
-        let scale = s.mean_luminance().max(0.1 * avg);
-        let se = s.luminance_std_error().unwrap_or(f64::INFINITY);
+        let scale = s.mean().max(0.1 * avg);
+        let se = s.std_error().unwrap_or(f64::INFINITY);
         worst = worst.max(crate::render::relative_error(se, scale));
     }
     worst

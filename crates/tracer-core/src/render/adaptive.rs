@@ -32,7 +32,7 @@
 use super::film::Film;
 use super::pixel::FrameSampler;
 use super::pixel_sum::relative_error;
-use super::{RenderSettings, RenderStats, render_pixel_ranges};
+use super::{RenderSettings, RenderStats, render_pixel_ranges_into};
 use crate::scene::{Scene, Setup};
 use std::time::{Duration, Instant};
 
@@ -78,9 +78,7 @@ pub struct Stop {
 
 /// The image's mean luminance without its 0.5 % brightest pixels (G1's rule), cd/m².
 fn level(film: &Film) -> f64 {
-    let mut y: Vec<f64> = (0..film.pixels.len())
-        .map(|i| film.mean_luminance(i))
-        .collect();
+    let mut y: Vec<f64> = (0..film.len()).map(|i| film.mean_luminance(i)).collect();
     if y.is_empty() {
         return 0.0;
     }
@@ -92,7 +90,7 @@ fn level(film: &Film) -> f64 {
 /// The largest relative standard error of the pixels, leaving out the 0.5 % brightest: the
 /// figure `--target-error` compares with. Infinite before two samples in every pixel.
 pub fn worst_relative_error(film: &Film) -> f64 {
-    let n = film.pixels.len();
+    let n = film.len();
     if n == 0 {
         return 0.0;
     }
@@ -122,9 +120,9 @@ pub fn worst_relative_error(film: &Film) -> f64 {
 /// nothing can be said (no neighbour with two samples).
 pub fn predicted_errors(film: &Film, scale: Scale) -> Vec<f64> {
     let level = level(film);
-    let per_sample: Vec<f64> = (0..film.pixels.len())
+    let per_sample: Vec<f64> = (0..film.len())
         .map(|i| {
-            let Some(var) = film.pixels[i].own_luminance_variance() else {
+            let Some(var) = film.pixel(i).own_luminance_variance() else {
                 return f64::NAN;
             };
             let s = match scale {
@@ -164,7 +162,7 @@ pub fn predicted_errors(film: &Film, scale: Scale) -> Vec<f64> {
                 sum -= own;
                 n -= 1;
             }
-            let count = film.pixels[y * w + x].count;
+            let count = film.count(y * w + x);
             if n > 0 && count > 0 {
                 out[y * w + x] = sum.max(0.0) / f64::from(n) / f64::from(count);
             }
@@ -176,8 +174,7 @@ pub fn predicted_errors(film: &Film, scale: Scale) -> Vec<f64> {
 /// Samples each pixel gets to bring its predicted squared error `errors[i]` down to `t2`, at
 /// most doubling its count and never past `cap`.
 fn extra_for(errors: &[f64], film: &Film, t2: f64, cap: u32) -> impl Iterator<Item = u32> {
-    errors.iter().zip(&film.pixels).map(move |(&e2, p)| {
-        let n = p.count;
+    errors.iter().zip(film.counts()).map(move |(&e2, n)| {
         let room = cap.saturating_sub(n).min(n.max(1));
         if e2 <= t2 || room == 0 {
             return 0;
@@ -196,8 +193,8 @@ fn extra_for(errors: &[f64], film: &Film, t2: f64, cap: u32) -> impl Iterator<It
 /// samples fit in `budget`; no pixel past `cap`, nor past [`MAX_OVER_MEAN`] × the mean count.
 pub fn allocate(film: &Film, scale: Scale, budget: u64, target: Option<f64>, cap: u32) -> Vec<u32> {
     let errors = predicted_errors(film, scale);
-    let total_count: u64 = film.pixels.iter().map(|p| u64::from(p.count)).sum();
-    let mean = total_count as f64 / film.pixels.len().max(1) as f64;
+    let total_count: u64 = film.counts().map(u64::from).sum();
+    let mean = total_count as f64 / film.len().max(1) as f64;
     let cap = cap.min((MAX_OVER_MEAN * mean).ceil().min(f64::from(u32::MAX)) as u32);
     let total = |t2: f64| -> u64 { extra_for(&errors, film, t2, cap).map(u64::from).sum() };
     let t2 = match target {
@@ -251,7 +248,7 @@ fn toward_target(film: &Film, target: f64, budget: u64, cap: u32) -> Vec<u32> {
         }
         t *= 0.5;
     }
-    vec![0; film.pixels.len()]
+    vec![0; film.len()]
 }
 
 /// Renders `settings` adaptively until `stop` or every pixel has `settings.samples_per_pixel`
@@ -324,11 +321,10 @@ pub fn render_adaptive(
             }
             extra
         };
-        let counts: Vec<u32> = film.pixels.iter().map(|p| p.count).collect();
+        let counts: Vec<u32> = film.counts().collect();
         let ranges = |i: usize| counts[i]..counts[i] + extra[i];
-        let (part, part_rays) = render_pixel_ranges(frame, settings, &ranges);
-        // Same size: only an overflow can fail, and it is counted as rejected samples.
-        let _ = film.merge(&part);
+        // Added in place: an overflow is counted as rejected samples.
+        let part_rays = render_pixel_ranges_into(frame, settings, &ranges, &mut film);
         film.count_splat_paths();
         rays += part_rays;
         total += extra.iter().map(|&m| u64::from(m)).sum::<u64>();
@@ -364,13 +360,15 @@ mod tests {
         for y in 0..4 {
             for x in 0..12 {
                 let i = film.index(x, y);
+                let mut p = crate::render::PixelSum::default();
                 for s in 0..count {
                     let v = if x < 6 { 2.0 * (s % 2) as f32 } else { 1.0 };
-                    film.pixels[i].add(&Sample {
+                    p.add(&Sample {
                         rgb: Vec3::splat(v),
                         ..Sample::default()
                     });
                 }
+                film.set_pixel(i, &p);
             }
         }
         film

@@ -8,10 +8,14 @@
 //! separately (in other processes, on other machines) are added with [`Film::merge`].
 //!
 //! Scales: luminance and illuminance in units of 2⁻³² cd/m² (lx), squared luminance in units of
-//! 2⁻¹⁶ (cd/m²)². One sample may be at most 2⁶² cd/m² (lx) and its luminance at most 2³⁹ cd/m²;
+//! 2⁻⁴⁸ (cd/m²)². One sample may be at most 2⁶² cd/m² (lx) and its luminance at most 2³⁹ cd/m²;
 //! a sample beyond that, or not a finite number, is not added: it is counted in
 //! [`PixelSum::rejected`] and the film reports it ([`Film::rejected_samples`]).
+//!
+//! Storage: 48 bytes a pixel, 88 once light subpaths splat into it, and full-width sums for
+//! the few pixels that need them ([`super::film_cells`]).
 
+use super::film_cells::{Band, FilmPixels};
 use super::guides::GuideFilm;
 use super::pixel_sum::PixelSum;
 use super::tiles::Tile;
@@ -24,7 +28,7 @@ pub struct Film {
     pub width: u32,
     pub height: u32,
     /// Row-major, top row first.
-    pub pixels: Vec<PixelSum>,
+    pixels: FilmPixels,
     /// The denoiser's albedo and normal guides of the same samples, when asked for
     /// ([`super::RenderSettings::guides`]); None otherwise.
     pub guides: Option<GuideFilm>,
@@ -42,7 +46,7 @@ pub struct Film {
 
 impl Drop for Film {
     fn drop(&mut self) {
-        super::film_buffers::give(std::mem::take(&mut self.pixels));
+        super::film_buffers::give(self.pixels.take_cells());
     }
 }
 
@@ -62,7 +66,9 @@ impl Film {
         Self {
             width,
             height,
-            pixels: super::film_buffers::take(width as usize * height as usize),
+            pixels: FilmPixels::from_cells(super::film_buffers::take(
+                width as usize * height as usize,
+            )),
             guides: None,
             illuminance_from: 0,
             splat_paths: None,
@@ -88,7 +94,55 @@ impl Film {
 
     /// The sums of pixel `i` (row-major).
     pub fn pixel(&self, i: usize) -> PixelSum {
-        self.pixels[i]
+        self.pixels.get(i)
+    }
+
+    /// Every pixel's sums, row-major.
+    pub fn pixels(&self) -> impl ExactSizeIterator<Item = PixelSum> + '_ {
+        (0..self.len()).map(|i| self.pixels.get(i))
+    }
+
+    /// Pixel `i`'s sample count.
+    pub fn count(&self, i: usize) -> u32 {
+        self.pixels.count(i)
+    }
+
+    /// Every pixel's sample count, row-major.
+    pub fn counts(&self) -> impl ExactSizeIterator<Item = u32> + '_ {
+        (0..self.len()).map(|i| self.pixels.count(i))
+    }
+
+    /// Adds `sum` to pixel `i`; false when the result would overflow (the samples are then
+    /// counted as rejected).
+    pub fn merge_pixel(&mut self, i: usize, sum: &PixelSum) -> bool {
+        self.pixels.merge(i, sum)
+    }
+
+    /// Empties every pixel (keeping the memory of the cells), in parallel on the current
+    /// rayon pool.
+    pub fn clear(&mut self) {
+        self.pixels.clear();
+    }
+
+    /// Replaces pixel `i`'s sums.
+    pub fn set_pixel(&mut self, i: usize, sum: &PixelSum) {
+        self.pixels.set(i, sum);
+    }
+
+    /// Bytes the pixel sums hold (the guides apart), and how many pixels outgrew their
+    /// cells (own samples, splats).
+    pub fn memory(&self) -> (usize, (usize, usize)) {
+        (self.pixels.bytes(), self.pixels.moved_pixels())
+    }
+
+    /// Runs `f` on bands of `band_len` pixels in parallel ([`FilmPixels::par_bands`]).
+    pub(super) fn par_bands<R: Send>(
+        &mut self,
+        band_len: usize,
+        f: impl Fn(usize, &mut Band<'_>) -> R + Sync,
+    ) -> Vec<R> {
+        let (w, h) = (self.width, self.height);
+        self.pixels.par_bands(band_len, w, h, f)
     }
 
     pub fn index(&self, x: u32, y: u32) -> usize {
@@ -99,7 +153,7 @@ impl Film {
     pub fn add_tile(&mut self, tile: &Tile, sums: &[PixelSum]) {
         for ((x, y), s) in tile.pixels().zip(sums) {
             let i = self.index(x, y);
-            self.pixels[i].merge(s);
+            self.pixels.merge(i, s);
         }
     }
 
@@ -107,12 +161,7 @@ impl Film {
     /// sent to its pixel ([`crate::integrator::Splat`]). Exact and order-independent like
     /// samples.
     pub fn add_splats(&mut self, splats: &[crate::integrator::Splat]) {
-        for s in splats {
-            if s.x < self.width && s.y < self.height {
-                let i = self.index(s.x, s.y);
-                self.pixels[i].add_splat(s.rgb);
-            }
-        }
+        self.pixels.add_splats(self.width, self.height, splats);
     }
 
     /// Adds every pixel of `other` (samples of the same image rendered separately). Exact: the
@@ -129,8 +178,8 @@ impl Film {
         if self.illuminance_from != other.illuminance_from {
             return Err(FilmError::IlluminanceMismatch);
         }
-        for (i, (a, b)) in self.pixels.iter_mut().zip(&other.pixels).enumerate() {
-            if !a.merge(b) {
+        for i in 0..self.len() {
+            if !self.pixels.merge(i, &other.pixels.get(i)) {
                 let w = self.width.max(1) as usize;
                 return Err(FilmError::Overflow {
                     x: (i % w) as u32,
@@ -153,46 +202,53 @@ impl Film {
 
     /// Sets [`Film::splat_paths`] from the pixels' counts: None when they are all equal.
     pub fn count_splat_paths(&mut self) {
-        let first = self.pixels.first().map_or(0, |p| p.count);
-        let total: u64 = self.pixels.iter().map(|p| u64::from(p.count)).sum();
-        let uniform = self.pixels.iter().all(|p| p.count == first);
-        self.splat_paths = (!uniform).then(|| total as f64 / self.pixels.len().max(1) as f64);
+        let first = if self.is_empty() { 0 } else { self.count(0) };
+        let total: u64 = self.counts().map(u64::from).sum();
+        let uniform = self.counts().all(|c| c == first);
+        self.splat_paths = (!uniform).then(|| total as f64 / self.len().max(1) as f64);
     }
 
     /// Mean linear luminance per channel (cd/m²); black where no sample landed yet.
     pub fn mean_rgb(&self, i: usize) -> Vec3 {
-        self.pixels[i].mean_rgb_over(self.splat_paths)
+        self.pixels.get(i).mean_rgb_over(self.splat_paths)
     }
 
     /// Mean Rec. 709 luminance of pixel `i` (cd/m²), in f64.
     pub fn mean_luminance(&self, i: usize) -> f64 {
-        self.pixels[i].mean_luminance_over(self.splat_paths)
+        self.pixels.get(i).mean_luminance_over(self.splat_paths)
     }
 
     /// Standard error of pixel `i`'s mean luminance (cd/m²); None before two samples.
     pub fn luminance_std_error(&self, i: usize) -> Option<f64> {
-        self.pixels[i].luminance_std_error_over(self.splat_paths)
+        self.pixels
+            .get(i)
+            .luminance_std_error_over(self.splat_paths)
     }
 
     /// Mean illuminance (lx) on the surface seen in pixel `i`.
     pub fn mean_illuminance(&self, i: usize) -> f32 {
-        self.pixels[i].mean_illuminance_after(self.illuminance_from)
+        self.pixels
+            .get(i)
+            .mean_illuminance_after(self.illuminance_from)
     }
 
     /// All mean colours, row-major.
     pub fn mean_rgb_all(&self) -> Vec<Vec3> {
         let m = self.splat_paths;
-        self.pixels.iter().map(|p| p.mean_rgb_over(m)).collect()
+        (0..self.len())
+            .into_par_iter()
+            .map(|i| self.pixels.get(i).mean_rgb_over(m))
+            .collect()
     }
 
     /// The fewest samples any pixel has.
     pub fn min_samples(&self) -> u32 {
-        self.pixels.iter().map(|p| p.count).min().unwrap_or(0)
+        self.counts().min().unwrap_or(0)
     }
 
     /// Samples refused anywhere (non-finite or out of range); should be 0.
     pub fn rejected_samples(&self) -> u64 {
-        self.pixels.par_iter().map(|p| u64::from(p.rejected)).sum()
+        self.pixels.rejected()
     }
 
     /// The remaining noise of the image: the root-mean-square standard error of the pixels'
@@ -200,20 +256,16 @@ impl Film {
     /// hot spot would otherwise stand for the whole picture, as in BENCHMARK.md's G1). Relative;
     /// None before two samples per pixel or for a black image.
     pub fn relative_noise(&self) -> Option<f64> {
-        if self.pixels.is_empty() || self.pixels.iter().any(|p| p.count < 2) {
+        if self.is_empty() || self.counts().any(|c| c < 2) {
             return None;
         }
         let m = self.splat_paths;
-        let mut means: Vec<f64> = self
-            .pixels
-            .iter()
-            .map(|p| p.mean_luminance_over(m))
-            .collect();
+        let mut means: Vec<f64> = self.pixels().map(|p| p.mean_luminance_over(m)).collect();
         let drop = means.len() / 200;
         let keep = means.len() - drop;
         let cut = *means.select_nth_unstable_by(keep - 1, f64::total_cmp).1;
         let (mut se2, mut sum, mut n) = (0.0f64, 0.0f64, 0usize);
-        for p in &self.pixels {
+        for p in self.pixels() {
             let y = p.mean_luminance_over(m);
             if y <= cut && n < keep {
                 se2 += p.luminance_std_error_over(m)?.powi(2);
@@ -230,13 +282,15 @@ impl Film {
     /// values that were not accumulated here).
     pub fn from_values(width: u32, height: u32, rgb: &[Vec3], lx: &[f32]) -> Film {
         let mut film = Film::new(width, height);
-        for (i, p) in film.pixels.iter_mut().enumerate() {
+        for i in 0..film.len() {
+            let mut p = PixelSum::default();
             p.add(&Sample {
                 rgb: rgb.get(i).copied().unwrap_or_default(),
                 illuminance_lx: lx.get(i).copied().unwrap_or_default(),
                 rays: 0,
                 missed: false,
             });
+            film.pixels.merge(i, &p);
         }
         film
     }
@@ -255,7 +309,7 @@ mod tests {
             ..Sample::default()
         }));
         let mut film = Film::new(1, 1);
-        film.pixels[0] = p;
+        film.set_pixel(0, &p);
         assert_eq!(film.rejected_samples(), 1);
     }
 }

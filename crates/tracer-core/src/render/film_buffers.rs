@@ -1,6 +1,6 @@
 //! The pixel buffer of the last large film dropped, kept for the next film.
 //!
-//! A 1280x720 film is 133 MB (144 bytes a pixel). Fresh memory of that size comes from the
+//! A 1280x720 film's cells are 44 MB (48 bytes a pixel). Fresh memory of that size comes from the
 //! system a page at a time: on the machines raygine is benchmarked on, faulting it in cost about
 //! 90 ms per frame, serially, before the first ray (against about 10 ms to zero a recycled
 //! buffer). Renders that make film after film (`render_for`'s passes, benchmark frames, sweeps,
@@ -10,7 +10,7 @@
 use rayon::prelude::*;
 use std::sync::{Mutex, PoisonError};
 
-use super::pixel_sum::PixelSum;
+use super::film_cells::BaseCell as PixelSum;
 
 /// Films with fewer pixels (tiles, thumbnails) allocate as usual: their memory is cheap, and
 /// many of them are made and dropped at once on several threads.
@@ -76,10 +76,7 @@ mod tests {
         let mut pixels = take(len);
         assert_eq!(pixels.len(), len);
         for p in &mut pixels {
-            p.rgb = [7, -8, 9];
-            p.count = 5;
-            p.rejected = 1;
-            p.splat_rgb[2] = 11;
+            *p = PixelSum::dirty();
         }
         give(pixels);
         // Smaller, from the same buffer (or a fresh one if another test took it meanwhile):

@@ -34,7 +34,7 @@ pub(super) fn fixed_values(s: &Sample) -> Option<([i128; 4], SquareSum)> {
     Some(([r, g, b, e], q))
 }
 
-pub(super) fn to_fixed(v: f64, scale: f64) -> Option<i128> {
+pub(crate) fn to_fixed(v: f64, scale: f64) -> Option<i128> {
     let x = v * scale;
     if x.abs() < FAST_LIMIT {
         return Some(i128::from(round_half_away(x)));
@@ -63,7 +63,7 @@ pub(super) fn round_half_away(x: f64) -> i64 {
 }
 
 #[inline(always)]
-pub(super) fn from_fixed(x: i128, scale: f64) -> f64 {
+pub(crate) fn from_fixed(x: i128, scale: f64) -> f64 {
     // i64 to f64 rounds to nearest like i128 to f64, without the soft 128-bit conversion.
     match i64::try_from(x) {
         Ok(small) => small as f64 / scale,

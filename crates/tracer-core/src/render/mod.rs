@@ -5,6 +5,7 @@ pub mod adaptive;
 mod camera_rays;
 mod film;
 mod film_buffers;
+mod film_cells;
 mod fixed_point;
 mod guides;
 pub mod partial;
@@ -20,6 +21,7 @@ mod tiles;
 
 pub use film::{Film, FilmError};
 pub use fixed_point::VALUE_SCALE;
+pub(crate) use fixed_point::{from_fixed, to_fixed};
 pub use guides::{GUIDE_SCALE, Guide, GuideFilm, GuideSum, trace_guide};
 pub use passes::{PREVIEW_BLOCKS, Pass};
 pub use pixel::{BATCH_SAMPLES, BatchScratch, FrameSampler, NO_ILLUMINANCE};
@@ -172,10 +174,9 @@ pub fn render_with_progress(
             fit = fit.min((PROGRESS_CHUNK_SECS / per_pass).floor());
             (fit.max(1.0) as u32).clamp(1, target - done)
         };
-        let (part, part_rays) = render_range(&frame, settings, done..done + chunk);
-        // Same size: only an overflow can fail, and it is counted as rejected samples in the
-        // film.
-        let _ = film.merge(&part);
+        // Added in place (no second film): an overflow is counted as rejected samples.
+        let range = done..done + chunk;
+        let part_rays = render_pixel_ranges_into(&frame, settings, &|_| range.clone(), &mut film);
         rays += part_rays;
         done += chunk;
         progress(&stats(rays, done));
@@ -221,12 +222,12 @@ pub fn render_pixels(
     let frame = FrameSampler::new(scene, setup, settings);
     let (mut film, rays) = render_pixel_ranges(&frame, settings, samples);
     film.count_splat_paths();
-    let total: u64 = film.pixels.iter().map(|p| u64::from(p.count)).sum();
+    let total: u64 = film.counts().map(u64::from).sum();
     let stats = RenderStats {
         rays,
         elapsed_secs: started.elapsed().as_secs_f64(),
         samples_per_pixel: film.min_samples(),
-        mean_samples_per_pixel: total as f64 / film.pixels.len().max(1) as f64,
+        mean_samples_per_pixel: total as f64 / film.len().max(1) as f64,
     };
     (film, stats)
 }
@@ -250,58 +251,59 @@ pub(crate) fn render_pixel_ranges(
     samples: &(dyn Fn(usize) -> Range<u32> + Sync),
 ) -> (Film, u64) {
     let mut film = new_film(settings);
+    let rays = render_pixel_ranges_into(frame, settings, samples, &mut film);
+    (film, rays)
+}
+
+/// Splats a band keeps before adding them to the film (about 1.3 MB): a 4K bidirectional
+/// render once held every splat of the pass until its end.
+const BAND_SPLATS: usize = 1 << 16;
+
+/// Adds samples `samples(i)` of every pixel i to `film` (made with `settings`' size and
+/// guides), band by band in parallel; returns the rays traced. Exact: the same sums as adding
+/// a film of those samples.
+pub(crate) fn render_pixel_ranges_into(
+    frame: &FrameSampler<'_>,
+    settings: &RenderSettings,
+    samples: &(dyn Fn(usize) -> Range<u32> + Sync),
+    film: &mut Film,
+) -> u64 {
     let width = settings.width as usize;
     // Uneven counts (adaptive rounds) make uneven bands: rows one by one balance the threads.
     let first = samples(0).len();
-    let even = (0..film.pixels.len()).all(|i| samples(i).len() == first);
+    let even = (0..film.len()).all(|i| samples(i).len() == first);
     let band_rows: u32 = if even { BAND_ROWS } else { 1 };
     let band_len = width * band_rows as usize;
-    let (rays, splats): (u64, Vec<Vec<crate::integrator::Splat>>) = film
-        .pixels
-        .par_chunks_mut(band_len.max(1))
-        .enumerate()
-        .map(|(band, pixels)| {
-            let y0 = band as u32 * band_rows;
-            let rows = (pixels.len() / width.max(1)) as u32;
-            let mut splats = Vec::new();
-            let mut scratch = BatchScratch::default();
-            let order = (0..settings.width)
-                .step_by(TILE_SIZE as usize)
-                .flat_map(|x0| {
-                    let x1 = (x0 + TILE_SIZE).min(settings.width);
-                    (y0..y0 + rows).flat_map(move |y| (x0..x1).map(move |x| (x, y)))
-                })
+    let height = settings.height;
+    let band_rays = film.par_bands(band_len, |band_index, band| {
+        let y0 = band_index as u32 * band_rows;
+        let y1 = (y0 + band_rows).min(height);
+        let mut splats = Vec::new();
+        let mut scratch = BatchScratch::default();
+        let mut rays = 0;
+        // Tile-wide columns of the band's rows, one after another.
+        for x0 in (0..settings.width).step_by(TILE_SIZE as usize) {
+            let x1 = (x0 + TILE_SIZE).min(settings.width);
+            let order = (y0..y1)
+                .flat_map(|y| (x0..x1).map(move |x| (x, y)))
                 .map(|(x, y)| (x, y, samples(y as usize * width + x as usize)));
-            let band_rays = frame.for_each_sample(order, &mut scratch, &mut splats, |x, y, run| {
-                let row = (y - y0) as usize * width;
-                pixels[row + x as usize].add_run(run);
+            rays += frame.for_each_sample(order, &mut scratch, &mut splats, |x, y, run| {
+                let mut sum = PixelSum::default();
+                sum.add_run(run);
+                band.merge((y - y0) as usize * width + x as usize, &sum);
             });
-            (band_rays, splats)
-        })
-        .fold(
-            || (0u64, Vec::new()),
-            |(r, mut all), (band_rays, splats)| {
-                if !splats.is_empty() {
-                    all.push(splats);
-                }
-                (r + band_rays, all)
-            },
-        )
-        .reduce(
-            || (0u64, Vec::new()),
-            |(r1, mut a), (r2, b)| {
-                a.extend(b);
-                (r1 + r2, a)
-            },
-        );
-    // Integer sums: the order splats arrive in does not matter.
-    for band in &splats {
-        film.add_splats(band);
-    }
+            // Integer sums: the order splats arrive in does not matter.
+            if splats.len() >= BAND_SPLATS {
+                band.add_splats(&mut splats);
+            }
+        }
+        band.add_splats(&mut splats);
+        rays
+    });
     if let Some(guides) = film.guides.as_mut() {
         add_guides(frame, settings, guides, samples);
     }
-    (film, rays)
+    band_rays.iter().sum()
 }
 
 fn new_film(settings: &RenderSettings) -> Film {

@@ -73,8 +73,8 @@ pub fn encode_film(film: &Film) -> Vec<u8> {
     let mut e = Encoder::default();
     e.u32(film.width);
     e.u32(film.height);
-    for p in &film.pixels {
-        encode_pixel(&mut e, p);
+    for p in film.pixels() {
+        encode_pixel(&mut e, &p);
     }
     // Then the denoiser's guides, when the film has them: a flag, then per pixel albedo,
     // normal and count.
@@ -123,8 +123,9 @@ pub fn decode_film(payload: &[u8]) -> Result<Film, String> {
         return Err(format!("{width}x{height} pixels do not fit in the payload"));
     }
     let mut film = Film::new(width, height);
-    for (i, p) in film.pixels.iter_mut().enumerate() {
-        *p = decode_pixel(&mut d).ok_or_else(|| format!("pixel {i} is unreadable"))?;
+    for i in 0..film.len() {
+        let p = decode_pixel(&mut d).ok_or_else(|| format!("pixel {i} is unreadable"))?;
+        film.set_pixel(i, &p);
     }
     match d.u32() {
         Some(0) => {}
@@ -162,7 +163,8 @@ mod tests {
     #[test]
     fn a_film_survives_the_payload_bit_for_bit() {
         let mut film = Film::new(3, 2);
-        for (i, p) in film.pixels.iter_mut().enumerate() {
+        for i in 0..film.len() {
+            let mut p = PixelSum::default();
             for s in 0..i {
                 p.add(&Sample {
                     rgb: Vec3::new(s as f32 * 1e6, -0.25, 3.5e-9),
@@ -171,8 +173,11 @@ mod tests {
                     missed: false,
                 });
             }
+            if i == 5 {
+                p.rejected = 3;
+            }
+            film.set_pixel(i, &p);
         }
-        film.pixels[5].rejected = 3;
         let payload = encode_film(&film);
         assert_eq!(decode_film(&payload).unwrap(), film);
         let mut guided = Film::with_guides(3, 2);

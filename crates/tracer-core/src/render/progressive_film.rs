@@ -66,10 +66,7 @@ impl ProgressiveFilm {
         use rayon::prelude::*;
         const CHUNK: usize = 16 * 1024;
         self.generation = generation;
-        self.accum
-            .pixels
-            .par_chunks_mut(CHUNK)
-            .for_each(|c| c.fill(PixelSum::default()));
+        self.accum.clear();
         if let Some(g) = self.accum.guides.as_mut() {
             g.pixels
                 .par_chunks_mut(CHUNK)
@@ -90,7 +87,7 @@ impl ProgressiveFilm {
     /// the counts differ).
     pub fn measure_illuminance_from_now(&mut self) {
         self.accum.illuminance_from = 0;
-        self.illuminance_starts = Some(self.accum.pixels.iter().map(|p| p.count).collect());
+        self.illuminance_starts = Some(self.accum.counts().collect());
     }
 
     /// Samples of pixel `i` whose illuminance was not measured.
@@ -111,7 +108,7 @@ impl ProgressiveFilm {
     /// of a render that measured it from the start.
     pub fn illuminance_measured(&self, i: usize) -> bool {
         match self.shown_source(i) {
-            Some(j) => self.accum.pixels[j].count > self.illuminance_skipped(j),
+            Some(j) => self.accum.count(j) > self.illuminance_skipped(j),
             None => self.accum.illuminance_from == 0 && self.illuminance_starts.is_none(),
         }
     }
@@ -147,7 +144,7 @@ impl ProgressiveFilm {
     ) {
         for (k, &(x, y)) in pixels.iter().enumerate() {
             let i = self.accum.index(x, y);
-            self.accum.pixels[i].merge(&sums[k]);
+            self.accum.merge_pixel(i, &sums[k]);
             self.samples_added += u64::from(sums[k].count);
             self.misses[i] += missed[k];
             if let Some(g) = self.accum.guides.as_mut().zip(guides.get(k)) {
@@ -160,20 +157,20 @@ impl ProgressiveFilm {
     /// first full pass, the top-left pixel of its 2x2 block (the pass's first quarter), else
     /// none (the preview shows).
     fn shown_source(&self, i: usize) -> Option<usize> {
-        if self.accum.pixels[i].count > 0 {
+        if self.accum.count(i) > 0 {
             return Some(i);
         }
         let w = self.width() as usize;
         let (x, y) = (i % w, i / w);
         let anchor = (y & !1) * w + (x & !1);
-        (self.accum.pixels[anchor].count > 0).then_some(anchor)
+        (self.accum.count(anchor) > 0).then_some(anchor)
     }
 
     /// The share (0..=1) of pixel `i` where the camera sees nothing: of its full samples, else
     /// its preview's. The background of the viewer's display, never of a render.
     pub fn background_fraction(&self, i: usize) -> f32 {
         let i = self.shown_source(i).unwrap_or(i);
-        let count = self.accum.pixels[i].count;
+        let count = self.accum.count(i);
         if count > 0 {
             (self.misses[i] as f32 / count as f32).min(1.0)
         } else {
@@ -192,8 +189,8 @@ impl ProgressiveFilm {
     pub fn shown_rgb(&self, i: usize) -> Vec3 {
         match self.shown_source(i) {
             Some(j) => {
-                let per_pixel = self.samples_added as f64 / self.accum.pixels.len().max(1) as f64;
-                self.accum.pixels[j].mean_rgb_over(Some(per_pixel))
+                let per_pixel = self.samples_added as f64 / self.accum.len().max(1) as f64;
+                self.accum.pixel(j).mean_rgb_over(Some(per_pixel))
             }
             None => self.preview_rgb[i],
         }
@@ -202,21 +199,22 @@ impl ProgressiveFilm {
     /// Illuminance (lx) shown for pixel `i`, like [`ProgressiveFilm::shown_rgb`].
     pub fn shown_illuminance(&self, i: usize) -> f32 {
         match self.shown_source(i) {
-            Some(j) => self.accum.pixels[j].mean_illuminance_after(self.illuminance_skipped(j)),
+            Some(j) => self
+                .accum
+                .pixel(j)
+                .mean_illuminance_after(self.illuminance_skipped(j)),
             None => self.preview_lx[i],
         }
     }
 
     /// Every pixel's shown colour, row-major (the denoiser's input).
     pub fn shown_rgb_all(&self) -> Vec<Vec3> {
-        (0..self.accum.pixels.len())
-            .map(|i| self.shown_rgb(i))
-            .collect()
+        (0..self.accum.len()).map(|i| self.shown_rgb(i)).collect()
     }
 
     /// A plain film of what is shown (one "sample" per pixel), for display mapping and export.
     pub fn shown(&self) -> Film {
-        let n = self.accum.pixels.len();
+        let n = self.accum.len();
         let rgb: Vec<Vec3> = (0..n).map(|i| self.shown_rgb(i)).collect();
         let lx: Vec<f32> = (0..n).map(|i| self.shown_illuminance(i)).collect();
         Film::from_values(self.width(), self.height(), &rgb, &lx)

@@ -93,7 +93,7 @@ fn splats_are_normalised_by_the_films_light_subpaths_not_the_pixels_count() {
             let (film, _) = render_pixels(&sc, &st, &s, &ranges);
             assert_eq!(film.splat_paths, Some(80.0), "{kind}");
             let mut n = [0.0f64; 4];
-            for i in 0..film.pixels.len() {
+            for i in 0..film.len() {
                 means[b as usize][class(i) as usize] += film.mean_luminance(i);
                 n[class(i) as usize] += 1.0;
             }
@@ -124,7 +124,7 @@ fn splats_are_normalised_by_the_films_light_subpaths_not_the_pixels_count() {
 fn adaptive_films_are_their_pixels_samples_and_do_not_depend_on_threads() {
     let loaded = cornell(true);
     let (film, mean_spp) = adaptive_on_threads(IntegratorKind::Path, 40, 30, 0.1, 2);
-    let counts: Vec<u32> = film.pixels.iter().map(|p| p.count).collect();
+    let counts: Vec<u32> = film.counts().collect();
     let (lo, hi) = (*counts.iter().min().unwrap(), *counts.iter().max().unwrap());
     println!("path, target 10 %: {mean_spp:.1} spp on average, {lo} to {hi}");
     assert!(lo >= 16 && hi > 2 * lo, "counts {lo}..{hi}");
@@ -139,13 +139,17 @@ fn adaptive_films_are_their_pixels_samples_and_do_not_depend_on_threads() {
             let i = film.index(x, y);
             let mut sum = PixelSum::default();
             frame.add_samples(x, y, 0..counts[i], &mut sum, &mut splats);
-            assert_eq!(sum, film.pixels[i], "pixel ({x}, {y})");
+            assert_eq!(sum, film.pixel(i), "pixel ({x}, {y})");
         }
     }
     for kind in [IntegratorKind::Path, IntegratorKind::Bidirectional] {
         let (one, _) = adaptive_on_threads(kind, 24, 18, 0.2, 1);
         let (two, _) = adaptive_on_threads(kind, 24, 18, 0.2, 2);
-        assert_eq!(one.pixels, two.pixels, "{kind}");
+        assert_eq!(
+            one.pixels().collect::<Vec<_>>(),
+            two.pixels().collect::<Vec<_>>(),
+            "{kind}"
+        );
         assert_eq!(one.splat_paths, two.splat_paths, "{kind}");
     }
 }
@@ -156,7 +160,7 @@ fn adaptive_films_are_their_pixels_samples_and_do_not_depend_on_threads() {
 fn a_target_error_is_reached_where_it_is_needed() {
     let (film, mean_spp) = adaptive_capped(IntegratorKind::Bidirectional, 32, 24, 0.2, 2, 2048);
     let worst = worst_relative_error(&film);
-    let hi = film.pixels.iter().map(|p| p.count).max().unwrap();
+    let hi = film.counts().max().unwrap();
     println!(
         "bdpt, target 20 %: worst {:.2} %, {mean_spp:.1} spp on average, at most {hi}",
         worst * 100.0
@@ -210,27 +214,27 @@ fn bias_against_uniform(
     let s = settings(kind, w, h, 4096);
     let (film, _) = render_adaptive(&loaded.scene, &loaded.setup, &s, stop, &mut |_| {});
     // Every pixel's samples 0..m: nested with its adaptive samples 0..n either way.
-    let n_max = film.pixels.iter().map(|p| p.count).max().unwrap();
+    let n_max = film.counts().max().unwrap();
     let uniform = render_pixels(&loaded.scene, &loaded.setup, &s, &|_| 0..m).0;
     let (mut diff, mut var, mut level) = (0.0f64, 0.0f64, 0.0f64);
-    for i in 0..film.pixels.len() {
+    for i in 0..film.len() {
         let (a, u) = (film.mean_luminance(i), uniform.mean_luminance(i));
         diff += a - u;
         level += u;
         // Var(mean of n − mean of m) = σ² |1/n − 1/m| for nested samples (own samples); the
         // splat parts of the two films are counted as independent, which errs on the large
         // side (they share the light subpaths of the samples both have).
-        let sigma2 = uniform.pixels[i].own_luminance_variance().unwrap();
-        let n = f64::from(film.pixels[i].count);
+        let sigma2 = uniform.pixel(i).own_luminance_variance().unwrap();
+        let n = f64::from(film.count(i));
         var += sigma2 * (1.0 / n - 1.0 / f64::from(m)).abs();
         var += uniform.luminance_std_error(i).unwrap().powi(2)
-            - uniform.pixels[i].own_luminance_variance().unwrap() / f64::from(m);
+            - uniform.pixel(i).own_luminance_variance().unwrap() / f64::from(m);
         var += film.luminance_std_error(i).unwrap().powi(2)
-            - film.pixels[i].own_luminance_variance().unwrap() / n;
+            - film.pixel(i).own_luminance_variance().unwrap() / n;
     }
     let bias = diff / level;
     let se = var.max(0.0).sqrt() / level;
-    let spread = film.pixels.iter().map(|p| p.count).min().unwrap();
+    let spread = film.counts().min().unwrap();
     println!(
         "{kind} {w}x{h}: adaptive − uniform {:+.4} % ± {:.4} % of the mean ({mean} spp on \
          average, {spread} to {n_max}; uniform {m})",

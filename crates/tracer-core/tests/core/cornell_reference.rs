@@ -39,17 +39,17 @@ fn cornell_box_regions_match_mitsubas_light_tracer() {
         stats.elapsed_secs
     );
     let mut all = 0.0;
-    for p in &film.pixels {
+    for p in film.pixels() {
         all += p.mean_luminance();
     }
-    let all = all / film.pixels.len() as f64;
+    let all = all / film.len() as f64;
     println!("image mean {all:.3} vs Mitsuba {IMAGE_MEAN}");
     assert!((all / IMAGE_MEAN - 1.0).abs() < 0.01);
     for (name, x0, x1, y0, y1, reference) in REGIONS {
         let (mut sum, mut var, mut n) = (0.0, 0.0, 0.0);
         for y in y0..y1 {
             for x in x0..x1 {
-                let p = &film.pixels[film.index(x, y)];
+                let p = &film.pixel(film.index(x, y));
                 sum += p.mean_luminance();
                 var += p.luminance_std_error().unwrap().powi(2);
                 n += 1.0;

@@ -50,14 +50,13 @@ fn floor_under(sky: &str, integrator: IntegratorKind, facing_down: bool) -> (f64
         ..RenderSettings::default()
     };
     let (film, _) = render(&sc, &st, &settings);
-    let n = film.pixels.len() as f64;
+    let n = film.len() as f64;
     let e = film
-        .pixels
-        .iter()
+        .pixels()
         .map(|p| f64::from(p.mean_illuminance()))
         .sum::<f64>()
         / n;
-    let l = film.pixels.iter().map(|p| p.mean_luminance()).sum::<f64>() / n;
+    let l = film.pixels().map(|p| p.mean_luminance()).sum::<f64>() / n;
     (e, l)
 }
 

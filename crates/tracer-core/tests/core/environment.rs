@@ -25,11 +25,10 @@ fn settings(integrator: IntegratorKind, spp: u32) -> RenderSettings {
 
 /// The picture's mean illuminance (lx).
 fn mean_lx(film: &tracer_core::render::Film) -> f64 {
-    film.pixels
-        .iter()
+    film.pixels()
         .map(|p| f64::from(p.mean_illuminance()))
         .sum::<f64>()
-        / film.pixels.len() as f64
+        / film.len() as f64
 }
 
 fn uniform(luminance_cd_m2: f32) -> Environment {
@@ -77,7 +76,7 @@ fn a_convex_object_under_a_uniform_sky_reads_rho_times_l() {
             0.005,
             0.002,
         );
-        for (i, p) in film.pixels.iter().enumerate() {
+        for (i, p) in film.pixels().enumerate() {
             let d = (p.mean_luminance() - exact).abs();
             assert!(
                 d < 4.5 * p.luminance_std_error().unwrap() + 1e-6 * exact,
@@ -106,12 +105,12 @@ fn the_background_is_the_sky_unless_the_backdrop_is_kept() {
         // Looking away from the cube.
         st.camera = camera([0.5, 0.5, 3.0], [0.5, 0.5, 6.0], 30.0);
         let (film, _) = render(&sc, &st, &settings(integrator, 4));
-        for p in &film.pixels {
+        for p in film.pixels() {
             assert!((p.mean_luminance() - 250.0).abs() < 1e-3, "{integrator:?}");
         }
         st.environment.as_mut().unwrap().background = false;
         let (film, _) = render(&sc, &st, &settings(integrator, 4));
-        assert!(film.pixels.iter().all(|p| p.mean_luminance() == 0.0));
+        assert!(film.pixels().all(|p| p.mean_luminance() == 0.0));
     }
 }
 
@@ -151,11 +150,10 @@ fn one_bright_patch_gives_its_solid_angle_times_its_cosine() {
     let mut st = setup(&sc, cam, vec![], vec![diffuse(0.5)]);
     st.environment = Some(patch_map(row, col, l));
     let (film, _) = render(&sc, &st, &settings(IntegratorKind::Path, 256));
-    let n = film.pixels.len() as f64;
+    let n = film.len() as f64;
     let (bd, _) = render(&sc, &st, &settings(IntegratorKind::Bidirectional, 256));
     let e_bd = bd
-        .pixels
-        .iter()
+        .pixels()
         .map(|p| f64::from(p.mean_illuminance()))
         .sum::<f64>()
         / n;
@@ -169,7 +167,7 @@ fn one_bright_patch_gives_its_solid_angle_times_its_cosine() {
     assert!((e / exact - 1.0).abs() < 0.01, "E {e} vs {exact}");
     // Turned half a turn, the same patch lights the floor alike (it is a cosine about the
     // zenith), and the luminance seen is ρ E / π.
-    let lum = film.pixels.iter().map(|p| p.mean_luminance()).sum::<f64>() / n;
+    let lum = film.pixels().map(|p| p.mean_luminance()).sum::<f64>() / n;
     assert!((lum / (0.5 * exact / PI) - 1.0).abs() < 0.01, "L {lum}");
     st.environment.as_mut().unwrap().rotation_deg = 180.0;
     let (film, _) = render(&sc, &st, &settings(IntegratorKind::Path, 256));

@@ -69,3 +69,67 @@ fn a_dim_furnace_reports_the_same_relative_error_as_a_bright_one() {
         );
     }
 }
+
+/// The film's compact cells hold the same sums as full-width pixel sums for every sample of
+/// the built-in box, whose point light a few millimetres below the ceiling makes a hot spot of
+/// about 10⁹-10¹⁰ cd/m² (past a 64-bit sum of 2⁻³² units after one sample): each pixel of a
+/// render equals the sum of its samples traced one by one, the hot spot's pixels moved to the
+/// wide table, and nothing was rejected. In every integrator (splats included).
+#[test]
+fn the_built_in_box_hot_spot_stays_exact_in_compact_cells() {
+    use tracer_core::render::{FrameSampler, PixelSum, render_samples};
+    use tracer_core::scene::builtin_cornell_box;
+    let mut loaded = builtin_cornell_box(None).unwrap();
+    // The camera looks at the ceiling straight above the light, through a narrow field.
+    let light = loaded.setup.lights[0].position;
+    let cam = &mut loaded.setup.camera;
+    cam.look_at = [light[0], light[1] + 1.0, light[2]];
+    cam.fov_deg = 0.05;
+    for kind in [
+        IntegratorKind::Direct,
+        IntegratorKind::Path,
+        IntegratorKind::Bidirectional,
+        IntegratorKind::Light,
+    ] {
+        let settings = RenderSettings {
+            width: 64,
+            height: 48,
+            samples_per_pixel: 2,
+            integrator: kind,
+            ..RenderSettings::default()
+        };
+        let (film, _) = render_samples(&loaded.scene, &loaded.setup, &settings, 0..2);
+        let frame = FrameSampler::new(&loaded.scene, &loaded.setup, &settings);
+        let mut splats = Vec::new();
+        let mut expected = vec![PixelSum::default(); film.len()];
+        let mut brightest = 0.0f64;
+        for y in 0..settings.height {
+            for x in 0..settings.width {
+                let i = film.index(x, y);
+                for s in 0..2 {
+                    let sample = frame.sample(x, y, s, &mut splats);
+                    brightest = brightest.max(f64::from(sample.rgb.max_element()));
+                    assert!(expected[i].add(&sample));
+                }
+            }
+        }
+        for s in &splats {
+            assert!(expected[film.index(s.x, s.y)].add_splat(s.rgb));
+        }
+        for (i, e) in expected.iter().enumerate() {
+            assert_eq!(film.pixel(i), *e, "{kind}: pixel {i}");
+        }
+        let (bytes, (moved, moved_splats)) = film.memory();
+        println!(
+            "{kind}: brightest sample {brightest:.3e} cd/m²; {moved} pixels (own samples) and \
+             {moved_splats} (splats) of {} in the wide table; {:.1} bytes a pixel",
+            film.len(),
+            bytes as f64 / film.len() as f64
+        );
+        assert_eq!(film.rejected_samples(), 0);
+        if kind == IntegratorKind::Direct {
+            assert!(brightest > 2.0f64.powi(31), "no hot spot: {brightest}");
+            assert!(moved > 0);
+        }
+    }
+}

@@ -25,11 +25,10 @@ fn path_settings(w: u32, h: u32, spp: u32) -> RenderSettings {
 
 /// The image's mean luminance and its standard error (pixels are independent).
 fn image_mean(film: &Film) -> (f64, f64) {
-    let n = film.pixels.len() as f64;
-    let mean = film.pixels.iter().map(|p| p.mean_luminance()).sum::<f64>() / n;
+    let n = film.len() as f64;
+    let mean = film.pixels().map(|p| p.mean_luminance()).sum::<f64>() / n;
     let var: f64 = film
-        .pixels
-        .iter()
+        .pixels()
         .map(|p| p.luminance_std_error().unwrap().powi(2))
         .sum();
     (mean, var.sqrt() / n)
@@ -38,7 +37,7 @@ fn image_mean(film: &Film) -> (f64, f64) {
 /// Every pixel within 4.5 of its own standard errors of `exact` (with 256 pixels, a correct
 /// renderer fails this by chance with probability about 0.2 %).
 fn every_pixel_near(film: &Film, exact: f64, what: &str) {
-    for (i, p) in film.pixels.iter().enumerate() {
+    for (i, p) in film.pixels().enumerate() {
         let se = p.luminance_std_error().unwrap();
         let d = (p.mean_luminance() - exact).abs();
         assert!(
@@ -66,11 +65,10 @@ fn diffuse_furnace_shows_le_over_one_minus_rho() {
         every_pixel_near(&film, exact, &format!("furnace rho {rho}"));
         // Each pixel's illuminance is the irradiance of the enclosure: E = π L.
         let e = film
-            .pixels
-            .iter()
+            .pixels()
             .map(|p| f64::from(p.mean_illuminance()))
             .sum::<f64>()
-            / film.pixels.len() as f64;
+            / film.len() as f64;
         assert!(
             (e / (PI * exact) - 1.0).abs() < 0.01,
             "E {e} vs {}",
@@ -267,7 +265,7 @@ fn cie_5_3_area_source_form_factors() {
     let mut look_up = st.clone();
     look_up.camera = camera([2.0, 1.0, 2.0], [2.0, 3.0, 2.0001], 5.0);
     let (film, _) = render(&sc, &look_up, &s);
-    for p in &film.pixels {
+    for p in film.pixels() {
         assert!(
             (p.mean_luminance() - 1000.0).abs() < 0.01,
             "{}",
@@ -321,7 +319,7 @@ fn path_with_one_bounce_equals_direct() {
         // The ceiling's hot spot (a point light 0.1 mm under it) dominates any mean: compare
         // each pixel instead, within 4.5 combined standard errors (or 1e-3 relative).
         let mut bad = 0;
-        for (a, b) in d.pixels.iter().zip(&p.pixels) {
+        for (a, b) in d.pixels().zip(p.pixels()) {
             let se = (a.luminance_std_error().unwrap().powi(2)
                 + b.luminance_std_error().unwrap().powi(2))
             .sqrt();

@@ -36,10 +36,7 @@ fn a_finished_render_measures_the_illuminance_when_asked_without_a_restart() {
         });
         assert!(session.wait_for(WAIT, |st| st.generation == generation && st.finished));
         let before = session.with_film(|f| f.unwrap().accum.clone());
-        assert!(
-            before.pixels.iter().all(|p| p.illuminance == 0),
-            "{integrator}"
-        );
+        assert!(before.pixels().all(|p| p.illuminance == 0), "{integrator}");
         assert!(session.with_film(|f| !f.unwrap().illuminance_measured(0)));
         let rays_before = session.stats().rays;
 
@@ -51,7 +48,7 @@ fn a_finished_render_measures_the_illuminance_when_asked_without_a_restart() {
         let after = session.with_film(|f| {
             let f = f.unwrap();
             assert_eq!(f.generation, generation);
-            assert!((0..f.accum.pixels.len()).all(|i| f.illuminance_measured(i)));
+            assert!((0..f.accum.len()).all(|i| f.illuminance_measured(i)));
             f.accum.clone()
         });
         assert_eq!(after.illuminance_from, 3, "{integrator}");
@@ -63,7 +60,7 @@ fn a_finished_render_measures_the_illuminance_when_asked_without_a_restart() {
             ..settings
         };
         let (oneshot, _) = render(&scene, &loaded.setup, &all);
-        for (a, b) in after.pixels.iter().zip(&oneshot.pixels) {
+        for (a, b) in after.pixels().zip(oneshot.pixels()) {
             assert_eq!((a.rgb, a.splat_rgb, a.count), (b.rgb, b.splat_rgb, b.count));
         }
         // Illuminance: exactly that of samples 3.. measured from the start.
@@ -73,15 +70,12 @@ fn a_finished_render_measures_the_illuminance_when_asked_without_a_restart() {
         };
         let (later, _) = render_samples(&scene, &loaded.setup, &measured, 3..total);
         let mut lit = 0;
-        for (i, (a, b)) in after.pixels.iter().zip(&later.pixels).enumerate() {
+        for (i, (a, b)) in after.pixels().zip(later.pixels()).enumerate() {
             assert_eq!(a.illuminance, b.illuminance, "{integrator} pixel {i}");
             assert_eq!(after.mean_illuminance(i), later.mean_illuminance(i));
             lit += usize::from(b.illuminance > 0);
         }
-        assert!(
-            lit > after.pixels.len() / 2,
-            "{integrator}: {lit} pixels lit"
-        );
+        assert!(lit > after.len() / 2, "{integrator}: {lit} pixels lit");
     }
 }
 

@@ -300,7 +300,7 @@ fn c_angles_run_counter_clockwise_on_screen_in_both_handednesses() {
             let (mut sx, mut sy, mut sw) = (0.0, 0.0, 0.0);
             for y in 0..48 {
                 for x in 0..48 {
-                    let w = film.pixels[film.index(x, y)].mean_luminance();
+                    let w = film.pixel(film.index(x, y)).mean_luminance();
                     sx += w * (f64::from(x) + 0.5 - 24.0);
                     sy += w * (24.0 - f64::from(y) - 0.5);
                     sw += w;

@@ -171,8 +171,8 @@ fn furnace_of_1200_small_emitters() {
             ..RenderSettings::default()
         };
         let (film, _) = render(&sc, &st, &settings);
-        let n = film.pixels.len() as f64;
-        let means: Vec<f64> = film.pixels.iter().map(|p| p.mean_luminance()).collect();
+        let n = film.len() as f64;
+        let means: Vec<f64> = film.pixels().map(|p| p.mean_luminance()).collect();
         let mean = means.iter().sum::<f64>() / n;
         let var = means.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / (n - 1.0);
         check(
@@ -183,7 +183,7 @@ fn furnace_of_1200_small_emitters() {
             0.01,
             0.005,
         );
-        for (i, p) in film.pixels.iter().enumerate() {
+        for (i, p) in film.pixels().enumerate() {
             let se = p.luminance_std_error().unwrap();
             assert!(
                 (p.mean_luminance() - exact).abs() <= 5.0 * se + 1e-3 * exact,

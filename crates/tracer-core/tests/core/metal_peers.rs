@@ -197,7 +197,7 @@ fn region_mean(film: &Film, (_, x0, x1, y0, y1): Region) -> (f64, f64) {
     let (mut sum, mut var, mut n) = (0.0, 0.0, 0.0);
     for y in y0..y1 {
         for x in x0..x1 {
-            let p = &film.pixels[(y * W + x) as usize];
+            let p = &film.pixel((y * W + x) as usize);
             sum += p.mean_luminance();
             var += p.luminance_std_error().unwrap_or(f64::INFINITY).powi(2);
             n += 1.0;
@@ -277,7 +277,7 @@ fn a_ggx_metal_under_a_point_light_matches_mitsuba_and_cycles() {
     // Where Mitsuba's separable masking should read below height-correlated Smith, the factor
     // predicted from the geometry explains raygine against Mitsuba, within 0.4 %.
     let far = REGIONS[2];
-    let pixel = |x: u32, y: u32| film.pixels[(y * W + x) as usize].mean_luminance();
+    let pixel = |x: u32, y: u32| film.pixel((y * W + x) as usize).mean_luminance();
     let predicted = separable_over_correlated(far, &pixel);
     let (mean, _) = region_mean(&film, far);
     let seen = POINT_REFERENCE[2].0 / mean;

@@ -244,7 +244,7 @@ fn direct_mode_shades_with_the_metallic_roughness_brdf() {
         ..RenderSettings::default()
     };
     let (film, _) = render(&sc, &st, &settings);
-    let centre = film.pixels[4].mean_luminance();
+    let centre = film.pixel(4).mean_luminance();
     // E = I cos θi / R² at 1 m; L = E f.
     let wo = [to.sin(), 0.0, to.cos()];
     let wi = [-ti.sin(), 0.0, ti.cos()];

@@ -60,16 +60,12 @@ fn converged_film_is_identical_for_one_and_two_threads_and_one_shot() {
     }
     let snap = snapshot(&loaded, &scene, 4);
     let (a, _) = render(&scene, &snap.setup, &snap.settings);
-    assert!(a.pixels.iter().all(|p| p.count == 4));
+    assert!(a.pixels().all(|p| p.count == 4));
     let lit = a
-        .pixels
-        .iter()
+        .pixels()
         .filter(|p| p.mean_rgb().max_element() > 0.0)
         .count();
-    assert!(
-        lit > a.pixels.len() / 2,
-        "the box should be mostly lit: {lit}"
-    );
+    assert!(lit > a.len() / 2, "the box should be mostly lit: {lit}");
 }
 
 #[test]
@@ -211,7 +207,7 @@ fn pause_holds_and_resume_finishes() {
         && st.generation == generation));
     s.set_paused(false);
     let film = finished_accum(&s, generation);
-    assert!(film.pixels.iter().all(|p| p.count == 2));
+    assert!(film.pixels().all(|p| p.count == 2));
 }
 
 #[test]
@@ -284,7 +280,7 @@ fn status_moves_within_a_pass_and_the_first_pass_fills_evenly() {
             let mut n = 0;
             for y in (py..f.height()).step_by(2) {
                 for x in (px..f.width()).step_by(2) {
-                    n += f.accum.pixels[f.accum.index(x, y)].count;
+                    n += f.accum.count(f.accum.index(x, y));
                 }
             }
             n

@@ -46,9 +46,9 @@ fn adaptive_rounds_spend_the_target_where_the_error_is_and_match_a_one_shot_rend
             assert!(session.wait_for(WAIT, |st| st.generation == generation && st.finished));
             let stats = session.stats();
             let film = session.with_film(|f| f.unwrap().accum.clone());
-            let total: u64 = film.pixels.iter().map(|p| u64::from(p.count)).sum();
-            let pixels = film.pixels.len() as u64;
-            let hi = film.pixels.iter().map(|p| p.count).max().unwrap();
+            let total: u64 = film.counts().map(u64::from).sum();
+            let pixels = film.len() as u64;
+            let hi = film.counts().max().unwrap();
             println!(
                 "{integrator}, {threads} threads: {:.1} spp on average, {} to {hi}, {}",
                 stats.mean_samples_per_pixel, stats.samples_per_pixel, stats.pass
@@ -64,9 +64,13 @@ fn adaptive_rounds_spend_the_target_where_the_error_is_and_match_a_one_shot_rend
             films.push(film);
         }
         assert_eq!(films[0], films[1], "{integrator}: threads");
-        let counts: Vec<u32> = films[0].pixels.iter().map(|p| p.count).collect();
+        let counts: Vec<u32> = films[0].counts().collect();
         let (oneshot, _) = render_pixels(&scene, &snap.setup, &snap.settings, &|i| 0..counts[i]);
-        assert_eq!(films[0].pixels, oneshot.pixels, "{integrator}: one shot");
+        assert_eq!(
+            films[0].pixels().collect::<Vec<_>>(),
+            oneshot.pixels().collect::<Vec<_>>(),
+            "{integrator}: one shot"
+        );
         assert_eq!(films[0].splat_paths, oneshot.splat_paths, "{integrator}");
     }
 }
@@ -77,8 +81,7 @@ fn illuminance_asked_after_the_rounds_is_measured_from_each_pixels_count() {
     let session = RenderSession::new(2, Arc::new(|| {})).unwrap();
     let generation = session.start(snap.clone());
     assert!(session.wait_for(WAIT, |st| st.generation == generation && st.finished));
-    let before: Vec<u32> =
-        session.with_film(|f| f.unwrap().accum.pixels.iter().map(|p| p.count).collect());
+    let before: Vec<u32> = session.with_film(|f| f.unwrap().accum.counts().collect());
     assert!(before.iter().any(|&n| n != before[0]), "rounds ran");
     session.measure_illuminance();
     assert!(session.wait_for(WAIT, |st| st.finished
@@ -87,7 +90,7 @@ fn illuminance_asked_after_the_rounds_is_measured_from_each_pixels_count() {
     assert_eq!(session.generation(), generation, "no restart");
     let (after, measured) = session.with_film(|f| {
         let f = f.unwrap();
-        let n = f.accum.pixels.len();
+        let n = f.accum.len();
         (f.accum.clone(), (0..n).all(|i| f.illuminance_measured(i)))
     });
     assert!(measured);
@@ -100,7 +103,7 @@ fn illuminance_asked_after_the_rounds_is_measured_from_each_pixels_count() {
     let (later, _) = render_pixels(&scene, &snap.setup, &with_lx, &|i| {
         before[i]..before[i] + ILLUMINANCE_SAMPLES
     });
-    for (i, (a, b)) in after.pixels.iter().zip(&later.pixels).enumerate() {
+    for (i, (a, b)) in after.pixels().zip(later.pixels()).enumerate() {
         assert_eq!(a.count, before[i] + ILLUMINANCE_SAMPLES, "pixel {i}");
         assert_eq!(a.illuminance, b.illuminance, "pixel {i}");
     }
@@ -119,7 +122,7 @@ fn illuminance_asked_during_the_rounds_reaches_every_pixel() {
     assert_eq!(session.generation(), generation, "no restart");
     session.with_film(|f| {
         let f = f.unwrap();
-        let n = f.accum.pixels.len();
+        let n = f.accum.len();
         let measured = (0..n).filter(|&i| f.illuminance_measured(i)).count();
         let lit = (0..n).filter(|&i| f.shown_illuminance(i) > 0.0).count();
         println!("{measured} of {n} pixels measured, {lit} lit");

@@ -35,16 +35,16 @@ fn measured_and_reported(
             render_samples(scene, setup, settings, start..start + per_range).0
         })
         .collect();
-    let pixels = films[0].pixels.len();
+    let pixels = films[0].len();
     let k = f64::from(RANGES);
     let mut rows: Vec<(f64, f64, f64)> = (0..pixels)
         .map(|i| {
-            let means: Vec<f64> = films.iter().map(|f| f.pixels[i].mean_luminance()).collect();
+            let means: Vec<f64> = films.iter().map(|f| f.pixel(i).mean_luminance()).collect();
             let mean = means.iter().sum::<f64>() / k;
             let spread = means.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / (k - 1.0);
             let reported = films
                 .iter()
-                .map(|f| f.pixels[i].luminance_std_error().unwrap().powi(2))
+                .map(|f| f.pixel(i).luminance_std_error().unwrap().powi(2))
                 .sum::<f64>()
                 / k;
             (mean, spread, reported)

@@ -115,8 +115,8 @@ fn run_generation(
                 .as_ref()
                 .filter(|f| f.generation == generation && f.accum.splat_paths.is_some())
                 .map(|f| Round {
-                    from: f.accum.pixels.iter().map(|p| p.count).collect(),
-                    extra: vec![ILLUMINANCE_SAMPLES; f.accum.pixels.len()],
+                    from: f.accum.counts().collect(),
+                    extra: vec![ILLUMINANCE_SAMPLES; f.accum.len()],
                 });
             let first = if forced.is_some() {
                 Pass::Adaptive { round: 0 }
@@ -173,7 +173,7 @@ fn run_generation(
                     frame.set_illuminance_from(0);
                     with_film(shared, generation, |f| {
                         f.measure_illuminance_from_now();
-                        let from: Vec<u32> = f.accum.pixels.iter().map(|p| p.count).collect();
+                        let from: Vec<u32> = f.accum.counts().collect();
                         let extra = vec![ILLUMINANCE_ROUND; from.len()];
                         forced.get_or_insert(Round { from, extra });
                     });
@@ -281,7 +281,7 @@ fn run_generation(
                 let generation_film = st.film.as_mut().filter(|f| f.generation == generation);
                 if let Some(f) = generation_film {
                     f.accum.count_splat_paths();
-                    let n = f.accum.pixels.len().max(1) as f64;
+                    let n = f.accum.len().max(1) as f64;
                     st.stats.samples_per_pixel = f.accum.min_samples();
                     st.stats.mean_samples_per_pixel = f.samples_added() as f64 / n;
                     st.stats.relative_noise = f.accum.relative_noise();
@@ -354,7 +354,7 @@ const ROUND_CAP: u32 = 65_536;
 fn plan_round(shared: &Shared, generation: u64, target: u32) -> Option<Round> {
     let st = shared.lock();
     let film = st.film.as_ref().filter(|f| f.generation == generation)?;
-    let pixels = film.accum.pixels.len() as u64;
+    let pixels = film.accum.len() as u64;
     let done = film.samples_added();
     let left = (u64::from(target) * pixels).checked_sub(done)?;
     let budget = left.min(pixels.max(done / 8));
@@ -371,6 +371,6 @@ fn plan_round(shared: &Shared, generation: u64, target: u32) -> Option<Round> {
     if extra.iter().all(|&m| m == 0) {
         return None;
     }
-    let from = film.accum.pixels.iter().map(|p| p.count).collect();
+    let from = film.accum.counts().collect();
     Some(Round { from, extra })
 }

@@ -238,11 +238,10 @@ pub fn check(what: &str, estimate: f64, std_error: f64, exact: f64, rel_tol: f64
 
 /// A film's mean pixel luminance (cd/m²) and the standard error of that mean.
 pub fn film_mean_luminance(film: &Film) -> (f64, f64) {
-    let n = film.pixels.len() as f64;
-    let mean = film.pixels.iter().map(|p| p.mean_luminance()).sum::<f64>() / n;
+    let n = film.len() as f64;
+    let mean = film.pixels().map(|p| p.mean_luminance()).sum::<f64>() / n;
     let se = film
-        .pixels
-        .iter()
+        .pixels()
         .map(|p| p.luminance_std_error().unwrap_or(f64::INFINITY).powi(2))
         .sum::<f64>()
         .sqrt()
