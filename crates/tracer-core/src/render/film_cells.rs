@@ -12,8 +12,9 @@
 //! so images are bit-identical to those of the wide film.
 
 use super::pixel_sum::PixelSum;
+use super::run_sums::{RUN_SAMPLES, run_sums};
 use super::square_sum::SquareSum;
-use crate::integrator::Splat;
+use crate::integrator::{Sample, Splat};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::{Mutex, PoisonError};
@@ -108,6 +109,38 @@ impl BaseCell {
                     add64(self.sums[1], o.rgb[1])?,
                     add64(self.sums[2], o.rgb[2])?,
                     add64(self.sums[3], o.illuminance)?,
+                ],
+                square_lo,
+                square_hi,
+                count: (count <= CELL_COUNT_LIMIT).then_some(count)?,
+            })
+        })();
+        match sum {
+            Some(cell) => {
+                *self = cell;
+                true
+            }
+            None => false,
+        }
+    }
+}
+
+impl BaseCell {
+    /// Adds a run's 64-bit sums ([`run_sums`]: r, g, b, illuminance, the square's whole part
+    /// and remainder) of `n` samples; false (and the cell unchanged) when they do not fit.
+    #[inline]
+    fn try_add_run(&mut self, sums: &[i64; 6], n: u32) -> bool {
+        let sum = (|| {
+            let square = SquareSum::from_parts(i128::from(sums[4]), sums[5])?.units()?;
+            let (square_lo, square_hi) =
+                square_words(square_of(self.square_lo, self.square_hi).checked_add(square)?)?;
+            let count = self.count.checked_add(n)?;
+            Some(BaseCell {
+                sums: [
+                    self.sums[0].checked_add(sums[0])?,
+                    self.sums[1].checked_add(sums[1])?,
+                    self.sums[2].checked_add(sums[2])?,
+                    self.sums[3].checked_add(sums[3])?,
                 ],
                 square_lo,
                 square_hi,
@@ -477,6 +510,24 @@ impl Band<'_> {
         merge_base(&mut self.cells[k], &mut self.wide, i, o)
     }
 
+    /// Adds the samples `run` (all of the band's pixel `k`), exactly as adding their
+    /// [`PixelSum::add_run`] would; returns how many were rejected. A short run of ordinary
+    /// values goes straight into the cell from its 64-bit sums.
+    pub fn add_run(&mut self, k: usize, run: &[Sample]) -> u32 {
+        let cell = &mut self.cells[k];
+        if !cell.moved()
+            && run.len() <= RUN_SAMPLES
+            && let Some(sums) = run_sums(run)
+            && cell.try_add_run(&sums, run.len() as u32)
+        {
+            return 0;
+        }
+        let mut sum = PixelSum::default();
+        let rejected = sum.add_run(run);
+        self.merge(k, &sum);
+        rejected
+    }
+
     /// Adds splats into the film (anywhere), and empties `splats`.
     pub fn add_splats(&self, splats: &mut Vec<Splat>) {
         if splats.is_empty() {
@@ -582,5 +633,56 @@ mod tests {
         assert_eq!(film.get(5 + 2).splat_rgb, film.get(5).splat_rgb);
         assert!(film.get(5).splat_rgb[0] > 0);
         assert_eq!(film.get(9).splat_rgb, [0; 3]);
+    }
+}
+
+#[cfg(test)]
+mod run_tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn runs_into_cells_equal_runs_into_wide_sums() {
+        // Per pixel, runs of ordinary values, then a hot spot's, NaN and huge ones: the cells
+        // (through their fast path or not) end with the sums of PixelSum::add_run.
+        let runs: Vec<Vec<f32>> = vec![
+            vec![1.0, 2.0, 0.001],
+            vec![0.25; 300],
+            vec![3.0e9, 1.0],
+            vec![f32::NAN, 4.0],
+            vec![1e30],
+            vec![7.5e5; 5],
+            vec![],
+        ];
+        let mut film = FilmPixels::from_cells(vec![BaseCell::default(); 3]);
+        let mut wide = [PixelSum::default(); 3];
+        let mut rejected = [0u32; 3];
+        for (r, run) in runs.iter().enumerate() {
+            let samples: Vec<Sample> = run
+                .iter()
+                .map(|&v| Sample {
+                    rgb: Vec3::new(v, 0.5 * v, 0.25 * v),
+                    illuminance_lx: 2.0 * v,
+                    rays: 1,
+                    missed: false,
+                })
+                .collect();
+            film.par_bands(1, 3, 1, |k, band| {
+                if (k + r) % 2 == 0 {
+                    band.add_run(0, &samples);
+                }
+            });
+            for (k, w) in wide.iter_mut().enumerate() {
+                if (k + r) % 2 == 0 {
+                    rejected[k] += w.add_run(&samples);
+                }
+            }
+            for (k, w) in wide.iter().enumerate() {
+                assert_eq!(film.get(k), *w, "after run {r}: pixel {k}");
+            }
+        }
+        assert!(film.moved_pixels().0 > 0);
+        assert_eq!(film.rejected(), u64::from(rejected.iter().sum::<u32>()));
     }
 }

@@ -288,9 +288,7 @@ pub(crate) fn render_pixel_ranges_into(
                 .flat_map(|y| (x0..x1).map(move |x| (x, y)))
                 .map(|(x, y)| (x, y, samples(y as usize * width + x as usize)));
             rays += frame.for_each_sample(order, &mut scratch, &mut splats, |x, y, run| {
-                let mut sum = PixelSum::default();
-                sum.add_run(run);
-                band.merge((y - y0) as usize * width + x as usize, &sum);
+                band.add_run((y - y0) as usize * width + x as usize, run);
             });
             // Integer sums: the order splats arrive in does not matter.
             if splats.len() >= BAND_SPLATS {
