@@ -28,6 +28,17 @@ use glam::{DMat3, DMat4, DVec3};
 use std::collections::HashMap;
 use std::path::Path;
 
+/// Triangles a primitive of `corners` indices (or vertices) makes in `mode`: the memory check
+/// counts triangles, not corners (a triangle list has three per triangle).
+fn triangles_of(mode: ::gltf::mesh::Mode, corners: u64) -> u64 {
+    use ::gltf::mesh::Mode;
+    match mode {
+        Mode::Triangles => corners / 3,
+        Mode::TriangleStrip | Mode::TriangleFan => corners.saturating_sub(2),
+        Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => 0,
+    }
+}
+
 /// Deepest node hierarchy walked (real files are a few levels deep; deeper is a cycle or junk).
 const MAX_DEPTH: usize = 256;
 
@@ -100,7 +111,8 @@ pub fn parse(
                     .get(&::gltf::Semantic::Positions)
                     .map_or(0, |a| a.count() as u64);
                 let corners = p.indices().map_or(verts, |a| a.count() as u64);
-                (t.saturating_add(corners), v.saturating_add(verts))
+                let tris = triangles_of(p.mode(), corners);
+                (t.saturating_add(tris), v.saturating_add(verts))
             });
     check_memory(path, 0, triangles, vertices)?;
     let scene = gltf.default_scene().or_else(|| gltf.scenes().next());
@@ -490,6 +502,17 @@ impl Reader<'_> {
 #[allow(clippy::unwrap_used, clippy::expect_used)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_memory_check_counts_triangles_not_corners() {
+        use ::gltf::mesh::Mode;
+        // A 10-million-triangle list has 30 million indices; it was estimated as 30 million
+        // triangles (6.2 GB instead of about 2 GB), refusing files that fit.
+        assert_eq!(triangles_of(Mode::Triangles, 30_000_000), 10_000_000);
+        assert_eq!(triangles_of(Mode::TriangleStrip, 12), 10);
+        assert_eq!(triangles_of(Mode::TriangleFan, 1), 0);
+        assert_eq!(triangles_of(Mode::Lines, 30), 0);
+    }
 
     fn parse_text(text: &str) -> Result<SceneDescription, FormatError> {
         let external = |_: &Path| Err("no files".to_owned());
