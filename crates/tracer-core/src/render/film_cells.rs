@@ -60,6 +60,11 @@ fn square_words(units: i128) -> Option<(u64, i32)> {
     Some((units as u64, hi))
 }
 
+/// Puts `new` in `slot` when there is one; whether there was (a cell's sums that fit).
+fn replace_with<T>(slot: &mut T, new: Option<T>) -> bool {
+    new.map(|v| *slot = v).is_some()
+}
+
 /// `a + b` for a cell's 64-bit sum and a wide sum; None past 64 bits.
 fn add64(a: i64, b: i128) -> Option<i64> {
     a.checked_add(i64::try_from(b).ok()?)
@@ -115,13 +120,7 @@ impl BaseCell {
                 count: (count <= CELL_COUNT_LIMIT).then_some(count)?,
             })
         })();
-        match sum {
-            Some(cell) => {
-                *self = cell;
-                true
-            }
-            None => false,
-        }
+        replace_with(self, sum)
     }
 }
 
@@ -147,13 +146,7 @@ impl BaseCell {
                 count: (count <= CELL_COUNT_LIMIT).then_some(count)?,
             })
         })();
-        match sum {
-            Some(cell) => {
-                *self = cell;
-                true
-            }
-            None => false,
-        }
+        replace_with(self, sum)
     }
 }
 
@@ -187,13 +180,7 @@ impl SplatCell {
                 moved: 0,
             })
         })();
-        match sum {
-            Some(cell) => {
-                *self = cell;
-                true
-            }
-            None => false,
-        }
+        replace_with(self, sum)
     }
 }
 
