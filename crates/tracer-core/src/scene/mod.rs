@@ -109,7 +109,8 @@ pub fn load(path: &Path, options: &LoadOptions<'_>) -> Result<LoadedScene, Scene
         .smooth_angle_deg
         .filter(|a| a.is_finite())
         .unwrap_or(DEFAULT_SMOOTH_ANGLE_DEG);
-    let scene = Scene::build_with(&desc, &name, smooth_angle_deg)?;
+    // By value: its vertex arrays are freed before the BVH build.
+    let scene = Scene::build_with(desc, &name, smooth_angle_deg)?;
     let mut warnings = scene.design.notes.clone();
     let setup = sidecar.apply(&scene, options.unit, &mut warnings);
     if let Some(hint) = setup.unit.size_hint(scene.bounds.extent().length()) {
