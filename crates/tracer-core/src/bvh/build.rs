@@ -417,8 +417,13 @@ impl Bvh {
         let mut nodes = Vec::with_capacity(2 * prims.len());
         nodes.push(Node::new(range.bounds, 0, 0));
         flatten(tree, 0, &mut nodes);
-        let mut nodes = wide::collapse(&nodes);
-        let tris = pack_leaves(&mut nodes, &prims, triangles);
+        let mut wide_nodes = wide::collapse(&nodes);
+        // The binary tree (about 32 bytes a triangle) goes before the packs are made: a big
+        // scene's load peaks here.
+        drop(nodes);
+        let tris = pack_leaves(&mut wide_nodes, &prims, triangles);
+        drop(prims);
+        let nodes = wide_nodes;
         let depth = wide::tree_depth(&nodes);
         let mut bvh = Bvh {
             nodes,

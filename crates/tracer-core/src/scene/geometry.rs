@@ -277,10 +277,6 @@ impl Scene {
                 Some((texture_sets.len() - 1) as u32)
             })
             .collect();
-        let normals = triangles
-            .iter()
-            .map(|[a, b, c]| (*b - *a).cross(*c - *a).normalize_or_zero())
-            .collect();
         let bounds = triangles
             .iter()
             .flatten()
@@ -300,6 +296,11 @@ impl Scene {
         let started = Instant::now();
         let bvh = Bvh::build(&triangles);
         let bvh_build_secs = started.elapsed().as_secs_f64();
+        // Face normals after the BVH build, whose peak they would add to.
+        let normals = triangles
+            .iter()
+            .map(|[a, b, c]| (*b - *a).cross(*c - *a).normalize_or_zero())
+            .collect();
         let first_slots: Vec<u32> = breps.iter().map(|b| b.first_slot).collect();
         let mut design =
             Design::from_description(&desc, &first_slots, slots.len(), &set_of_material);
