@@ -126,9 +126,18 @@ impl Scene {
             }
             // Normals go through the inverse transpose of the placement.
             let normal_matrix = glam::DMat3::from_mat4(m).inverse().transpose();
-            let mesh_normals = super::smoothing::corner_normals(mesh, smooth_angle_deg);
+            // Tangents where a part's material has a normal map (in the map's UV set): they
+            // need the mesh's corner normals kept; other meshes take them one by one.
+            let normal_set = mesh.parts.iter().find_map(|p| {
+                let maps = desc.materials.get(p.material?)?.maps.as_ref()?;
+                maps.normal.as_ref().map(|n| usize::from(n.set.min(1)))
+            });
+            let mut mesh_normals = Vec::new();
             let first_triangle = triangles.len();
-            for (t, corners) in mesh_normals.iter().enumerate() {
+            super::smoothing::for_each_corner_normals(mesh, smooth_angle_deg, |t, corners| {
+                if normal_set.is_some() {
+                    mesh_normals.push(corners);
+                }
                 let face = mesh.triangles[t].map(|i| world.get(i as usize).copied());
                 let face_normal = match face {
                     [Some(a), Some(b), Some(c)] => (b - a).cross(c - a).normalize_or_zero(),
@@ -149,11 +158,6 @@ impl Scene {
                 if any_smooth {
                     corner_normals.push(world.unwrap_or([Vec3::ZERO; 3]));
                 }
-            }
-            // Tangents where a part's material has a normal map (in the map's UV set).
-            let normal_set = mesh.parts.iter().find_map(|p| {
-                let maps = desc.materials.get(p.material?)?.maps.as_ref()?;
-                maps.normal.as_ref().map(|n| usize::from(n.set.min(1)))
             });
             if let Some(set) = normal_set {
                 let local = super::tangents::mesh_tangents(mesh, &mesh_normals, set);
