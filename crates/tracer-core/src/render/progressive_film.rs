@@ -60,8 +60,9 @@ impl ProgressiveFilm {
     }
 
     /// Empties the film for reuse by `generation` (no allocation), on the current rayon pool:
-    /// at 1280x720 the sums are 147 MB, and clearing them is most of a restart's first preview
-    /// (25-35 ms on one thread of the 2-core test machine, 12-17 ms on two).
+    /// at 1280x720 the cells are 44 MB. With the former 160-byte sums (147 MB) clearing them was
+    /// most of a restart's first preview (25-35 ms on one thread of the 2-core test machine,
+    /// 12-17 ms on two).
     pub fn reset(&mut self, generation: u64) {
         use rayon::prelude::*;
         const CHUNK: usize = 16 * 1024;
