@@ -16,7 +16,6 @@ use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
 use std::time::Instant;
 
 use anyhow::{Context, bail};
-use glam::Vec3;
 use tracer_core::integrator::IntegratorKind;
 use tracer_core::light::Light;
 use tracer_core::render::{RenderSettings, render};
@@ -64,7 +63,7 @@ fn workload(name: &str) -> anyhow::Result<(Scene, Setup)> {
         &LoadOptions::default(),
     )?;
     let (scene, mut setup) = (loaded.scene, loaded.setup);
-    let frame = Frame::of(&scene.triangles);
+    let frame = Frame::of(&scene.triangles().collect::<Vec<_>>());
     setup.camera = Camera {
         position: frame.eye().to_array(),
         look_at: frame.centre.to_array(),
@@ -88,27 +87,22 @@ pub fn export(scene: &Scene, setup: &Setup, dir: &Path) -> anyhow::Result<()> {
     let mpu = setup.unit.metres_per_unit();
     let mut meshes = Vec::new();
     for slot in 0..scene.slots.len() as u32 {
-        let tris: Vec<usize> = (0..scene.triangles.len())
-            .filter(|&t| scene.triangle_slots[t] == slot)
+        let tris: Vec<u32> = (0..scene.triangle_count() as u32)
+            .filter(|&t| scene.slot(t) == slot)
             .collect();
         if tris.is_empty() || setup.is_hidden(slot) {
             continue;
         }
         let mut bytes = Vec::with_capacity(tris.len() * 72);
         for &t in &tris {
-            for p in scene.triangles[t] {
+            for p in scene.triangle(t) {
                 p.to_array()
                     .iter()
                     .for_each(|c| bytes.extend(c.to_le_bytes()));
             }
         }
         for &t in &tris {
-            let corners = scene
-                .corner_normals
-                .get(t)
-                .filter(|c| c[0] != Vec3::ZERO)
-                .copied()
-                .unwrap_or([scene.normals[t]; 3]);
+            let corners = scene.smooth_corners(t).unwrap_or([scene.normal(t); 3]);
             for n in corners {
                 n.to_array()
                     .iter()

@@ -45,7 +45,7 @@ pub fn load(name: &str, shared: &Path) -> anyhow::Result<Mesh> {
         .with_context(|| format!("cannot load mesh {name}"))?;
     Ok(Mesh {
         name: name.to_owned(),
-        triangles: loaded.scene.triangles,
+        triangles: loaded.scene.triangles().collect(),
         path: Some(path),
     })
 }
@@ -118,7 +118,7 @@ mod tests {
         let mesh = load("sphere-16", Path::new("/nonexistent")).unwrap();
         let path = shp_path(&mesh, &dir).unwrap();
         let loaded = scene::load(&path, &LoadOptions::default()).unwrap();
-        assert_eq!(loaded.scene.triangles, mesh.triangles);
+        assert_eq!(loaded.scene.triangles().collect::<Vec<_>>(), mesh.triangles);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

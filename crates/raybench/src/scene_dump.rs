@@ -61,8 +61,8 @@ pub fn run(options: &Options) -> anyhow::Result<()> {
 /// Writes the visible triangles; returns how many, and how many carry vertex normals.
 fn write_ply(loaded: &LoadedScene, path: &Path) -> anyhow::Result<(usize, usize)> {
     let scene = &loaded.scene;
-    let visible: Vec<usize> = (0..scene.triangles.len())
-        .filter(|&t| !loaded.setup.is_hidden(scene.triangle_slots[t]))
+    let visible: Vec<u32> = (0..scene.triangle_count() as u32)
+        .filter(|&t| !loaded.setup.is_hidden(scene.slot(t)))
         .collect();
     let mut out = Vec::with_capacity(visible.len() * (3 * 24 + 17) + 512);
     write!(
@@ -78,14 +78,10 @@ fn write_ply(loaded: &LoadedScene, path: &Path) -> anyhow::Result<(usize, usize)
     )?;
     let mut smooth = 0;
     for &t in &visible {
-        let corners = scene
-            .corner_normals
-            .get(t)
-            .copied()
-            .filter(|c| c[0] != glam::Vec3::ZERO);
+        let corners = scene.smooth_corners(t);
         smooth += usize::from(corners.is_some());
         let normals = corners.unwrap_or([glam::Vec3::ZERO; 3]);
-        for (p, n) in scene.triangles[t].iter().zip(normals) {
+        for (p, n) in scene.triangle(t).iter().zip(normals) {
             for x in p.to_array().into_iter().chain(n.to_array()) {
                 out.extend_from_slice(&x.to_le_bytes());
             }
@@ -97,7 +93,7 @@ fn write_ply(loaded: &LoadedScene, path: &Path) -> anyhow::Result<(usize, usize)
         for k in 0..3 {
             out.extend_from_slice(&(first + k).to_le_bytes());
         }
-        let material = i32::try_from(scene.triangle_slots[t]).context("slot out of range")?;
+        let material = i32::try_from(scene.slot(t)).context("slot out of range")?;
         out.extend_from_slice(&material.to_le_bytes());
     }
     std::fs::write(path, out).with_context(|| format!("cannot write {}", path.display()))?;

@@ -592,7 +592,6 @@ fn a_ground_plane_goes_under_a_lone_object() {
     let hit = app
         .document()
         .scene
-        .bvh
         .intersect(&down)
         .expect("no ground under the object");
     assert!((b.max.y - hit.t - b.min.y).abs() < 1e-4);

@@ -25,6 +25,7 @@
 //! in the fused AVX2 test the origin moved by a few ulps; see `simd.rs`).
 
 mod binary;
+mod boxes;
 mod build;
 mod frustum;
 mod packet;
@@ -38,6 +39,7 @@ mod wide;
 
 use crate::geometry::Aabb;
 
+pub use boxes::BoxTree;
 pub use packet::PACKET;
 pub use sphere::uv_sphere;
 pub use traverse::Kernel;
@@ -58,6 +60,10 @@ pub struct Hit {
 
 /// Id of an unused lane in a triangle pack.
 const PADDING: u32 = u32::MAX;
+
+/// The most triangles a scene can have (ids are `u32`, one value is [`PADDING`]), counting
+/// every instance's.
+pub const MAX_TRIANGLES: usize = PADDING as usize;
 
 /// A BVH that owns a copy of its triangles in BVH order.
 #[derive(Clone, Default)]

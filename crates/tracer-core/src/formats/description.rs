@@ -79,6 +79,11 @@ pub struct MeshDescription {
     pub triangle_parts: Vec<u32>,
     /// Where the mesh is placed in the scene (None: the identity).
     pub placement: Option<PlacementDescription>,
+    /// Another mesh (an earlier one, not itself an instance) whose geometry this one draws,
+    /// placed by its own `placement` (a glTF node reusing a mesh, a brep placed by several
+    /// `set breps` blocks). Its positions and triangles are then empty, and its parts are the
+    /// other's (copied, or empty to take them). The scene stores such geometry once.
+    pub instance_of: Option<usize>,
 }
 
 /// One part of a mesh: a material slot.

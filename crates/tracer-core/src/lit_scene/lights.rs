@@ -16,18 +16,25 @@ pub(super) fn emitter_table(
     if !(0..materials.len()).any(emissive) {
         return EmitterTable::default();
     }
-    let triangles: Vec<EmissiveTriangle> = scene
-        .triangle_slots
-        .iter()
-        .enumerate()
-        .filter(|(_, slot)| emissive(**slot as usize))
-        .map(|(t, &slot)| EmissiveTriangle {
-            triangle: t as u32,
-            vertices: scene.triangles[t],
-            front: scene.normals[t] * front_sign,
-            radiance: materials[slot as usize].emission,
-            sides: models[slot as usize].emission_sides,
+    // Brep by brep, so that the triangles of breps with no glowing part are never visited
+    // (instances of big meshes would make that slow).
+    let glowing_brep = |b: &crate::scene::Brep| {
+        (b.first_slot..b.first_slot + b.part_count).any(|s| emissive(s as usize))
+    };
+    let triangles: Vec<EmissiveTriangle> = (0..scene.breps.len())
+        .filter(|&b| glowing_brep(&scene.breps[b]))
+        .flat_map(|b| scene.brep_triangles(b))
+        .filter_map(|t| {
+            let t = t as u32;
+            let slot = scene.slot(t) as usize;
+            emissive(slot).then(|| EmissiveTriangle {
+                triangle: t,
+                vertices: scene.triangle(t),
+                front: scene.normal(t) * front_sign,
+                radiance: materials[slot].emission,
+                sides: models[slot].emission_sides,
+            })
         })
         .collect();
-    EmitterTable::new(scene.triangles.len(), &triangles)
+    EmitterTable::new(scene.triangle_count(), &triangles)
 }

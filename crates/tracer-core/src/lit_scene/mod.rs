@@ -146,7 +146,7 @@ impl<'a> LitScene<'a> {
 
     /// The unit front normal of triangle `prim` (see `front_sign`).
     pub fn front_normal(&self, prim: u32) -> Vec3 {
-        self.scene.normals[prim as usize] * self.front_sign
+        self.scene.normal(prim) * self.front_sign
     }
 
     /// The light `light` names (None for a glowing triangle that is not in the table).
@@ -165,6 +165,6 @@ impl<'a> LitScene<'a> {
 
     /// The material of triangle `prim`.
     pub fn material_of(&self, prim: u32) -> &PreparedMaterial {
-        &self.materials[self.scene.triangle_slots[prim as usize] as usize]
+        &self.materials[self.scene.slot(prim) as usize]
     }
 }

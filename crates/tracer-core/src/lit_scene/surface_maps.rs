@@ -14,7 +14,7 @@ use crate::geometry::Ray;
 use crate::shading::PreparedMaterial;
 use crate::texture::AlphaMode;
 use crate::texture::SurfaceDerivatives;
-use glam::{Vec2, Vec3, Vec4};
+use glam::{Vec2, Vec3};
 use std::borrow::Cow;
 
 /// At most this many alpha-cut surfaces are passed along one ray (then it stops there).
@@ -87,18 +87,19 @@ impl LitScene<'_> {
     pub fn uv_at(&self, prim: u32, bary: [f32; 2]) -> [Vec2; 2] {
         let [u, v] = bary;
         let w = 1.0 - u - v;
-        let at = |set: &Vec<[Vec2; 3]>| {
-            set.get(prim as usize)
+        let at = |set: usize| {
+            self.scene
+                .corner_uvs(set, prim)
                 .map_or(Vec2::ZERO, |c| c[0] * w + c[1] * u + c[2] * v)
         };
-        [at(&self.scene.uvs[0]), at(&self.scene.uvs[1])]
+        [at(0), at(1)]
     }
 
     /// The material at barycentrics `bary` of triangle `prim`: its slot's, with the slot's
     /// maps applied when it has any.
     #[inline]
     pub fn material_at(&self, prim: u32, bary: [f32; 2]) -> Cow<'_, PreparedMaterial> {
-        let slot = self.scene.triangle_slots[prim as usize] as usize;
+        let slot = self.scene.slot(prim) as usize;
         if !self.maps.shading.is_empty()
             && let Some(Some(set)) = self.maps.shading.get(slot)
         {
@@ -140,7 +141,7 @@ impl LitScene<'_> {
     #[inline(never)]
     pub fn bent_normal(&self, prim: u32, bary: [f32; 2], n: Vec3) -> Vec3 {
         let scene = self.scene;
-        let slot = scene.triangle_slots[prim as usize] as usize;
+        let slot = scene.slot(prim) as usize;
         let Some(Some(set)) = self.maps.bending.get(slot) else {
             return n;
         };
@@ -148,19 +149,17 @@ impl LitScene<'_> {
             return n;
         };
         let uv_set = usize::from(maps.normal.or(maps.bump).map_or(0, |m| m.set.min(1)));
-        let Some(corner_uvs) = scene.uvs[uv_set].get(prim as usize) else {
+        let Some(corner_uvs) = scene.corner_uvs(uv_set, prim) else {
             return n;
         };
         let Some((dp_du, dp_dv)) =
-            SurfaceDerivatives::of_triangle(scene.triangles[prim as usize], *corner_uvs)
+            SurfaceDerivatives::of_triangle(scene.triangle(prim), corner_uvs)
         else {
             return n;
         };
         let [u, v] = bary;
         let tangent = scene
-            .corner_tangents
-            .get(prim as usize)
-            .filter(|t| t[0] != Vec4::ZERO)
+            .corner_tangents(prim)
             .map(|t| t[0] * (1.0 - u - v) + t[1] * u + t[2] * v)
             .filter(|t| t.truncate().length_squared() > 1e-12);
         let d = SurfaceDerivatives {
@@ -186,7 +185,7 @@ impl LitScene<'_> {
     #[inline(never)]
     fn textured_emission(&self, prim: u32, p: Vec3) -> Vec3 {
         let scene = self.scene;
-        let Some(&slot) = scene.triangle_slots.get(prim as usize) else {
+        let Some(slot) = scene.slot_of(prim) else {
             return Vec3::ONE;
         };
         let Some(Some(set)) = self.maps.glowing.get(slot as usize) else {
@@ -200,7 +199,7 @@ impl LitScene<'_> {
             return Vec3::ONE;
         };
         // The point's barycentrics on its triangle.
-        let [a, b, c] = scene.triangles[prim as usize];
+        let [a, b, c] = scene.triangle(prim);
         let (e1, e2, d) = (b - a, c - a, p - a);
         let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
         let (d20, d21) = (d.dot(e1), d.dot(e2));
@@ -227,7 +226,7 @@ impl LitScene<'_> {
     /// Whether `ray` passes through the surface at `hit` (an alpha-cut one, where alpha says
     /// it is not there).
     fn passes(&self, hit: &Hit, ray: &Ray) -> bool {
-        let slot = self.scene.triangle_slots[hit.prim as usize] as usize;
+        let slot = self.scene.slot(hit.prim) as usize;
         let Some(Some(set)) = self.maps.cutting.get(slot) else {
             return false;
         };

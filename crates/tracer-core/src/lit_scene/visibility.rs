@@ -26,7 +26,7 @@ impl LitScene<'_> {
         if self.any_hidden {
             self.scene.closest_drawn(ray, &self.hidden)
         } else {
-            self.scene.bvh.intersect(ray)
+            self.scene.intersect(ray)
         }
     }
 
@@ -48,10 +48,10 @@ impl LitScene<'_> {
         for (r, o) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
             if r.len() < MIN_PACKET {
                 for (o, r) in o.iter_mut().zip(r) {
-                    *o = self.scene.bvh.intersect(r);
+                    *o = self.scene.intersect(r);
                 }
             } else {
-                self.scene.bvh.intersect_packet(r, o);
+                self.scene.intersect_packet(r, o);
             }
         }
     }
@@ -76,10 +76,10 @@ impl LitScene<'_> {
         for (r, o) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
             if r.len() < MIN_PACKET {
                 for (o, r) in o.iter_mut().zip(r) {
-                    *o = self.scene.bvh.occluded(r);
+                    *o = self.scene.occluded(r);
                 }
             } else {
-                self.scene.bvh.occluded_packet(r, o);
+                self.scene.occluded_packet(r, o);
             }
         }
     }
@@ -89,7 +89,7 @@ impl LitScene<'_> {
     pub fn occluded(&self, origin: Vec3, to_target: Vec3) -> bool {
         let ray = Self::shadow_ray(origin, to_target);
         if !self.one_by_one() {
-            return self.scene.bvh.occluded(&ray);
+            return self.scene.occluded(&ray);
         }
         // With hidden breps or alpha, walk the closest hits and skip what is not there.
         self.closest_visible(&ray).is_some()
@@ -159,7 +159,7 @@ impl LitScene<'_> {
             let Some(pane) = self.material_of(hit.prim).pane else {
                 return (Some(hit), weight);
             };
-            let cos = self.scene.normals[hit.prim as usize].dot(ray.dir) / length;
+            let cos = self.scene.normal(hit.prim).dot(ray.dir) / length;
             let (t, r) = pane.transmit_reflect(cos.abs());
             if t + r <= 0.0 {
                 return (Some(hit), 0.0);
@@ -193,7 +193,7 @@ impl LitScene<'_> {
             let Some(pane) = self.material_of(hit.prim).pane else {
                 return 0.0;
             };
-            let cos = self.scene.normals[hit.prim as usize].dot(ray.dir) / length;
+            let cos = self.scene.normal(hit.prim).dot(ray.dir) / length;
             through *= pane.transmittance(cos.abs());
             if through <= 0.0 {
                 return 0.0;

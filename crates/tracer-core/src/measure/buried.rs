@@ -28,7 +28,7 @@ pub fn front_winding(scene: &Scene, setup: &crate::scene::Setup) -> f32 {
                 continue;
             };
             if let Some(hit) = scene.closest_drawn(&ray, &setup.hidden) {
-                let [a, b, c] = scene.triangles[hit.prim as usize];
+                let [a, b, c] = scene.triangle(hit.prim);
                 along += if (b - a).cross(c - a).dot(ray.dir) > 0.0 {
                     1
                 } else {
@@ -59,7 +59,7 @@ pub fn is_buried(scene: &Scene, point: &SensorPoint, hidden: &[bool], front: f32
         let Some(hit) = scene.closest_drawn(&Ray::new(point.position, dir), hidden) else {
             return false;
         };
-        let [a, b, c] = scene.triangles[hit.prim as usize];
+        let [a, b, c] = scene.triangle(hit.prim);
         if (b - a).cross(c - a).dot(dir) * front < 0.0 {
             from_behind += 1;
         }

@@ -24,11 +24,18 @@ pub fn grid_on_surface(
     metres_per_unit: f32,
     taken: &[Grid],
 ) -> Result<Grid, String> {
-    let tris: Vec<usize> = (0..scene.triangles.len())
-        .filter(|&t| scene.triangle_slots[t] == slot)
+    let brep = scene
+        .slots
+        .get(slot as usize)
+        .ok_or("the selected surface is not in the scene")?
+        .brep as usize;
+    let tris: Vec<u32> = scene
+        .brep_triangles(brep)
+        .map(|t| t as u32)
+        .filter(|&t| scene.slot(t) == slot)
         .collect();
-    let area = |t: usize| {
-        let [a, b, c] = scene.triangles[t];
+    let area = |t: u32| {
+        let [a, b, c] = scene.triangle(t);
         (b - a).cross(c - a).length()
     };
     let largest = tris
@@ -36,7 +43,7 @@ pub fn grid_on_surface(
         .copied()
         .max_by(|&a, &b| area(a).total_cmp(&area(b)))
         .ok_or("the selected surface has no triangles")?;
-    let [a, b, c] = scene.triangles[largest];
+    let [a, b, c] = scene.triangle(largest);
     let mut n = (b - a)
         .cross(c - a)
         .try_normalize()
@@ -48,7 +55,7 @@ pub fn grid_on_surface(
     let tol = 1e-3 * scene.bounds.radius().max(1e-6);
     let mut points = Vec::new();
     for &t in &tris {
-        let [p, q, r] = scene.triangles[t];
+        let [p, q, r] = scene.triangle(t);
         let m = (q - p).cross(r - p).normalize_or_zero();
         if m.cross(n).length() < 0.02 && [p, q, r].iter().all(|v| (v - a).dot(n).abs() < tol) {
             points.extend([p, q, r]);

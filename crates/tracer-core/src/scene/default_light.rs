@@ -66,14 +66,13 @@ pub(super) fn is_room_seen_from(scene: &Scene, eye: glam::Vec3) -> bool {
 fn is_room(scene: &Scene, p: glam::Vec3, height: f32) -> bool {
     let mut up = crate::geometry::Ray::new(p, glam::Vec3::Y);
     up.t_max = 0.021 * height;
-    height > 0.0 && scene.bvh.occluded(&up) && open_below(scene, p)
+    height > 0.0 && scene.occluded(&up) && open_below(scene, p)
 }
 
 /// Distance from `p` to the first surface in direction `dir`.
 fn first_hit(scene: &Scene, p: glam::Vec3, dir: glam::Vec3) -> Option<f32> {
     let dir = dir.try_normalize()?;
     scene
-        .bvh
         .intersect(&crate::geometry::Ray::new(p, dir))
         .map(|h| h.t)
 }
@@ -82,7 +81,7 @@ fn first_hit(scene: &Scene, p: glam::Vec3, dir: glam::Vec3) -> Option<f32> {
 fn sees(scene: &Scene, p: glam::Vec3, eye: glam::Vec3) -> bool {
     let mut ray = crate::geometry::Ray::new(p, eye - p);
     ray.t_max = 1.0 - 1e-4;
-    !scene.bvh.occluded(&ray)
+    !scene.occluded(&ray)
 }
 
 /// A room's ceiling is also just above `p`; in a room the view down from `p` is open for a
@@ -90,10 +89,7 @@ fn sees(scene: &Scene, p: glam::Vec3, eye: glam::Vec3) -> bool {
 fn open_below(scene: &Scene, p: glam::Vec3) -> bool {
     let down = crate::geometry::Ray::new(p, glam::Vec3::NEG_Y);
     let height = scene.bounds.extent().y;
-    scene
-        .bvh
-        .intersect(&down)
-        .is_some_and(|h| h.t > 0.25 * height)
+    scene.intersect(&down).is_some_and(|h| h.t > 0.25 * height)
 }
 
 fn round_2_significant(x: f32) -> f32 {

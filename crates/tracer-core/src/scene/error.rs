@@ -16,6 +16,26 @@ pub enum SceneError {
         line: usize,
         brep: String,
     },
+    #[error(
+        "{}: line {line}: the placement of {brep} is not finite or not invertible (it flattens the mesh)",
+        path.display()
+    )]
+    SingularPlacement {
+        path: PathBuf,
+        line: usize,
+        brep: String,
+    },
+    #[error(
+        "{}: line {line}: mesh {brep} is an instance of a mesh that is not before it or is an instance itself",
+        path.display()
+    )]
+    BadInstance {
+        path: PathBuf,
+        line: usize,
+        brep: String,
+    },
+    #[error("{}: the scene has more than {limit} triangles (with its instances)", path.display())]
+    TooManyTriangles { path: PathBuf, limit: usize },
     #[error("brep {brep}: triangle {triangle} uses a vertex the brep does not have")]
     BadIndex { brep: String, triangle: usize },
     #[error("{}: the scene has no triangles", path.display())]

@@ -84,7 +84,7 @@ pub fn outline_areas(scene: &Scene) -> [f32; 3] {
                 origin[axis] = b.min[axis] - 0.01 * extent[axis] - 1e-6;
                 origin[u] = b.min[u] + extent[u] * (i as f32 + 0.5) / OUTLINE_GRID as f32;
                 origin[v] = b.min[v] + extent[v] * (j as f32 + 0.5) / OUTLINE_GRID as f32;
-                if scene.bvh.intersect(&Ray::new(origin, dir)).is_some() {
+                if scene.intersect(&Ray::new(origin, dir)).is_some() {
                     hits += 1;
                 }
             }

@@ -3,12 +3,15 @@
 
 use super::design::Design;
 use super::error::SceneError;
+use super::instances::{Instance, Instances, Prototype};
+use super::triangles::TriangleSet;
 use crate::bvh::Bvh;
-use crate::formats::SceneDescription;
+use crate::formats::{MeshDescription, SceneDescription};
 use crate::geometry::Aabb;
-use glam::{DMat4, Vec2, Vec3};
+use glam::DMat4;
 use std::borrow::Cow;
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// One brep of the scene and its material slots `first_slot .. first_slot + part_count`.
@@ -24,6 +27,10 @@ pub struct Brep {
     /// The name of each part's material in the file (an Integra `.atr` attribute, an OBJ
     /// `usemtl`, a glTF material) when the file names any, else empty; "" for a part without.
     pub part_materials: Vec<String>,
+    /// Where its triangles are: its first among the scene's own triangles, or (when it is an
+    /// instance of a mesh drawn several times) the instance.
+    pub first_triangle: usize,
+    pub instance: Option<u32>,
 }
 
 /// Which brep and part a material slot belongs to.
@@ -33,7 +40,10 @@ pub struct SlotOwner {
     pub part: u32,
 }
 
-/// World-space triangles with their BVH.
+/// The scene's triangles with their BVH: its own triangles in scene coordinates, and meshes
+/// placed several times stored once each ([`Instances`]). Per-triangle questions go through
+/// the methods below (`triangle`, `normal`, `slot`, ...), which answer for both kinds by
+/// triangle id: the `prim` of a [`Hit`].
 #[derive(Debug)]
 pub struct Scene {
     /// A short name for titles (the file stem, or "Cornell box").
@@ -41,30 +51,21 @@ pub struct Scene {
     /// The file it was read from (None for the built-in scene).
     pub source: Option<PathBuf>,
     pub breps: Vec<Brep>,
-    /// Triangle vertices in scene coordinates (the file's numbers after `set breps` placement).
-    pub triangles: Vec<[Vec3; 3]>,
-    /// Unit geometric normal per triangle, `(v1 - v0) × (v2 - v0)` normalised (zero when degenerate).
-    pub normals: Vec<Vec3>,
-    /// Vertex normals per triangle corner for smooth shading (unit, scene coordinates); zero
-    /// for a triangle shaded flat. Empty when every triangle is flat.
-    pub corner_normals: Vec<[Vec3; 3]>,
+    /// The triangles drawn once, in scene coordinates (the file's numbers after `set breps`
+    /// placement): ids `0 .. own.len()`.
+    pub(crate) own: TriangleSet,
+    /// The BVH over `own`.
+    pub(super) bvh: Bvh,
+    /// Meshes drawn several times: ids from `own.len()` on.
+    pub(super) instances: Arc<Instances>,
     /// The crease angle the vertex normals were averaged with, degrees (0: all flat).
     pub smooth_angle_deg: f32,
-    /// Texture coordinates per triangle corner, UV set 0 and set 1 (the image's frame, v = 0
-    /// at its top row); each empty when no mesh has that set.
-    pub uvs: [Vec<[Vec2; 3]>; 2],
-    /// Tangent (xyz unit, w the handedness: B = w · N × T) per triangle corner where a normal
-    /// map needs one (scene coordinates); zero elsewhere, empty when no normal map is used.
-    pub corner_tangents: Vec<[glam::Vec4; 3]>,
     /// The images the materials' maps read, each file once.
     pub textures: std::sync::Arc<[crate::texture::Texture]>,
     /// The maps of the file's textured materials (`Material::textures` indexes them).
     pub texture_sets: Vec<crate::texture::TextureSet>,
-    /// Material slot of each triangle.
-    pub triangle_slots: Vec<u32>,
     /// Owner of each material slot.
     pub slots: Vec<SlotOwner>,
-    pub bvh: Bvh,
     pub bounds: Aabb,
     /// Wall time of the BVH build, seconds.
     pub bvh_build_secs: f64,
@@ -86,133 +87,118 @@ impl Scene {
 
     /// [`Scene::build`] with vertex normals averaged within `smooth_angle_deg` where the file
     /// has none (the sidecar's `smooth_angle_deg`); 0 shades every triangle flat.
+    ///
+    /// A mesh that another names as its [`MeshDescription::instance_of`] is stored once in its
+    /// own frame, and it and each mesh naming it become instances of it.
     pub fn build_with<'a>(
         desc: impl Into<Cow<'a, SceneDescription>>,
         name: &str,
         smooth_angle_deg: f32,
     ) -> Result<Scene, SceneError> {
-        let mut desc: Cow<'a, SceneDescription> = desc.into();
-        let mut corner_normals: Vec<[Vec3; 3]> = Vec::new();
-        let mut any_smooth = false;
+        Self::build_inner(desc.into(), name, smooth_angle_deg, false)
+    }
+
+    /// [`Scene::build_with`], every mesh drawn through the instance level (stored in its
+    /// own frame, placed by its placement) even when it is drawn once: to compare the two
+    /// levels (tests, benchmarks). Triangle ids are the same as [`Scene::build_with`] gives.
+    pub fn build_instanced<'a>(
+        desc: impl Into<Cow<'a, SceneDescription>>,
+        name: &str,
+        smooth_angle_deg: f32,
+    ) -> Result<Scene, SceneError> {
+        Self::build_inner(desc.into(), name, smooth_angle_deg, true)
+    }
+
+    fn build_inner(
+        mut desc: Cow<'_, SceneDescription>,
+        name: &str,
+        smooth_angle_deg: f32,
+        all_instanced: bool,
+    ) -> Result<Scene, SceneError> {
+        let mut reused = reused_meshes(&desc)?;
+        if all_instanced {
+            reused.iter_mut().for_each(|r| *r = true);
+        }
         let mut breps = Vec::with_capacity(desc.meshes.len());
         let mut slots = Vec::new();
-        let total = desc.triangle_count();
-        let mut triangles = Vec::with_capacity(total);
-        let mut triangle_slots = Vec::with_capacity(total);
-        let mut uvs: [Vec<[Vec2; 3]>; 2] = [Vec::new(), Vec::new()];
-        let mut corner_tangents: Vec<[glam::Vec4; 3]> = Vec::new();
+        let own_count: usize = desc
+            .meshes
+            .iter()
+            .zip(&reused)
+            .filter(|(m, r)| !**r && m.instance_of.is_none())
+            .map(|(m, _)| m.triangles.len())
+            .sum();
+        let mut own = TriangleSet {
+            triangles: Vec::with_capacity(own_count),
+            slots: Vec::with_capacity(own_count),
+            ..TriangleSet::default()
+        };
+        let mut prototypes: Vec<Prototype> = Vec::new();
+        // The prototype of each reused mesh.
+        let mut prototype_of: Vec<Option<u32>> = vec![None; desc.meshes.len()];
+        let mut instances = Vec::new();
         for (brep_index, mesh) in desc.meshes.iter().enumerate() {
             let m = mesh
                 .placement
                 .as_ref()
                 .map_or(DMat4::IDENTITY, |p| p.world_from_local);
-            let mut world = Vec::with_capacity(mesh.positions.len());
-            for v in &mesh.positions {
-                let p = m.transform_point3(glam::DVec3::from(*v)).as_vec3();
-                if !p.is_finite() {
-                    let (path, line) = mesh
-                        .placement
-                        .as_ref()
-                        .map_or((mesh.source.clone(), mesh.line), |p| {
-                            (p.source.clone(), p.line)
-                        });
-                    return Err(SceneError::NonFinitePlacement {
-                        path,
-                        line,
-                        brep: mesh.name.clone(),
-                    });
-                }
-                world.push(p);
-            }
-            // Normals go through the inverse transpose of the placement.
-            let normal_matrix = glam::DMat3::from_mat4(m).inverse().transpose();
-            // Tangents where a part's material has a normal map (in the map's UV set): they
-            // need the mesh's corner normals kept; other meshes take them one by one.
-            let normal_set = mesh.parts.iter().find_map(|p| {
-                let maps = desc.materials.get(p.material?)?.maps.as_ref()?;
-                maps.normal.as_ref().map(|n| usize::from(n.set.min(1)))
-            });
-            let mut mesh_normals = Vec::new();
-            let first_triangle = triangles.len();
-            super::smoothing::for_each_corner_normals(mesh, smooth_angle_deg, |t, corners| {
-                if normal_set.is_some() {
-                    mesh_normals.push(corners);
-                }
-                let face = mesh.triangles[t].map(|i| world.get(i as usize).copied());
-                let face_normal = match face {
-                    [Some(a), Some(b), Some(c)] => (b - a).cross(c - a).normalize_or_zero(),
-                    _ => Vec3::ZERO,
-                };
-                let world = corners.and_then(|c| {
-                    let out = c.map(|n| (normal_matrix * n).normalize_or_zero().as_vec3());
-                    let usable = out.iter().all(|n| n.is_finite() && *n != Vec3::ZERO);
-                    // Corners that all lie along the face normal (a plane) are shaded flat:
-                    // the same picture, without the cost.
-                    let planar = out.iter().all(|n| n.dot(face_normal).abs() >= 1.0 - 1e-6);
-                    (usable && !planar).then_some(out)
-                });
-                if world.is_some() && !any_smooth {
-                    any_smooth = true;
-                    corner_normals.resize(first_triangle, [Vec3::ZERO; 3]);
-                }
-                if any_smooth {
-                    corner_normals.push(world.unwrap_or([Vec3::ZERO; 3]));
-                }
-            });
-            if let Some(set) = normal_set {
-                let local = super::tangents::mesh_tangents(mesh, &mesh_normals, set);
-                if !local.is_empty() {
-                    let linear = glam::DMat3::from_mat4(m);
-                    let handedness = linear.determinant().signum() as f32;
-                    corner_tangents.resize(first_triangle, [glam::Vec4::ZERO; 3]);
-                    corner_tangents.extend(local.iter().map(|t| {
-                        t.map(|c| {
-                            let xyz = (linear * c.truncate().as_dvec3()).normalize_or_zero();
-                            xyz.as_vec3().extend(c.w * handedness)
-                        })
-                    }));
-                }
-            }
+            // An instance's parts are its prototype's.
+            let shape = mesh.instance_of.map_or(mesh, |j| &desc.meshes[j]);
+            let parts = if mesh.parts.is_empty() {
+                &shape.parts
+            } else {
+                &mesh.parts
+            };
             let first_slot = slots.len() as u32;
-            let part_count = (mesh.parts.len() as u32).max(1);
+            let part_count = (parts.len() as u32).max(1);
             slots.extend((0..part_count).map(|part| SlotOwner {
                 brep: brep_index as u32,
                 part,
             }));
-            for (t, tri) in mesh.triangles.iter().enumerate() {
-                let fetch = |i: u32| world.get(i as usize).copied();
-                let (Some(a), Some(b), Some(c)) = (fetch(tri[0]), fetch(tri[1]), fetch(tri[2]))
-                else {
-                    return Err(SceneError::BadIndex {
-                        brep: mesh.name.clone(),
-                        triangle: t,
-                    });
-                };
-                triangles.push([a, b, c]);
-                for (set, out) in uvs.iter_mut().enumerate() {
-                    let given = &mesh.uvs[set];
-                    if given.is_empty() && out.is_empty() {
-                        continue;
+            let first_triangle = own.len();
+            let mut instance = None;
+            if reused[brep_index] || mesh.instance_of.is_some() {
+                let j = mesh.instance_of.unwrap_or(brep_index);
+                let p = match prototype_of[j] {
+                    Some(p) => p,
+                    None => {
+                        let mut set = TriangleSet::default();
+                        let proto = &desc.meshes[j];
+                        let count = (proto.parts.len() as u32).max(1);
+                        set.append_mesh(
+                            proto,
+                            &desc.materials,
+                            DMat4::IDENTITY,
+                            smooth_angle_deg,
+                            0,
+                            count,
+                        )?;
+                        set.pad();
+                        let bvh = Bvh::build(&set.triangles);
+                        set.finish();
+                        prototypes.push(Prototype { set, bvh });
+                        prototype_of[j] = Some(prototypes.len() as u32 - 1);
+                        prototypes.len() as u32 - 1
                     }
-                    // Meshes before the first with this set, and corners without, read (0, 0).
-                    out.resize(triangles.len() - 1, [Vec2::ZERO; 3]);
-                    out.push(tri.map(|i| {
-                        given
-                            .get(i as usize)
-                            .map_or(Vec2::ZERO, |&uv| Vec2::from(uv))
-                    }));
-                }
-                let part = mesh
-                    .triangle_parts
-                    .get(t)
-                    .copied()
-                    .unwrap_or(0)
-                    .min(part_count - 1);
-                triangle_slots.push(first_slot + part);
+                };
+                let proto = &prototypes[p as usize];
+                let placed = Instance::new(p, proto, m, brep_index as u32, first_slot)
+                    .ok_or_else(|| non_finite(mesh))?;
+                instance = Some(instances.len() as u32);
+                instances.push(placed);
+            } else {
+                own.append_mesh(
+                    mesh,
+                    &desc.materials,
+                    m,
+                    smooth_angle_deg,
+                    first_slot,
+                    part_count,
+                )?;
             }
-            let part_names = if mesh.parts.iter().any(|p| p.name.is_some()) {
+            let part_names = if parts.iter().any(|p| p.name.is_some()) {
                 (0..part_count as usize)
-                    .map(|i| match mesh.parts.get(i).and_then(|p| p.name.clone()) {
+                    .map(|i| match parts.get(i).and_then(|p| p.name.clone()) {
                         Some(n) => n,
                         None => format!("part{i}"),
                     })
@@ -221,7 +207,7 @@ impl Scene {
                 Vec::new()
             };
             let material_name = |i: usize| {
-                mesh.parts
+                parts
                     .get(i)
                     .and_then(|p| p.material)
                     .and_then(|m| desc.materials.get(m))
@@ -238,26 +224,25 @@ impl Scene {
                 name: mesh.name.clone(),
                 part_count,
                 first_slot,
-                triangle_count: mesh.triangles.len(),
+                triangle_count: shape.triangles.len(),
                 part_names,
                 part_materials,
+                first_triangle,
+                instance,
             });
         }
-        if triangles.is_empty() {
+        own.pad();
+        let room = (crate::bvh::MAX_TRIANGLES).saturating_sub(own.len());
+        let instances = Instances::new(prototypes, instances, room).ok_or_else(|| {
+            SceneError::TooManyTriangles {
+                path: desc.path.clone(),
+                limit: crate::bvh::MAX_TRIANGLES,
+            }
+        })?;
+        if own.is_empty() && instances.triangle_count() == 0 {
             return Err(SceneError::NoTriangles {
                 path: desc.path.clone(),
             });
-        }
-        if any_smooth {
-            corner_normals.resize(triangles.len(), [Vec3::ZERO; 3]);
-        }
-        for out in &mut uvs {
-            if !out.is_empty() {
-                out.resize(triangles.len(), [Vec2::ZERO; 3]);
-            }
-        }
-        if !corner_tangents.is_empty() {
-            corner_tangents.resize(triangles.len(), [glam::Vec4::ZERO; 3]);
         }
         // The images each material names, loaded once each; a map that cannot be used is
         // noted and left out.
@@ -281,10 +266,12 @@ impl Scene {
                 Some((texture_sets.len() - 1) as u32)
             })
             .collect();
-        let bounds = triangles
+        let bounds = own
+            .triangles
             .iter()
             .flatten()
-            .fold(Aabb::EMPTY, |b, &p| b.grow(p));
+            .fold(Aabb::EMPTY, |b, &p| b.grow(p))
+            .union(instances.bounds());
         // A description given by value has served its triangles: its vertex and index arrays
         // go before the BVH build, the peak of a load (about 30 bytes a triangle).
         if let Cow::Owned(d) = &mut desc {
@@ -298,13 +285,9 @@ impl Scene {
             }
         }
         let started = Instant::now();
-        let bvh = Bvh::build(&triangles);
+        let bvh = Bvh::build(&own.triangles);
         let bvh_build_secs = started.elapsed().as_secs_f64();
-        // Face normals after the BVH build, whose peak they would add to.
-        let normals = triangles
-            .iter()
-            .map(|[a, b, c]| (*b - *a).cross(*c - *a).normalize_or_zero())
-            .collect();
+        own.finish();
         let first_slots: Vec<u32> = breps.iter().map(|b| b.first_slot).collect();
         let mut design =
             Design::from_description(&desc, &first_slots, slots.len(), &set_of_material);
@@ -313,25 +296,17 @@ impl Scene {
             name: name.to_owned(),
             source: (!desc.path.as_os_str().is_empty()).then(|| desc.path.clone()),
             breps,
-            triangles,
-            normals,
-            corner_normals,
-            uvs,
-            corner_tangents,
+            own,
+            bvh,
+            instances: Arc::new(instances),
             textures: library.textures.into(),
             texture_sets,
             smooth_angle_deg: smooth_angle_deg.max(0.0),
-            triangle_slots,
             slots,
-            bvh,
             bounds,
             bvh_build_secs,
             design,
         })
-    }
-
-    pub fn triangle_count(&self) -> usize {
-        self.triangles.len()
     }
 
     /// A label for a material slot, which is also the sidecar key that `Sidecar::from_setup`
@@ -399,5 +374,41 @@ impl Brep {
                 .position(|n| n == key)
                 .map(|i| i as u32),
         }
+    }
+}
+
+/// Which meshes other meshes name as their `instance_of` (they become prototypes); an error
+/// for a name past the meshes, or one naming an instance itself.
+fn reused_meshes(desc: &SceneDescription) -> Result<Vec<bool>, SceneError> {
+    let mut reused = vec![false; desc.meshes.len()];
+    for (i, mesh) in desc.meshes.iter().enumerate() {
+        let Some(j) = mesh.instance_of else {
+            continue;
+        };
+        let valid = j < i && desc.meshes[j].instance_of.is_none();
+        if !valid {
+            return Err(SceneError::BadInstance {
+                path: mesh.source.clone(),
+                line: mesh.line,
+                brep: mesh.name.clone(),
+            });
+        }
+        reused[j] = true;
+    }
+    Ok(reused)
+}
+
+/// The error for a placement that is not finite or not invertible.
+fn non_finite(mesh: &MeshDescription) -> SceneError {
+    let (path, line) = mesh
+        .placement
+        .as_ref()
+        .map_or((mesh.source.clone(), mesh.line), |p| {
+            (p.source.clone(), p.line)
+        });
+    SceneError::SingularPlacement {
+        path,
+        line,
+        brep: mesh.name.clone(),
     }
 }

@@ -43,11 +43,11 @@ impl Scene {
             [p(-half, -half), p(-half, half), p(half, half)],
             [p(-half, -half), p(half, half), p(half, -half)],
         ];
-        let mut triangles = self.triangles.clone();
-        triangles.extend(quad);
+        let mut own = self.own.clone();
+        let first_triangle = own.len();
+        own.triangles.extend(quad);
         let slot = self.slots.len() as u32;
-        let mut triangle_slots = self.triangle_slots.clone();
-        triangle_slots.extend([slot, slot]);
+        own.slots.extend([slot, slot]);
         let mut slots = self.slots.clone();
         slots.push(SlotOwner {
             brep: self.breps.len() as u32,
@@ -61,43 +61,27 @@ impl Scene {
             triangle_count: 2,
             part_names: Vec::new(),
             part_materials: Vec::new(),
+            first_triangle,
+            instance: None,
         });
-        let mut normals = self.normals.clone();
-        normals.extend([Vec3::Y, Vec3::Y]);
-        let mut corner_normals = self.corner_normals.clone();
-        if !corner_normals.is_empty() {
-            // Flat: zero corner normals.
-            corner_normals.extend([[Vec3::ZERO; 3]; 2]);
-        }
-        let mut uvs = self.uvs.clone();
-        for set in &mut uvs {
-            if !set.is_empty() {
-                set.extend([[glam::Vec2::ZERO; 3]; 2]);
-            }
-        }
-        let mut corner_tangents = self.corner_tangents.clone();
-        if !corner_tangents.is_empty() {
-            corner_tangents.extend([[glam::Vec4::ZERO; 3]; 2]);
-        }
+        own.normals.extend([Vec3::Y, Vec3::Y]);
+        // Flat: zero corner normals, (0, 0) texture coordinates, no tangents.
+        own.pad();
         let mut design = self.design.clone();
         design.materials.push(Some(ground_material()));
         let started = std::time::Instant::now();
-        let bvh = Bvh::build(&triangles);
+        let bvh = Bvh::build(&own.triangles);
         Scene {
             name: self.name.clone(),
             source: self.source.clone(),
             breps,
-            triangles,
-            normals,
-            corner_normals,
-            uvs,
-            corner_tangents,
+            own,
+            bvh,
+            instances: self.instances.clone(),
             textures: self.textures.clone(),
             texture_sets: self.texture_sets.clone(),
             smooth_angle_deg: self.smooth_angle_deg,
-            triangle_slots,
             slots,
-            bvh,
             bounds: self.bounds,
             bvh_build_secs: started.elapsed().as_secs_f64(),
             design,
@@ -125,17 +109,14 @@ mod tests {
         assert_eq!(g.slots.len(), scene.slots.len() + 1);
         assert_eq!(g.bounds, scene.bounds);
         let down = Ray::new(Vec3::new(2.0, 5.0, 0.5), Vec3::NEG_Y);
-        assert!(scene.bvh.intersect(&down).is_none());
-        let hit = g.bvh.intersect(&down).unwrap();
+        assert!(scene.intersect(&down).is_none());
+        let hit = g.intersect(&down).unwrap();
         assert!(
             (hit.t - 4.0).abs() < 1e-4,
             "the plane is at the bounds' bottom, y = 1"
         );
-        assert_eq!(
-            g.triangle_slots[hit.prim as usize],
-            g.slots.len() as u32 - 1
-        );
-        assert_eq!(g.normals[hit.prim as usize], Vec3::Y);
+        assert_eq!(g.slot(hit.prim), g.slots.len() as u32 - 1);
+        assert_eq!(g.normal(hit.prim), Vec3::Y);
         assert_eq!(g.design.materials.last().unwrap().unwrap().kd, [0.2; 3]);
     }
 }

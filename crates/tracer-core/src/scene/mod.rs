@@ -10,8 +10,10 @@ mod error;
 mod framing;
 mod geometry;
 mod ground;
+mod instances;
 mod light;
 mod light_spec;
+mod lookup;
 mod material;
 mod material_keys;
 mod notes;
@@ -22,6 +24,7 @@ mod sidecar;
 mod sidecar_open;
 mod smoothing;
 mod tangents;
+mod triangles;
 mod units;
 
 pub use builtin::{BUILTIN_NAME, builtin_cornell_box};
@@ -35,6 +38,7 @@ pub use error::SceneError;
 pub use framing::{framing_camera, framing_side, outline_areas};
 pub use geometry::{Brep, Scene, SlotOwner};
 pub use ground::{GROUND_NAME, GROUND_REFLECTANCE, ground_material};
+pub use instances::{Instance, Instances, Prototype};
 pub use light::{
     KindTag, LUMINANCE_WEIGHTS, Light, LightKind, LuminairePlacement, LuminousShape, ShapeChoice,
     Spot, luminance,
@@ -50,6 +54,7 @@ pub use sidecar_open::{
     SIDECAR_SUFFIX, builtin_with_sidecar, is_sidecar_file, load_sidecar, scene_of_sidecar,
 };
 pub use smoothing::{DEFAULT_SMOOTH_ANGLE_DEG, corner_normals};
+pub use triangles::TriangleSet;
 pub use units::{Handedness, LengthUnit};
 
 use std::path::Path;

@@ -65,7 +65,7 @@ pub(crate) fn nearest_surface(scene: &Scene, p: glam::Vec3) -> Option<f32> {
                 let Some(dir) = dir.try_normalize() else {
                     continue;
                 };
-                if let Some(hit) = scene.bvh.intersect(&crate::geometry::Ray::new(p, dir)) {
+                if let Some(hit) = scene.intersect(&crate::geometry::Ray::new(p, dir)) {
                     best = Some(best.map_or(hit.t, |b: f32| b.min(hit.t)));
                 }
             }

@@ -23,8 +23,8 @@ impl Scene {
         let epsilon = self.ray_epsilon();
         let mut r = *ray;
         loop {
-            let hit = self.bvh.intersect(&r)?;
-            let slot = self.triangle_slots.get(hit.prim as usize).copied();
+            let hit = self.intersect(&r)?;
+            let slot = self.slot_of(hit.prim);
             if !slot.is_some_and(|s| hidden.get(s as usize).copied().unwrap_or(false)) {
                 return Some(hit);
             }
@@ -35,7 +35,7 @@ impl Scene {
     /// The material slot of the closest drawn surface along `ray` (picking).
     pub fn pick_slot(&self, ray: &Ray, hidden: &[bool]) -> Option<u32> {
         let hit = self.closest_drawn(ray, hidden)?;
-        self.triangle_slots.get(hit.prim as usize).copied()
+        self.slot_of(hit.prim)
     }
 }
 

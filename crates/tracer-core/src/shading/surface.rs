@@ -37,14 +37,9 @@ impl Surface {
     #[inline(always)]
     pub fn at(lit: &LitScene<'_>, hit: &Hit, p: Vec3, dir: Vec3) -> Surface {
         let scene = lit.scene;
-        let prim = hit.prim as usize;
-        let n = scene.normals[prim];
+        let n = scene.normal(hit.prim);
         let ng = if n.dot(dir) > 0.0 { -n } else { n };
-        let corners = scene
-            .corner_normals
-            .get(prim)
-            .filter(|c| c[0] != Vec3::ZERO);
-        let Some(c) = corners else {
+        let Some(c) = scene.smooth_corners(hit.prim) else {
             let ns = if lit.bends_normals() {
                 // The map bends the face's own normal, then it turns to the ray's side.
                 let bent = lit.bent_normal(hit.prim, [hit.u, hit.v], n);
@@ -74,7 +69,7 @@ impl Surface {
             let bent = lit.bent_normal(hit.prim, [hit.u, hit.v], ns * sign);
             ns = crate::texture::above_surface(bent * sign, ng);
         }
-        let t = &scene.triangles[prim];
+        let t = scene.triangle(hit.prim);
         let lift = |k: usize| {
             let nk = c[k] * sign;
             // `min(0.0)` spelt out: the lanes of the direct wavefront compute it the same way,
@@ -121,12 +116,12 @@ mod tests {
     #[test]
     fn smooth_normals_on_a_sphere_match_the_analytic_normal_within_one_degree() {
         let scene = Scene::build(sphere(24, 48), "sphere").expect("sphere");
-        assert!(!scene.corner_normals.is_empty());
+        assert!(scene.any_smooth());
 
         let setup = Setup::defaults(&scene, LengthUnit::M);
         let lit = LitScene::new(&scene, &setup, 1);
         let flat = Scene::build_with(sphere(24, 48), "sphere", 0.0).expect("sphere");
-        assert!(flat.corner_normals.is_empty());
+        assert!(!flat.any_smooth());
         let flat_setup = Setup::defaults(&flat, LengthUnit::M);
         let flat_prep = LitScene::new(&flat, &flat_setup, 1);
         let (mut worst, mut worst_flat) = (0.0f32, 0.0f32);

@@ -53,14 +53,39 @@ impl StableHash {
 pub fn scene_hash(scene: &Scene, setup: &Setup) -> u64 {
     let mut h = StableHash::new();
     h.write(b"triangles");
-    h.write(&(scene.triangles.len() as u64).to_le_bytes());
-    for (tri, slot) in scene.triangles.iter().zip(&scene.triangle_slots) {
-        for v in tri {
+    let own = scene.own_triangle_count();
+    h.write(&(own as u64).to_le_bytes());
+    for t in 0..own as u32 {
+        for v in scene.triangle(t) {
             for c in v.to_array() {
                 h.write_u32(c.to_bits());
             }
         }
-        h.write_u32(*slot);
+        h.write_u32(scene.slot(t));
+    }
+    // Reused meshes once each, and each instance's placement and slots.
+    let instances = scene.instances();
+    if !instances.is_empty() {
+        h.write(b"prototypes");
+        for p in &instances.prototypes {
+            h.write(&(p.set.len() as u64).to_le_bytes());
+            for (tri, part) in p.set.triangles.iter().zip(&p.set.slots) {
+                for v in tri {
+                    for c in v.to_array() {
+                        h.write_u32(c.to_bits());
+                    }
+                }
+                h.write_u32(*part);
+            }
+        }
+        h.write(b"instances");
+        for i in &instances.instances {
+            h.write_u32(i.prototype);
+            h.write_u32(i.first_slot);
+            for c in i.world_from_local.to_cols_array() {
+                h.write_u32(c.to_bits());
+            }
+        }
     }
     h.write(b"slots");
     for owner in &scene.slots {

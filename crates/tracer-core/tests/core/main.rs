@@ -24,6 +24,7 @@ mod film_precision;
 mod fuzz_corpus;
 mod gi_analytic;
 mod illuminance_on_demand;
+mod instancing;
 mod integra_bundle;
 mod integra_room2;
 mod luminaires;

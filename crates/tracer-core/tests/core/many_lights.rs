@@ -151,7 +151,7 @@ fn furnace_of_1200_small_emitters() {
         .map(|(name, q)| brep(name, &subdivide(q, 10)))
         .collect();
     let sc = scene(breps);
-    assert_eq!(sc.triangles.len(), 1200);
+    assert_eq!(sc.triangle_count(), 1200);
     let le = 100.0;
     let rho = 0.5f32;
     let mats = vec![emitting(diffuse(rho), le); sc.slots.len()];

@@ -101,6 +101,16 @@ pub fn parse(
         names: HashMap::new(),
         skipped_modes: 0,
         directional: 0,
+        reused: {
+            let mut users = vec![0usize; gltf.meshes().len()];
+            for n in gltf.nodes() {
+                if let Some(m) = n.mesh() {
+                    users[m.index()] += 1;
+                }
+            }
+            users.iter().map(|&u| u > 1).collect()
+        },
+        first_use: HashMap::new(),
     };
     // Counts before reading any data.
     let (triangles, vertices) =
@@ -146,7 +156,12 @@ pub fn parse(
             reader.directional
         ));
     }
-    if reader.desc.meshes.iter().all(|m| m.triangles.is_empty()) {
+    if reader
+        .desc
+        .meshes
+        .iter()
+        .all(|m| m.triangles.is_empty() && m.instance_of.is_none())
+    {
         return Err(FormatError::new(path, 0, "no triangles: nothing to draw"));
     }
     Ok(reader.desc)
@@ -165,6 +180,11 @@ struct Reader<'r> {
     names: HashMap<String, usize>,
     skipped_modes: usize,
     directional: usize,
+    /// Per glTF mesh: whether several nodes draw it (it is then read once, in its own frame,
+    /// and each node places an instance of it).
+    reused: Vec<bool>,
+    /// The description mesh each reused glTF mesh was read into.
+    first_use: HashMap<usize, usize>,
 }
 
 impl Reader<'_> {
@@ -239,10 +259,31 @@ impl Reader<'_> {
         } else {
             format!("{base}#{seen}")
         };
+        // A mesh several nodes draw is read once in its own frame; each node places it.
+        let reused = self.reused.get(mesh.index()).copied().unwrap_or(false);
+        let placement = reused.then(|| super::PlacementDescription {
+            world_from_local: world,
+            source: self.path.to_owned(),
+            line: 0,
+        });
+        if let Some(&first) = self.first_use.get(&mesh.index()) {
+            let parts = self.desc.meshes[first].parts.clone();
+            self.desc.meshes.push(MeshDescription {
+                name,
+                source: self.path.to_owned(),
+                parts,
+                placement,
+                instance_of: Some(first),
+                ..MeshDescription::default()
+            });
+            return Ok(());
+        }
+        let world = if reused { DMat4::IDENTITY } else { world };
         let normal_matrix = DMat3::from_mat4(world).inverse().transpose();
         let mut out = MeshDescription {
             name: name.clone(),
             source: self.path.to_owned(),
+            placement,
             ..MeshDescription::default()
         };
         let mut all_normals = true;
@@ -442,6 +483,9 @@ impl Reader<'_> {
             }
         }
         if !out.triangles.is_empty() {
+            if reused {
+                self.first_use.insert(mesh.index(), self.desc.meshes.len());
+            }
             self.desc.meshes.push(out);
         }
         Ok(())

@@ -130,7 +130,7 @@ impl Bidirectional<'_, '_> {
             let p = ray.at(hit.t);
             let surface = Surface::at(lit, &hit, p, ray.dir);
             // `n` stays the triangle's own normal (emission sides are measured against it).
-            let n = lit.scene.normals[prim as usize];
+            let n = lit.scene.normal(prim);
             let mut v = Vertex::new(Kind::Surface(prim), p, n, beta, 0.0);
             v.ns = if surface.ng.dot(n) < 0.0 {
                 -surface.ns

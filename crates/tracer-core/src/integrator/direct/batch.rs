@@ -243,10 +243,10 @@ mod tests {
     #[test]
     fn matte_lanes_equal_the_walk_on_a_smooth_coarse_sphere() {
         let mut scene = Scene::build(crate::test_scenes::sphere(6, 12), "sphere").unwrap();
-        assert!(!scene.corner_normals.is_empty());
+        assert!(scene.any_smooth());
         // Every third triangle flat (a zero first corner marks it; the others are left, so
         // shading it smooth would show): lanes of one chunk mix flat and smooth frames.
-        for corners in scene.corner_normals.iter_mut().step_by(3) {
+        for corners in scene.own.corner_normals.iter_mut().step_by(3) {
             corners[0] = Vec3::ZERO;
         }
         let mut setup = Setup::defaults(&scene, LengthUnit::M);

@@ -247,7 +247,7 @@ fn pick(
             continue;
         };
         let prim = hit.prim as usize;
-        let slot = scene.triangle_slots[prim] as usize;
+        let slot = scene.slot(hit.prim) as usize;
         if !matte[slot] {
             rest.push(i as u32);
             continue;
@@ -400,7 +400,7 @@ fn frame<L: Lanes8>(lit: &LitScene<'_>, rays: &[Ray], c: &Chunk) -> Frame<L> {
     let [ox, oy, oz, dx, dy, dz, _, _] = ray_columns::<L>(|j| &rays[c.sample[j]]);
     let (o, d) = ([ox, oy, oz], [dx, dy, dz]);
     let p = add(&o, &scale(&d, L::from_array(c.t)));
-    let n: V3<L> = gather(|j| scene.normals[c.prim[j]]);
+    let n: V3<L> = gather(|j| scene.normal(c.prim[j] as u32));
     let minus_one = L::splat(-1.0);
     let ng = select(dot(&n, &d).gt(zero), &scale(&n, minus_one), &n);
     let eps = L::splat(lit.epsilon);
@@ -410,21 +410,22 @@ fn frame<L: Lanes8>(lit: &LitScene<'_>, rays: &[Ray], c: &Chunk) -> Frame<L> {
         ns: ng,
         origin: flat_origin,
     };
-    let corners = &scene.corner_normals;
-    if corners.is_empty() {
+    if !scene.any_smooth() {
         return flat;
     }
     // `Surface::at`'s test: a triangle whose first corner normal is zero is flat (a NaN
     // component differs from zero, as for `Vec3`'s `!=`).
-    let c0: V3<L> = gather(|j| corners.get(c.prim[j]).map_or(Vec3::ZERO, |n| n[0]));
+    let corners: [[Vec3; 3]; 8] =
+        std::array::from_fn(|j| scene.smooth_corners(c.prim[j] as u32).unwrap_or_default());
+    let c0: V3<L> = gather(|j| corners[j][0]);
     let smooth = c0[0].ne(zero).or(c0[1].ne(zero)).or(c0[2].ne(zero));
     if smooth.bits() & c.live == 0 {
         return flat;
     }
     let (u, v) = (L::from_array(c.u), L::from_array(c.v));
     let w = one.sub(u).sub(v);
-    let c1: V3<L> = gather(|j| corners.get(c.prim[j]).map_or(Vec3::ZERO, |n| n[1]));
-    let c2: V3<L> = gather(|j| corners.get(c.prim[j]).map_or(Vec3::ZERO, |n| n[2]));
+    let c1: V3<L> = gather(|j| corners[j][1]);
+    let c2: V3<L> = gather(|j| corners[j][2]);
     let interpolated = blend(&c0, &c1, &c2, w, u, v);
     // The vertex normals on the side the ray came from.
     let sign = L::select(dot(&interpolated, &ng).lt(zero), minus_one, one);
@@ -434,9 +435,10 @@ fn frame<L: Lanes8>(lit: &LitScene<'_>, rays: &[Ray], c: &Chunk) -> Frame<L> {
     let inf = L::splat(f32::INFINITY);
     let normalised = rcp.gt(zero).and(rcp.lt(inf));
     let ns_smooth = select(normalised, &scale(&s, rcp), &ng);
-    let l0 = lift(&p, &c0, sign, &gather(|j| scene.triangles[c.prim[j]][0]));
-    let l1 = lift(&p, &c1, sign, &gather(|j| scene.triangles[c.prim[j]][1]));
-    let l2 = lift(&p, &c2, sign, &gather(|j| scene.triangles[c.prim[j]][2]));
+    let vertices: [[Vec3; 3]; 8] = std::array::from_fn(|j| scene.triangle(c.prim[j] as u32));
+    let l0 = lift(&p, &c0, sign, &gather(|j| vertices[j][0]));
+    let l1 = lift(&p, &c1, sign, &gather(|j| vertices[j][1]));
+    let l2 = lift(&p, &c2, sign, &gather(|j| vertices[j][2]));
     let lifted = blend(&l0, &l1, &l2, w, u, v);
     let finite = lifted[0]
         .abs()
