@@ -108,6 +108,8 @@ pub fn describe(loaded: &LoadedScene) -> Value {
         },
         "bounds": {"min": b.min.to_array(), "max": b.max.to_array()},
         "triangles": scene.triangle_count(),
+        "stored_triangles": scene.stored_triangle_count(),
+        "instances": scene.instance_count(),
         "materials": materials,
         "textures": textures,
         "texture_bytes": texture_bytes,
@@ -184,8 +186,14 @@ fn print_text(v: &Value) {
         v["handedness"].as_str().unwrap_or("?")
     );
     println!(
-        "bounds {} .. {} ({unit}), {} triangles",
-        v["bounds"]["min"], v["bounds"]["max"], v["triangles"]
+        "bounds {} .. {} ({unit}), {} triangles{}",
+        v["bounds"]["min"],
+        v["bounds"]["max"],
+        v["triangles"],
+        match v["instances"].as_u64() {
+            Some(k) if k > 0 => format!(" ({} stored, {k} instances)", v["stored_triangles"]),
+            _ => String::new(),
+        }
     );
     println!("materials (sidecar keys):");
     for m in v["materials"].as_array().into_iter().flatten() {

@@ -258,9 +258,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         format!("{} spp", stats.samples_per_pixel)
     };
     println!(
-        "{}: {} triangles, {} breps, BVH {:.1} ms; {}x{} px, {spp}, {transport}, {} threads",
+        "{}: {}, {} breps, BVH {:.1} ms; {}x{} px, {spp}, {transport}, {} threads",
         scene.name,
-        scene.triangle_count(),
+        scene.triangles_label(),
         scene.breps.len(),
         scene.bvh_build_secs * 1e3,
         settings.width,

@@ -102,8 +102,8 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
     } = p;
     ui.heading(doc.scene.name.clone());
     ui.label(format!(
-        "{} triangles, {} breps",
-        doc.scene.triangle_count(),
+        "{}, {} breps",
+        doc.scene.triangles_label(),
         doc.scene.breps.len(),
     ));
     let diagonal = doc.scene.bounds.extent().length();

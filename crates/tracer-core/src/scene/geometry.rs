@@ -137,6 +137,9 @@ impl Scene {
         // The prototype of each reused mesh.
         let mut prototype_of: Vec<Option<u32>> = vec![None; desc.meshes.len()];
         let mut instances = Vec::new();
+        let mut prototype_build_secs = 0.0;
+        // Placements that flatten a reused mesh draw nothing: noted, not fatal.
+        let mut flattened = Vec::new();
         for (brep_index, mesh) in desc.meshes.iter().enumerate() {
             let m = mesh
                 .placement
@@ -174,7 +177,9 @@ impl Scene {
                             count,
                         )?;
                         set.pad();
+                        let started = Instant::now();
                         let bvh = Bvh::build(&set.triangles);
+                        prototype_build_secs += started.elapsed().as_secs_f64();
                         set.finish();
                         prototypes.push(Prototype { set, bvh });
                         prototype_of[j] = Some(prototypes.len() as u32 - 1);
@@ -182,10 +187,13 @@ impl Scene {
                     }
                 };
                 let proto = &prototypes[p as usize];
-                let placed = Instance::new(p, proto, m, brep_index as u32, first_slot)
-                    .ok_or_else(|| non_finite(mesh))?;
-                instance = Some(instances.len() as u32);
-                instances.push(placed);
+                match Instance::new(p, proto, m, brep_index as u32, first_slot) {
+                    Some(placed) => {
+                        instance = Some(instances.len() as u32);
+                        instances.push(placed);
+                    }
+                    None => flattened.push(non_finite(mesh).to_string()),
+                }
             } else {
                 own.append_mesh(
                     mesh,
@@ -224,7 +232,10 @@ impl Scene {
                 name: mesh.name.clone(),
                 part_count,
                 first_slot,
-                triangle_count: shape.triangles.len(),
+                triangle_count: match instance {
+                    Some(_) => shape.triangles.len(),
+                    None => own.len() - first_triangle,
+                },
                 part_names,
                 part_materials,
                 first_triangle,
@@ -286,12 +297,15 @@ impl Scene {
         }
         let started = Instant::now();
         let bvh = Bvh::build(&own.triangles);
-        let bvh_build_secs = started.elapsed().as_secs_f64();
+        let bvh_build_secs = started.elapsed().as_secs_f64() + prototype_build_secs;
         own.finish();
         let first_slots: Vec<u32> = breps.iter().map(|b| b.first_slot).collect();
         let mut design =
             Design::from_description(&desc, &first_slots, slots.len(), &set_of_material);
         design.notes.extend(texture_notes);
+        design
+            .notes
+            .extend(flattened.into_iter().map(|e| format!("{e}: not drawn")));
         Ok(Scene {
             name: name.to_owned(),
             source: (!desc.path.as_os_str().is_empty()).then(|| desc.path.clone()),

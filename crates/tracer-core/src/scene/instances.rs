@@ -179,6 +179,7 @@ impl Instances {
     }
 
     /// Vertices of triangle `id`, scene coordinates.
+    #[inline(never)]
     pub fn triangle(&self, id: usize) -> [Vec3; 3] {
         let (i, p, t) = self.locate(id);
         let local = p.set.triangles[t];
@@ -190,6 +191,7 @@ impl Instances {
 
     /// Unit geometric normal of triangle `id`, from its vertices in scene coordinates (as the
     /// scene's own triangles have it: a mirror turns it with the winding).
+    #[inline(never)]
     pub fn normal(&self, id: usize) -> Vec3 {
         let (i, p, t) = self.locate(id);
         if i.identity {
@@ -200,6 +202,7 @@ impl Instances {
     }
 
     /// Corner normals of triangle `id` when it is shaded smooth.
+    #[inline(never)]
     pub fn smooth_corners(&self, id: usize) -> Option<[Vec3; 3]> {
         let (i, p, t) = self.locate(id);
         let c = p.set.smooth_corners(t)?;
@@ -211,12 +214,14 @@ impl Instances {
 
     /// Texture coordinates of triangle `id`'s corners in UV set `set`, when the prototype has
     /// that set.
+    #[inline(never)]
     pub fn uvs(&self, set: usize, id: usize) -> Option<[Vec2; 3]> {
         let (_, p, t) = self.locate(id);
         p.set.uvs[set].get(t).copied()
     }
 
     /// Corner tangents of triangle `id` where a normal map needs them.
+    #[inline(never)]
     pub fn tangents(&self, id: usize) -> Option<[Vec4; 3]> {
         let (i, p, t) = self.locate(id);
         let c = p.set.tangents(t)?;
@@ -233,6 +238,7 @@ impl Instances {
     }
 
     /// Material slot of triangle `id`.
+    #[inline(never)]
     pub fn slot(&self, id: usize) -> u32 {
         let (i, p, t) = self.locate(id);
         i.first_slot + p.set.slots[t]
@@ -247,6 +253,7 @@ impl Instances {
 
     /// The closest hit on an instance, or `best` (ids offset by `first_id`) when that is
     /// nearer: the least (t, id), as the triangle tree decides ties.
+    #[inline(never)]
     pub fn intersect(&self, ray: &Ray, mut best: Option<Hit>, first_id: u32) -> Option<Hit> {
         if self.instances.is_empty() {
             return best;
@@ -272,6 +279,7 @@ impl Instances {
     }
 
     /// Whether an instance has a triangle within `[ray.t_min, ray.t_max]`.
+    #[inline(never)]
     pub fn occluded(&self, ray: &Ray) -> bool {
         self.tree.any(ray, |k| {
             let instance = &self.instances[k as usize];

@@ -36,6 +36,19 @@ impl Scene {
         self.instances.instances.len()
     }
 
+    /// "N triangles", with how many are stored and the instances when meshes are reused
+    /// ("69451000 triangles (69451 stored, 1000 instances)").
+    pub fn triangles_label(&self) -> String {
+        let n = self.triangle_count();
+        match self.instance_count() {
+            0 => format!("{n} triangles"),
+            k => format!(
+                "{n} triangles ({} stored, {k} instances)",
+                self.stored_triangle_count()
+            ),
+        }
+    }
+
     /// The BVH over the scene's own triangles (statistics).
     pub fn own_bvh(&self) -> &Bvh {
         &self.bvh

@@ -376,3 +376,32 @@ fn a_thousand_bunnies_render_from_one_copy() {
     assert!(lit > film.len() / 10, "{lit}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A placement that flattens a reused mesh (scale 0) or throws it to infinity draws nothing
+/// and says so; the scene keeps its other copies.
+#[test]
+fn a_flattened_or_infinite_instance_is_noted_not_fatal() {
+    let text = "define breps tent\nvertices 4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\ntriangles 2\n0 1 2\n\
+                0 2 3\nenddef\n\
+                set breps tent\n  rotation 0 0 0\n  translation 0 0 0\n  scale 1 1 1\nenddef\n\
+                set breps tent\n  rotation 0 0 0\n  translation 4 0 0\n  scale 0 0 0\nenddef\n\
+                set breps tent\n  rotation 0 0 0\n  translation 8 0 0\n  scale 1 1 1\nenddef\n";
+    let desc = tracer_core::shp::parse_shp(text.as_bytes(), Path::new("tents.shp")).unwrap();
+    let scene = Scene::build(&desc, "tents").unwrap();
+    assert_eq!(scene.instance_count(), 2);
+    assert_eq!(scene.triangle_count(), 4);
+    assert_eq!(scene.breps[1].name, "tent#2");
+    assert_eq!(scene.breps[1].triangle_count, 0);
+    assert!(scene.brep_triangles(1).is_empty());
+    let note = scene.design.notes.iter().find(|n| n.contains("tent#2"));
+    println!("{note:?}");
+    assert!(
+        note.is_some_and(|n| n.contains("not invertible") && n.contains("tents.shp")),
+        "{:?}",
+        scene.design.notes
+    );
+    // The third copy is at x = 8.
+    let ray = tracer_core::geometry::Ray::new(glam::Vec3::new(8.2, 0.2, 5.0), glam::Vec3::NEG_Z);
+    let hit = scene.intersect(&ray).unwrap();
+    assert_eq!(scene.slots[scene.slot(hit.prim) as usize].brep, 2);
+}
