@@ -297,6 +297,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         stats.elapsed_secs * 1e3,
         rendered_at.elapsed().as_secs_f64() * 1e3,
     );
+    if let Some(line) = crate::cli_support::memory_line(scene) {
+        println!("{line}");
+    }
     if let (Some((_, secs)), Some(d)) = (&denoised, &denoiser) {
         println!(
             "denoised in {:.1} ms (Open Image Denoise {}, {quality:?} quality): the PNG shows the denoised picture; \

@@ -441,6 +441,37 @@ impl Bvh {
 mod tests {
     use super::*;
 
+    /// Once indexed, the packs give back every triangle bit for bit (degenerate ones too), and
+    /// the index costs 4 bytes a triangle.
+    #[test]
+    fn indexed_packs_give_back_every_triangle() {
+        let mut triangles: Vec<[Vec3; 3]> = (0..1000)
+            .map(|i| {
+                let f = i as f32;
+                let p = Vec3::new((f * 0.37).sin() * 5.0, (f * 0.11).cos() * 3.0, f * 0.01);
+                [
+                    p,
+                    p + Vec3::new(0.1, f.sqrt() * 1e-3, 0.0),
+                    p + Vec3::new(0.0, 0.2, 0.05),
+                ]
+            })
+            .collect();
+        triangles[17] = [Vec3::ONE; 3];
+        let mut bvh = Bvh::build(&triangles);
+        let before = bvh.memory_bytes();
+        bvh.index_triangles();
+        assert_eq!(bvh.memory_bytes() - before, 4 * triangles.len());
+        for (i, t) in triangles.iter().enumerate() {
+            let got = bvh.triangle(i);
+            assert!(
+                got.iter()
+                    .zip(t)
+                    .all(|(a, b)| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)),
+                "{i}: {got:?} {t:?}"
+            );
+        }
+    }
+
     /// The triangle ids of each leaf of `triangles`' tree, sorted.
     fn leaves(triangles: &[[Vec3; 3]]) -> Vec<Vec<u32>> {
         let bvh = Bvh::build(triangles);

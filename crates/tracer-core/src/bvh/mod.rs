@@ -38,6 +38,7 @@ mod validate;
 mod wide;
 
 use crate::geometry::Aabb;
+use glam::Vec3;
 
 pub use boxes::BoxTree;
 pub use packet::PACKET;
@@ -75,6 +76,10 @@ pub struct Bvh {
     triangles: Vec<Tri4>,
     /// Triangles given to the build.
     triangle_count: usize,
+    /// Where each triangle given to the build sits among the packs (pack · 4 + lane), when
+    /// [`Bvh::index_triangles`] made it: the packs then answer [`Bvh::triangle`], and the
+    /// caller need not keep its own copy of the vertices (4 bytes a triangle instead of 36).
+    locations: Vec<u32>,
     /// Edges on the longest path from the root to a leaf reference (bounds the traversal
     /// stack: at most `WIDTH - 1` entries per level).
     depth: usize,
@@ -117,8 +122,33 @@ impl Bvh {
         self.depth
     }
 
-    /// Bytes held: nodes, triangle data and the index array.
+    /// Bytes held: nodes, triangle data and the triangle index.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * size_of::<WideNode>() + self.triangles.len() * size_of::<Tri4>()
+        self.nodes.len() * size_of::<WideNode>()
+            + self.triangles.len() * size_of::<Tri4>()
+            + self.locations.capacity() * size_of::<u32>()
+    }
+
+    /// Indexes where each triangle sits, so that [`Bvh::triangle`] answers.
+    pub fn index_triangles(&mut self) {
+        let mut locations = vec![u32::MAX; self.triangle_count];
+        for (p, pack) in self.triangles.iter().enumerate() {
+            for (lane, &id) in pack.ids.iter().enumerate() {
+                if let Some(l) = locations.get_mut(id as usize) {
+                    *l = (p * triangle::PACK + lane) as u32;
+                }
+            }
+        }
+        self.locations = locations;
+    }
+
+    /// The vertices of triangle `index` (as given to the build, bit for bit), once
+    /// [`Bvh::index_triangles`] has run.
+    #[inline]
+    pub fn triangle(&self, index: usize) -> [Vec3; 3] {
+        let at = self.locations[index] as usize;
+        let pack = &self.triangles[at / triangle::PACK];
+        let lane = at % triangle::PACK;
+        [0, 1, 2].map(|k| pack.vertex(lane, k))
     }
 }

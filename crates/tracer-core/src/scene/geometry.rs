@@ -178,9 +178,8 @@ impl Scene {
                         )?;
                         set.pad();
                         let started = Instant::now();
-                        let bvh = Bvh::build(&set.triangles);
+                        let bvh = set.build_bvh();
                         prototype_build_secs += started.elapsed().as_secs_f64();
-                        set.finish();
                         prototypes.push(Prototype { set, bvh });
                         prototype_of[j] = Some(prototypes.len() as u32 - 1);
                         prototypes.len() as u32 - 1
@@ -296,9 +295,8 @@ impl Scene {
             }
         }
         let started = Instant::now();
-        let bvh = Bvh::build(&own.triangles);
+        let bvh = own.build_bvh();
         let bvh_build_secs = started.elapsed().as_secs_f64() + prototype_build_secs;
-        own.finish();
         let first_slots: Vec<u32> = breps.iter().map(|b| b.first_slot).collect();
         let mut design =
             Design::from_description(&desc, &first_slots, slots.len(), &set_of_material);
@@ -306,6 +304,9 @@ impl Scene {
         design
             .notes
             .extend(flattened.into_iter().map(|e| format!("{e}: not drawn")));
+        // The build's temporaries are freed: give their memory back (a big scene's resident
+        // size).
+        crate::pages::release_free_memory();
         Ok(Scene {
             name: name.to_owned(),
             source: (!desc.path.as_os_str().is_empty()).then(|| desc.path.clone()),

@@ -6,7 +6,6 @@
 
 use super::Material;
 use super::geometry::{Brep, Scene, SlotOwner};
-use crate::bvh::Bvh;
 use glam::Vec3;
 
 /// The ground plane's brep name.
@@ -45,6 +44,7 @@ impl Scene {
         ];
         let mut own = self.own.clone();
         let first_triangle = own.len();
+        own.triangles = (0..first_triangle).map(|t| self.bvh.triangle(t)).collect();
         own.triangles.extend(quad);
         let slot = self.slots.len() as u32;
         own.slots.extend([slot, slot]);
@@ -64,13 +64,12 @@ impl Scene {
             first_triangle,
             instance: None,
         });
-        own.normals.extend([Vec3::Y, Vec3::Y]);
         // Flat: zero corner normals, (0, 0) texture coordinates, no tangents.
         own.pad();
         let mut design = self.design.clone();
         design.materials.push(Some(ground_material()));
         let started = std::time::Instant::now();
-        let bvh = Bvh::build(&own.triangles);
+        let bvh = own.build_bvh();
         Scene {
             name: self.name.clone(),
             source: self.source.clone(),

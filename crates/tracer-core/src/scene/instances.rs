@@ -9,7 +9,7 @@
 //! [`Instances`] answers the per-triangle questions (vertices, normals, slot) for those ids,
 //! counted from the first instanced triangle.
 
-use super::triangles::TriangleSet;
+use super::triangles::{TriangleSet, face_normal};
 use crate::bvh::{BoxTree, Bvh, Hit};
 use crate::geometry::{Aabb, Ray};
 use glam::{Affine3A, DMat4, Mat3A, Vec2, Vec3, Vec4};
@@ -182,7 +182,7 @@ impl Instances {
     #[inline(never)]
     pub fn triangle(&self, id: usize) -> [Vec3; 3] {
         let (i, p, t) = self.locate(id);
-        let local = p.set.triangles[t];
+        let local = p.bvh.triangle(t);
         if i.identity {
             return local;
         }
@@ -195,10 +195,13 @@ impl Instances {
     pub fn normal(&self, id: usize) -> Vec3 {
         let (i, p, t) = self.locate(id);
         if i.identity {
-            return p.set.normals[t];
+            return p.set.normal(t, &p.bvh);
         }
-        let [a, b, c] = p.set.triangles[t].map(|v| i.world_from_local.transform_point3(v));
-        (b - a).cross(c - a).normalize_or_zero()
+        face_normal(
+            p.bvh
+                .triangle(t)
+                .map(|v| i.world_from_local.transform_point3(v)),
+        )
     }
 
     /// Corner normals of triangle `id` when it is shaded smooth.

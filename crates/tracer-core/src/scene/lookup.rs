@@ -73,10 +73,10 @@ impl Scene {
     #[inline]
     pub fn triangle(&self, prim: u32) -> [Vec3; 3] {
         let p = prim as usize;
-        match self.own.triangles.get(p) {
-            Some(t) => *t,
-            None => self.instances.triangle(p - self.own.len()),
+        if p < self.own.len() {
+            return self.bvh.triangle(p);
         }
+        self.instances.triangle(p - self.own.len())
     }
 
     /// Unit geometric normal of triangle `prim`, `(v1 - v0) × (v2 - v0)` normalised (zero when
@@ -84,10 +84,10 @@ impl Scene {
     #[inline]
     pub fn normal(&self, prim: u32) -> Vec3 {
         let p = prim as usize;
-        match self.own.normals.get(p) {
-            Some(n) => *n,
-            None => self.instances.normal(p - self.own.len()),
+        if p < self.own.len() {
+            return self.own.normal(p, &self.bvh);
         }
+        self.instances.normal(p - self.own.len())
     }
 
     /// Whether some triangle is shaded smooth.

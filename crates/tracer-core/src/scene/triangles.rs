@@ -6,13 +6,21 @@ use super::error::SceneError;
 use crate::formats::{MaterialDescription, MeshDescription};
 use glam::{DMat4, Vec2, Vec3, Vec4};
 
-/// Per-triangle data, all arrays indexed by triangle.
+/// Sets of more triangles than this make their face normals when asked instead of keeping
+/// them (12 bytes a triangle, 48 MB here): in a big scene traversal dominates and memory is
+/// short; in a small one the stored normal saves a few percent of a path's time.
+pub const STORED_NORMALS_MAX: usize = 4 << 20;
+
+/// Per-triangle data, all arrays indexed by triangle. The vertices are the build's input: once
+/// the BVH over them is built, it holds them ([`crate::bvh::Bvh::triangle`]) and `triangles` is
+/// emptied.
 #[derive(Clone, Debug, Default)]
 pub struct TriangleSet {
-    /// Vertices.
+    /// Vertices, until the BVH holds them.
     pub triangles: Vec<[Vec3; 3]>,
-    /// Unit geometric normal, `(v1 - v0) × (v2 - v0)` normalised (zero when degenerate). Made by
-    /// [`TriangleSet::finish`].
+    /// Unit geometric normal of each triangle ([`face_normal`] of its vertices), kept for sets
+    /// of up to [`STORED_NORMALS_MAX`] triangles; empty for larger ones, whose normals are
+    /// made from the BVH's vertices when asked (the same numbers).
     pub normals: Vec<Vec3>,
     /// Vertex normals per corner for smooth shading (unit); zero for a triangle shaded flat.
     /// Empty when every triangle is flat.
@@ -30,11 +38,11 @@ pub struct TriangleSet {
 
 impl TriangleSet {
     pub fn len(&self) -> usize {
-        self.triangles.len()
+        self.slots.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.triangles.is_empty()
+        self.slots.is_empty()
     }
 
     /// The corner normals of triangle `t` when it is shaded smooth.
@@ -171,7 +179,7 @@ impl TriangleSet {
     /// Pads the per-corner arrays to every triangle (the meshes after the last smooth, mapped
     /// or tangent-carrying one).
     pub fn pad(&mut self) {
-        let n = self.triangles.len();
+        let n = self.slots.len();
         if !self.corner_normals.is_empty() {
             self.corner_normals.resize(n, [Vec3::ZERO; 3]);
         }
@@ -183,15 +191,34 @@ impl TriangleSet {
         if !self.corner_tangents.is_empty() {
             self.corner_tangents.resize(n, [Vec4::ZERO; 3]);
         }
+        // Arrays grown push by push hold up to twice their length.
+        self.corner_normals.shrink_to_fit();
+        self.uvs.iter_mut().for_each(Vec::shrink_to_fit);
+        self.corner_tangents.shrink_to_fit();
+        self.slots.shrink_to_fit();
     }
 
-    /// Makes the face normals (after the BVH build, whose peak they would add to).
-    pub fn finish(&mut self) {
-        self.normals = self
-            .triangles
-            .iter()
-            .map(|[a, b, c]| (*b - *a).cross(*c - *a).normalize_or_zero())
-            .collect();
+    /// Builds the BVH over the vertices, which it then holds (the set's copy is freed), and
+    /// the face normals of a set small enough to keep them.
+    pub fn build_bvh(&mut self) -> crate::bvh::Bvh {
+        let mut bvh = crate::bvh::Bvh::build(&self.triangles);
+        self.normals = if self.triangles.len() <= STORED_NORMALS_MAX {
+            self.triangles.iter().map(|&t| face_normal(t)).collect()
+        } else {
+            Vec::new()
+        };
+        self.triangles = Vec::new();
+        bvh.index_triangles();
+        bvh
+    }
+
+    /// The face normal of triangle `t`, whose vertices `bvh` holds.
+    #[inline]
+    pub fn normal(&self, t: usize, bvh: &crate::bvh::Bvh) -> Vec3 {
+        match self.normals.get(t) {
+            Some(n) => *n,
+            None => face_normal(bvh.triangle(t)),
+        }
     }
 
     /// Bytes held by the arrays.
@@ -206,5 +233,46 @@ impl TriangleSet {
                 .sum::<usize>()
             + self.corner_tangents.capacity() * size_of::<[Vec4; 3]>()
             + self.slots.capacity() * size_of::<u32>()
+    }
+}
+
+/// The unit geometric normal of a triangle, `(v1 - v0) × (v2 - v0)` normalised (zero when
+/// degenerate).
+#[inline]
+pub fn face_normal([a, b, c]: [Vec3; 3]) -> Vec3 {
+    (b - a).cross(c - a).normalize_or_zero()
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    /// A set too big to keep its normals makes the same ones, bit for bit, from the BVH.
+    #[test]
+    fn normals_made_when_asked_equal_the_kept_ones() {
+        let mut set = TriangleSet::default();
+        for i in 0..300 {
+            let f = i as f32 * 0.1;
+            set.triangles.push([
+                Vec3::new(f.sin(), f.cos(), f),
+                Vec3::new(f, 1.0 + f * f, -f),
+                Vec3::new(2.0 * f, 0.5, f.sqrt()),
+            ]);
+            set.slots.push(0);
+        }
+        let input = set.triangles.clone();
+        let bvh = set.build_bvh();
+        assert!(set.triangles.is_empty());
+        assert_eq!(set.normals.len(), 300);
+        let kept: Vec<Vec3> = (0..300).map(|t| set.normal(t, &bvh)).collect();
+        set.normals = Vec::new();
+        for (t, n) in kept.iter().enumerate() {
+            assert_eq!(
+                set.normal(t, &bvh).to_array().map(f32::to_bits),
+                n.to_array().map(f32::to_bits)
+            );
+            assert_eq!(*n, face_normal(input[t]));
+        }
     }
 }

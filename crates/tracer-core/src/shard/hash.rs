@@ -69,8 +69,8 @@ pub fn scene_hash(scene: &Scene, setup: &Setup) -> u64 {
         h.write(b"prototypes");
         for p in &instances.prototypes {
             h.write(&(p.set.len() as u64).to_le_bytes());
-            for (tri, part) in p.set.triangles.iter().zip(&p.set.slots) {
-                for v in tri {
+            for (t, part) in p.set.slots.iter().enumerate() {
+                for v in p.bvh.triangle(t) {
                     for c in v.to_array() {
                         h.write_u32(c.to_bits());
                     }
