@@ -9,11 +9,17 @@
 //! tree.walk(&ray, ray.t_max, |item, t_max| /* the new t_max */ t_max);
 //! ```
 
+use super::stack::Stack;
 use super::traverse::EXIT_SCALE;
 use crate::geometry::{Aabb, Ray};
+use std::mem::MaybeUninit;
 
 /// Items per leaf at most.
 const LEAF_ITEMS: usize = 2;
+
+/// Traversal stack entries: one pending sibling per level. Median splits make at most
+/// log2(items) + 1 levels, 33 for 2³² items.
+const STACK: usize = 64;
 
 #[derive(Clone, Debug)]
 struct BoxNode {
@@ -108,7 +114,9 @@ impl BoxTree {
         let Some(t) = slabs.enter(&root.bounds, t_max) else {
             return t_max;
         };
-        let mut stack: Vec<(u32, f32)> = vec![(0, t)];
+        let mut buf = [MaybeUninit::uninit(); STACK];
+        let mut stack = Stack::new(&mut buf);
+        stack.push((0u32, t));
         while let Some((index, t_enter)) = stack.pop() {
             if t_enter > t_max {
                 continue;
@@ -152,7 +160,9 @@ impl BoxTree {
             return false;
         }
         let slabs = Slabs::new(ray);
-        let mut stack: Vec<u32> = vec![0];
+        let mut buf = [MaybeUninit::uninit(); STACK];
+        let mut stack = Stack::new(&mut buf);
+        stack.push(0u32);
         while let Some(index) = stack.pop() {
             let node = &self.nodes[index as usize];
             if slabs.enter(&node.bounds, ray.t_max).is_none() {
