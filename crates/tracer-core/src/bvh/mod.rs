@@ -113,6 +113,32 @@ impl Bvh {
         self.triangle_count
     }
 
+    /// Boxes that together hold every triangle, tighter than [`Bvh::bounds`]: the root's
+    /// children's, each inner one replaced by its own children's (up to 64 boxes). Turned and
+    /// joined, they bound a transformed copy closely.
+    pub fn cover_boxes(&self) -> Vec<Aabb> {
+        let Some(root) = self.nodes.first() else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for (lane, &child) in root.children.iter().enumerate() {
+            if child == wide::EMPTY {
+                continue;
+            }
+            if child & wide::LEAF_BIT != 0 {
+                out.push(root.lane_bounds(lane));
+                continue;
+            }
+            let node = &self.nodes[child as usize];
+            for (l, &grandchild) in node.children.iter().enumerate() {
+                if grandchild != wide::EMPTY {
+                    out.push(node.lane_bounds(l));
+                }
+            }
+        }
+        out
+    }
+
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }

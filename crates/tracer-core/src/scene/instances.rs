@@ -14,6 +14,10 @@ use crate::bvh::{BoxTree, Bvh, Hit};
 use crate::geometry::{Aabb, Ray};
 use glam::{Affine3A, DMat4, Mat3A, Vec2, Vec3, Vec4};
 
+/// Meshes of up to this many triangles get an instance box from their placed vertices; larger
+/// ones from their BVH's top boxes.
+const EXACT_BOUNDS_MAX: usize = 4096;
+
 /// A mesh stored once: its triangles in its local frame (slots hold parts) and their BVH.
 #[derive(Clone, Debug, Default)]
 pub struct Prototype {
@@ -64,19 +68,37 @@ impl Instance {
             return None;
         }
         let identity = world_from_local == Affine3A::IDENTITY;
-        let b = proto.bvh.bounds();
+        // A small mesh's vertices placed; a big one's top boxes (its tree's first two levels)
+        // placed by their corners: a close box for a turned copy, where the turned box of the
+        // whole mesh is loose.
         let bounds = if identity {
-            b
+            proto.bvh.bounds()
+        } else if proto.set.len() <= EXACT_BOUNDS_MAX {
+            (0..proto.set.len())
+                .flat_map(|t| proto.bvh.triangle(t))
+                .fold(Aabb::EMPTY, |acc, p| {
+                    acc.grow(world_from_local.transform_point3(p))
+                })
         } else {
-            (0..8).fold(Aabb::EMPTY, |acc, corner| {
-                let pick = |bit: usize, lo: f32, hi: f32| if corner & bit != 0 { hi } else { lo };
-                let p = Vec3::new(
-                    pick(1, b.min.x, b.max.x),
-                    pick(2, b.min.y, b.max.y),
-                    pick(4, b.min.z, b.max.z),
-                );
-                acc.grow(world_from_local.transform_point3(p))
-            })
+            let corners = |b: Aabb| {
+                (0..8).map(move |corner: usize| {
+                    let pick =
+                        |bit: usize, lo: f32, hi: f32| if corner & bit != 0 { hi } else { lo };
+                    Vec3::new(
+                        pick(1, b.min.x, b.max.x),
+                        pick(2, b.min.y, b.max.y),
+                        pick(4, b.min.z, b.max.z),
+                    )
+                })
+            };
+            proto
+                .bvh
+                .cover_boxes()
+                .into_iter()
+                .flat_map(corners)
+                .fold(Aabb::EMPTY, |acc, p| {
+                    acc.grow(world_from_local.transform_point3(p))
+                })
         };
         // Corners transformed in f32 can land an ulp inside the exact box: pad it so rays
         // grazing an instance's edge still reach its tree.
