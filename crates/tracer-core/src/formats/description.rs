@@ -243,6 +243,17 @@ pub struct CameraDescription {
     pub resolution: Option<[u32; 2]>,
 }
 
+impl MeshDescription {
+    /// The file and line that place the mesh: its placement's, else the mesh's own.
+    pub fn placement_source(&self) -> (PathBuf, usize) {
+        self.placement
+            .as_ref()
+            .map_or((self.source.clone(), self.line), |p| {
+                (p.source.clone(), p.line)
+            })
+    }
+}
+
 impl SceneDescription {
     /// Total number of triangles over all meshes.
     pub fn triangle_count(&self) -> usize {

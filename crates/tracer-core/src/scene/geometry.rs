@@ -415,12 +415,7 @@ fn reused_meshes(desc: &SceneDescription) -> Result<Vec<bool>, SceneError> {
 
 /// The error for a placement that is not finite or not invertible.
 fn non_finite(mesh: &MeshDescription) -> SceneError {
-    let (path, line) = mesh
-        .placement
-        .as_ref()
-        .map_or((mesh.source.clone(), mesh.line), |p| {
-            (p.source.clone(), p.line)
-        });
+    let (path, line) = mesh.placement_source();
     SceneError::SingularPlacement {
         path,
         line,

@@ -80,12 +80,7 @@ impl TriangleSet {
         for v in &mesh.positions {
             let p = m.transform_point3(glam::DVec3::from(*v)).as_vec3();
             if !p.is_finite() {
-                let (path, line) = mesh
-                    .placement
-                    .as_ref()
-                    .map_or((mesh.source.clone(), mesh.line), |p| {
-                        (p.source.clone(), p.line)
-                    });
+                let (path, line) = mesh.placement_source();
                 return Err(SceneError::NonFinitePlacement {
                     path,
                     line,
