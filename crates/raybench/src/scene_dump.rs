@@ -30,6 +30,7 @@ pub fn run(options: &Options) -> anyhow::Result<()> {
     let load = LoadOptions {
         unit: options.units,
         sidecar: options.sidecar.as_deref(),
+        ..LoadOptions::default()
     };
     let loaded = scene::load(&options.scene, &load)
         .with_context(|| format!("cannot load {}", options.scene.display()))?;

@@ -13,7 +13,7 @@ pub const PATH_DEFAULT_SAMPLES: u32 = 64;
 /// The scene and sampling options every command shares.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
-    /// Scene file (Lumicept .shp, an Integra bundle's .shp, .brs, .obj, .gltf, .glb). Without it, the built-in
+    /// Scene file (Lumicept .shp, an Integra bundle's .shp, .brs, .obj, .gltf, .glb, .usda, .usdc, .usdz, .usd). Without it, the built-in
     /// Cornell box.
     #[arg(
         short = 'S',
@@ -29,6 +29,10 @@ pub struct SceneArgs {
     /// Scene length unit: mm, cm or m (default: the sidecar's, else mm).
     #[arg(long, value_name = "UNIT")]
     pub units: Option<LengthUnit>,
+    /// USD scenes: the time code attributes are read at (default: their default values, or
+    /// the earliest time sample of attributes that have only samples).
+    #[arg(long, value_name = "TIME", allow_negative_numbers = true)]
+    pub usd_time: Option<f64>,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub threads: Option<u32>,

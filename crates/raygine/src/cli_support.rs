@@ -16,6 +16,7 @@ pub fn load_scene(args: &SceneArgs) -> Result<LoadedScene> {
             let options = LoadOptions {
                 unit: args.units,
                 sidecar: args.sidecar.as_deref(),
+                usd_time: args.usd_time,
             };
             Ok(scene::load(path, &options)?)
         }

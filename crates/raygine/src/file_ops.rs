@@ -227,6 +227,7 @@ fn run_dialog(purpose: DialogPurpose, suggested: Option<&Path>) -> Option<PathBu
             .add_filter("Lumicept scene", &["shp", "brs"])
             .add_filter("Wavefront OBJ", &["obj"])
             .add_filter("glTF 2.0", &["gltf", "glb"])
+            .add_filter("USD", &["usda", "usdc", "usdz", "usd"])
             .pick_file(),
         DialogPurpose::ExportPng | DialogPurpose::RenderImage => {
             dialog.add_filter("PNG image", &["png"]).save_file()

@@ -28,6 +28,8 @@ pub enum SceneFormat {
     Obj,
     /// glTF 2.0 (`.gltf` with its buffers, or binary `.glb`).
     Gltf,
+    /// USD (`.usda`, `.usdc`, `.usdz`, `.usd`) with the layers it composes.
+    Usd,
 }
 
 /// Everything a reader found in a scene file (and the files it pulled in).

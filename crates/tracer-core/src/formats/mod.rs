@@ -7,6 +7,9 @@
 //! - [`ldt`]: EULUMDAT photometric files.
 //! - [`obj`]: Wavefront OBJ with MTL materials.
 //! - [`gltf`]: glTF 2.0 (`.gltf`, `.glb`) with punctual lights and cameras.
+//! - [`usd`]: USD (`.usda`, `.usdc`, `.usdz`, `.usd`) composed, with UsdLux lights,
+//!   UsdPreviewSurface materials and cameras.
+//! - [`metal_rough`]: the metallic-roughness mapping glTF and USD share.
 
 pub mod description;
 pub mod error;
@@ -14,9 +17,11 @@ pub mod gltf;
 pub mod ies;
 pub mod integra;
 pub mod ldt;
+pub(crate) mod metal_rough;
 pub mod obj;
 mod scene_file;
 pub mod shp;
+pub mod usd;
 
 pub use description::{
     CameraDescription, EmissionDescription, ImageSource, LightDescription, LightDistribution,
@@ -33,6 +38,9 @@ pub use scene_file::{
 pub struct ReadOptions {
     /// cd/m² per unit of OBJ `Ke` and glTF emissive (None: 1).
     pub emission_scale: Option<f32>,
+    /// The USD time code attributes are read at (`--usd-time`, the sidecar's `usd_time`);
+    /// None: their default values.
+    pub usd_time: Option<f64>,
 }
 
 impl ReadOptions {

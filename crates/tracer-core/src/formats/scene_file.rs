@@ -1,5 +1,6 @@
 //! Picking the scene reader for a file, by extension and content: `.shp` (with its `.brs` files,
-//! and the Integra bundle when one sits beside it), a bare `.brs`, `.obj`, `.gltf` and `.glb`;
+//! and the Integra bundle when one sits beside it), a bare `.brs`, `.obj`, `.gltf`, `.glb` and
+//! USD (`.usda`, `.usdc`, `.usdz`, `.usd`);
 //! other extensions are read as a `.brs` when the first line with data is `vertices N`, else as
 //! a `.shp`.
 
@@ -22,7 +23,9 @@ pub enum SceneFileError {
 }
 
 /// The extensions raygine opens as scenes (lower case), for dialogs and drag-and-drop.
-pub const SCENE_EXTENSIONS: [&str; 5] = ["shp", "brs", "obj", "gltf", "glb"];
+pub const SCENE_EXTENSIONS: [&str; 9] = [
+    "shp", "brs", "obj", "gltf", "glb", "usda", "usdc", "usdz", "usd",
+];
 
 /// Whether `path` has one of [`SCENE_EXTENSIONS`] (any case).
 pub fn is_scene_file(path: &Path) -> bool {
@@ -49,6 +52,7 @@ pub fn read_scene_with(
     match ext.as_str() {
         "obj" => return Ok(super::obj::read(path, options)?),
         "gltf" | "glb" => return Ok(super::gltf::read(path, options)?),
+        "usda" | "usdc" | "usdz" | "usd" => return Ok(super::usd::read(path, options)?),
         _ => {}
     }
     let bare_brs = match ext.as_str() {

@@ -64,7 +64,9 @@ impl Design {
             .lights
             .as_ref()
             .map(|ls| ls.iter().map(light_from_description).collect());
-        if lights.as_ref().is_some_and(Vec::is_empty) {
+        // A surface that glows lights the scene: no warning then.
+        let glows = materials.iter().flatten().any(|m| m.emission_cd_m2 > 0.0);
+        if lights.as_ref().is_some_and(Vec::is_empty) && !glows {
             notes.push(format!(
                 "{}: the scene designs no light that is on: the picture stays dark until a \
                  light is added (Lights panel or sidecar)",
@@ -89,9 +91,9 @@ impl Design {
             camera,
             unit,
             handedness: match desc.format {
-                crate::formats::SceneFormat::Obj | crate::formats::SceneFormat::Gltf => {
-                    Some(Handedness::Right)
-                }
+                crate::formats::SceneFormat::Obj
+                | crate::formats::SceneFormat::Gltf
+                | crate::formats::SceneFormat::Usd => Some(Handedness::Right),
                 _ => None,
             },
             resolution: desc.camera.and_then(|c| c.resolution),

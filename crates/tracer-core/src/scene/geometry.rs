@@ -343,7 +343,14 @@ impl Scene {
     /// Finds the slots a sidecar key names: `brep` (every part), `brep/N` (part number N,
     /// from 0), `brep/NAME` or a bare part `NAME` (a part the format named; a brep of that name
     /// wins).
+    ///
+    /// USD names breps by prim path: a key starting with "/" is a prim path, naming the brep of
+    /// that path, else a GeomSubset part (`/World/Chair/Seat`), else every brep below it
+    /// (`/World/Furniture`).
     pub fn slots_for_key(&self, key: &str) -> Option<Vec<u32>> {
+        if key.starts_with('/') {
+            return self.slots_for_prim_path(key);
+        }
         if let Some((name, part)) = key.rsplit_once('/') {
             let brep = self.breps.iter().find(|b| b.name == name)?;
             let part = brep.part_index(part.trim())?;
@@ -359,6 +366,30 @@ impl Scene {
         let first = named.next()?;
         // A name two breps share is ambiguous: refuse rather than guess.
         named.next().is_none().then(|| vec![first])
+    }
+}
+
+impl Scene {
+    /// [`Self::slots_for_key`] for a USD prim path.
+    fn slots_for_prim_path(&self, key: &str) -> Option<Vec<u32>> {
+        let all = |b: &Brep| b.first_slot..b.first_slot + b.part_count;
+        if let Some(brep) = self.breps.iter().find(|b| b.name == key) {
+            return Some(all(brep).collect());
+        }
+        if let Some((name, part)) = key.rsplit_once('/')
+            && let Some(brep) = self.breps.iter().find(|b| b.name == name)
+            && let Some(part) = brep.part_index(part.trim())
+        {
+            return Some(vec![brep.first_slot + part]);
+        }
+        let below = format!("{}/", key.trim_end_matches('/'));
+        let slots: Vec<u32> = self
+            .breps
+            .iter()
+            .filter(|b| b.name.starts_with(&below))
+            .flat_map(all)
+            .collect();
+        (!slots.is_empty()).then_some(slots)
     }
 }
 

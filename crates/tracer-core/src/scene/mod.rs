@@ -78,6 +78,8 @@ pub struct LoadOptions<'a> {
     pub unit: Option<crate::scene::LengthUnit>,
     /// An explicit sidecar file instead of `NAME.raygine.toml` next to the scene.
     pub sidecar: Option<&'a Path>,
+    /// `--usd-time`: the time code USD attributes are read at; wins over the sidecar.
+    pub usd_time: Option<f64>,
 }
 
 /// Reads a scene file with the reader its content and extension call for (`.shp` with the
@@ -103,6 +105,7 @@ pub fn load(path: &Path, options: &LoadOptions<'_>) -> Result<LoadedScene, Scene
     .unwrap_or_default();
     let read_options = crate::formats::ReadOptions {
         emission_scale: sidecar.emission_scale,
+        usd_time: options.usd_time.or(sidecar.usd_time),
     };
     let desc = crate::formats::read_scene_with(path, &read_options)?;
     let parse_secs = started.elapsed().as_secs_f64();

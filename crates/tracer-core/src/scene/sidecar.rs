@@ -5,7 +5,8 @@
 //! unit = "mm"            # mm, cm or m
 //! handedness = "left"    # left (Lumicept files) or right (OBJ, glTF)
 //! smooth_angle_deg = 45  # crease angle of averaged vertex normals; 0: flat shading
-//! emission_scale = 1.0   # cd/m² per unit of OBJ Ke / glTF emissive
+//! emission_scale = 1.0   # cd/m² per unit of OBJ Ke / glTF emissive / USD emissiveColor
+//! usd_time = 24.0        # the USD time code attributes are read at (default: their defaults)
 //!
 //! [camera]
 //! position = [278.0, 273.0, 800.0]
@@ -72,6 +73,9 @@ pub struct Sidecar {
     /// 1: glTF's emissive read as nits). Those formats give emission no photometric unit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub emission_scale: Option<f32>,
+    /// The USD time code attributes are read at (None: their default values).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub usd_time: Option<f64>,
     /// Maintenance factor of measured illuminance (0 < MF <= 1; default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub maintenance_factor: Option<f32>,
@@ -452,6 +456,7 @@ impl Sidecar {
                 != super::smoothing::DEFAULT_SMOOTH_ANGLE_DEG)
                 .then_some(scene.smooth_angle_deg),
             emission_scale: None,
+            usd_time: None,
             base_dir: None,
             source: None,
         }

@@ -39,6 +39,7 @@ pub fn load_sidecar(
             let options = LoadOptions {
                 unit,
                 sidecar: Some(sidecar),
+                ..LoadOptions::default()
             };
             Ok((load(&scene, &options)?, Some(scene)))
         }

@@ -86,6 +86,7 @@ fn replay(data: &[u8], scene: &Scene) {
     }
     replay_integra(data);
     replay_obj_gltf(data);
+    replay_usd(data);
     replay_envmap(data);
     // The `part` target: a payload that decodes encodes back to the same film.
     if let Ok(film) = tracer_core::render::partial::decode_film(data) {
@@ -159,6 +160,30 @@ fn replay_obj_gltf(data: &[u8]) {
     if let Ok(desc) = gltf::parse(data, Path::new("fuzz.gltf"), &external, &options) {
         let _ = Scene::build(&desc, "fuzz");
     }
+}
+
+/// What the `usd` target does with `data`: written to a file named by its magic, read, built.
+fn replay_usd(data: &[u8]) {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use tracer_core::formats::{ReadOptions, usd};
+    static NEXT: AtomicUsize = AtomicUsize::new(0);
+    let ext = if data.starts_with(b"PXR-USDC") {
+        "usdc"
+    } else if data.starts_with(b"PK") {
+        "usdz"
+    } else if data.starts_with(b"#usda") {
+        "usda"
+    } else {
+        return; // Not USD: the text reader would only say so, file after file.
+    };
+    let dir = std::env::temp_dir().join(format!("raygine-fuzz-usd-{}", std::process::id()));
+    fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(format!("{}.{ext}", NEXT.fetch_add(1, Ordering::Relaxed)));
+    fs::write(&path, data).unwrap();
+    if let Ok(desc) = usd::read(&path, &ReadOptions::default()) {
+        let _ = Scene::build(&desc, "fuzz");
+    }
+    let _ = fs::remove_file(&path);
 }
 
 /// What the `envmap` target does with `data`: a map that loads gives a light of finite flux

@@ -48,3 +48,4 @@ mod std_error_honesty;
 mod stress_limits;
 mod stress_session;
 mod textures;
+mod usd;

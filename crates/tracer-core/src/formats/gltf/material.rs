@@ -19,21 +19,15 @@
 //! - `emissiveTexture` (sRGB) multiplies the emission;
 //! - occlusion textures are not used (noted: a path tracer computes occlusion).
 //!
-//! The description also carries a Blinn-Phong approximation for readers that want one: Kd =
-//! c (1 − metallic)(1 − T)(1 − F0), Ks = c metallic + F0 (1 − metallic) with glossiness
-//! g = 2 / α⁴ − 2 for α = roughness² (the Beckmann-equivalent exponent; below 1 Ks joins Kd,
-//! above 10 000 a mirror).
+//! The description also carries a Blinn-Phong approximation for readers that want one
+//! (`formats::metal_rough`, shared with USD's UsdPreviewSurface).
 
 use crate::formats::{
     EmissionDescription, ImageSource, MaterialDescription, MetalRoughDescription,
-    TransmissionDescription,
 };
 use crate::light::EmissionSides;
 use crate::texture::{AlphaMode, Filter, Maps, TextureRef, UvTransform, Wrap};
 use std::path::Path;
-
-/// Dielectric reflectance at normal incidence of glTF's metallic-roughness model.
-const F0: f32 = 0.04;
 
 pub(super) fn to_description(
     m: &::gltf::Material<'_>,
@@ -51,56 +45,13 @@ pub(super) fn to_description(
     let at = format!("{}: material {name}", path.display());
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, _] = pbr.base_color_factor();
-    let base = [r, g, b].map(|c| c.clamp(0.0, 1.0));
-    let metallic = pbr.metallic_factor().clamp(0.0, 1.0);
-    let roughness = pbr.roughness_factor().clamp(0.0, 1.0);
-    let transmission = m
-        .transmission()
-        .map_or(0.0, |t| t.transmission_factor().clamp(0.0, 1.0));
-    let alpha = roughness * roughness;
-    let glossiness = if alpha > 0.0 {
-        2.0 / (alpha * alpha) - 2.0
-    } else {
-        f32::INFINITY
+    let model = MetalRoughDescription {
+        base_color: [r, g, b],
+        metallic: pbr.metallic_factor(),
+        roughness: pbr.roughness_factor(),
+        transmission: m.transmission().map_or(0.0, |t| t.transmission_factor()),
+        ior: m.ior().unwrap_or(1.5),
     };
-    let ks = base.map(|c| c * metallic + F0 * (1.0 - metallic));
-    let mut diffuse = base.map(|c| c * (1.0 - metallic) * (1.0 - transmission) * (1.0 - F0));
-    let (specular, glossiness) = if glossiness < 1.0 {
-        // So rough that the lobe reflects about as a Lambertian surface does: its reflectance
-        // joins Kd (a rough metal is not black).
-        for (d, k) in diffuse.iter_mut().zip(ks) {
-            *d += k;
-        }
-        ([0.0; 3], 0.0)
-    } else {
-        (
-            ks,
-            if glossiness > 10_000.0 {
-                0.0
-            } else {
-                glossiness
-            },
-        )
-    };
-    let ior = m.ior().unwrap_or(1.5);
-    let metal_rough = MetalRoughDescription {
-        base_color: base,
-        metallic,
-        roughness,
-        transmission,
-        ior,
-    };
-    if transmission > 0.0 && roughness > 0.0 {
-        notes.push(format!(
-            "{at}: transmission is drawn smooth (thin-walled, no rough spread of roughness \
-             {roughness})"
-        ));
-    }
-    let transmission = (transmission > 0.0).then_some(TransmissionDescription {
-        specular: transmission * (1.0 - metallic),
-        diffuse: 0.0,
-        ior,
-    });
     let strength = m.emissive_strength().unwrap_or(1.0).max(0.0);
     let emissive = m.emissive_factor().map(|c| c.max(0.0) * strength);
     let sides = if m.double_sided() {
@@ -114,14 +65,9 @@ pub(super) fn to_description(
     MaterialDescription {
         name,
         source: path.to_owned(),
-        line: 0,
-        diffuse,
-        specular,
-        glossiness,
-        transmission,
         emission,
-        metal_rough: Some(metal_rough),
         maps: (!maps.is_empty()).then(|| Box::new(maps)),
+        ..crate::formats::metal_rough::material(model, &at, notes)
     }
 }
 

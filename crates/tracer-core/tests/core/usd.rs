@@ -1,0 +1,617 @@
+//! USD scenes (`formats::usd`) against files Pixar's own library wrote and against formulas.
+//!
+//! - `assets/usd/cornell.usda`, `.usdc` and `.usdz` (written by usd-core with
+//!   `scripts/usd/make_cornell.py`, not by the crate under test) load to the same description,
+//!   and the box renders pixel for pixel as `cornell.gltf`, the same scene written as glTF.
+//! - Z-up files in centimetres stand up at the right size; composition arcs (sublayers,
+//!   references, payloads, variants, instancing) compose.
+//! - Light units: a SphereLight against E = I cos θ / R² with I = L π r², a RectLight against
+//!   the exact rectangle form factor.
+//! - Bad files (truncated, corrupt, cyclic, missing layers, bad meshes) are errors naming the
+//!   file and prim, never panics.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use crate::gi_support::{form_factor, v3};
+use glam::DVec3;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use tracer_core::formats::{ReadOptions, SceneDescription, read_scene, usd};
+use tracer_core::integrator::IntegratorKind;
+use tracer_core::measure::{MeasureSettings, measure_grids};
+use tracer_core::render::{RenderSettings, render};
+use tracer_core::scene::{LoadOptions, LoadedScene, load};
+
+fn asset(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/usd")
+        .join(name)
+}
+
+struct Scratch(PathBuf);
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn scratch(name: &str) -> Scratch {
+    let d = std::env::temp_dir().join(format!("raygine-usd-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    Scratch(d)
+}
+
+impl Scratch {
+    fn write(&self, name: &str, text: &str) -> PathBuf {
+        let p = self.0.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+}
+
+/// A description without the file it came from (the three files' descriptions differ there).
+fn without_path(mut d: SceneDescription) -> SceneDescription {
+    d.path = PathBuf::new();
+    for m in &mut d.meshes {
+        m.source = PathBuf::new();
+        if let Some(p) = &mut m.placement {
+            p.source = PathBuf::new();
+        }
+    }
+    for m in &mut d.materials {
+        m.source = PathBuf::new();
+    }
+    for l in d.lights.iter_mut().flatten() {
+        l.source = PathBuf::new();
+    }
+    d.notes.clear();
+    d
+}
+
+#[test]
+fn the_three_encodings_of_the_cornell_box_load_alike() {
+    let a = read_scene(&asset("cornell.usda")).unwrap();
+    let c = read_scene(&asset("cornell.usdc")).unwrap();
+    let z = read_scene(&asset("cornell.usdz")).unwrap();
+    assert_eq!(a.meshes.len(), 8, "7 meshes and the RectLight");
+    assert_eq!(a.triangle_count(), 32);
+    assert_eq!(a.materials.len(), 4);
+    assert_eq!(a.metres_per_unit, Some(1.0));
+    let light = a.meshes.iter().find(|m| m.name == "/World/Light").unwrap();
+    let emission = a.materials[light.parts[0].material.unwrap()]
+        .emission
+        .unwrap();
+    assert_eq!(
+        emission.luminance_cd_m2, 6000.0,
+        "intensity 3000 x 2^exposure 1"
+    );
+    // The RectLight faces down: its triangles' (v1 - v0) x (v2 - v0) point to -Y.
+    for t in &light.triangles {
+        let [p, q, r] = t.map(|i| DVec3::from(light.positions[i as usize]));
+        assert!((q - p).cross(r - p).normalize().dot(-DVec3::Y) > 0.999_999);
+    }
+    let camera = a.camera.unwrap();
+    assert_eq!(camera.position, [0.0, 1.0, 3.5]);
+    let fov = 2.0 * (12.0f64 / 30.0).atan().to_degrees();
+    assert!((f64::from(camera.fov_deg) - fov).abs() < 1e-4);
+    let a = without_path(a);
+    assert_eq!(a, without_path(c), ".usdc");
+    assert_eq!(a, without_path(z), ".usdz");
+}
+
+fn render_direct(loaded: &LoadedScene, camera_from: &LoadedScene) -> tracer_core::render::Film {
+    let mut setup = loaded.setup.clone();
+    setup.camera = camera_from.setup.camera;
+    let settings = RenderSettings {
+        width: 96,
+        height: 96,
+        samples_per_pixel: 4,
+        integrator: IntegratorKind::Direct,
+        ..RenderSettings::default()
+    };
+    render(&loaded.scene, &setup, &settings).0
+}
+
+#[test]
+fn the_usd_cornell_box_renders_pixel_for_pixel_as_its_gltf_twin() {
+    let gltf = load(&asset("cornell.gltf"), &LoadOptions::default()).unwrap();
+    let ref_film = render_direct(&gltf, &gltf);
+    let lit = ref_film
+        .pixels()
+        .filter(|p| p.mean_luminance() > 0.0)
+        .count();
+    assert!(lit > ref_film.len() / 2, "the box is lit: {lit} pixels");
+    for file in ["cornell.usda", "cornell.usdc", "cornell.usdz"] {
+        let usd = load(&asset(file), &LoadOptions::default()).unwrap();
+        assert!(
+            (usd.setup.camera.fov_deg - gltf.setup.camera.fov_deg).abs() < 1e-4
+                && usd.setup.camera.position == gltf.setup.camera.position,
+            "{file}: the same camera"
+        );
+        // Drawn through the glTF's camera: the two readers round the lens angle differently
+        // (f32 radians in glTF, f64 in USD) by at most an ulp.
+        let film = render_direct(&usd, &gltf);
+        let differing = (0..film.len())
+            .filter(|&i| film.pixel(i) != ref_film.pixel(i))
+            .count();
+        println!(
+            "{file}: {differing} of {} pixels differ from glTF's",
+            film.len()
+        );
+        assert_eq!(differing, 0, "{file}");
+    }
+}
+
+/// A cube of `size` units standing on z = 0 in a Z-up stage.
+fn z_up_cube(size: f64, metres: Option<f64>) -> String {
+    let h = size / 2.0;
+    let mpu = metres.map_or_else(String::new, |m| format!("    metersPerUnit = {m}\n"));
+    format!(
+        "#usda 1.0\n(\n    upAxis = \"Z\"\n{mpu})\n\ndef Mesh \"Cube\"\n{{\n    \
+         int[] faceVertexCounts = [4, 4, 4, 4, 4, 4]\n    \
+         int[] faceVertexIndices = [0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7]\n    \
+         point3f[] points = [(-{h}, -{h}, 0), ({h}, -{h}, 0), ({h}, {h}, 0), (-{h}, {h}, 0), \
+         (-{h}, -{h}, {size}), ({h}, -{h}, {size}), ({h}, {h}, {size}), (-{h}, {h}, {size})]\n    \
+         uniform token subdivisionScheme = \"none\"\n}}\n"
+    )
+}
+
+#[test]
+fn a_z_up_file_in_centimetres_stands_on_its_base_at_its_size() {
+    let dir = scratch("zup");
+    let path = dir.write("cube.usda", &z_up_cube(100.0, None));
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
+    // metersPerUnit absent: USD's 0.01, centimetres.
+    assert_eq!(loaded.setup.unit, tracer_core::scene::LengthUnit::Cm);
+    let b = loaded.scene.bounds;
+    println!("bounds {:?} .. {:?} cm", b.min, b.max);
+    assert_eq!(b.min.to_array(), [-50.0, 0.0, -50.0]);
+    assert_eq!(b.max.to_array(), [50.0, 100.0, 50.0]);
+    // 100 units of 0.01 m: 1 m wide, and its base (z = 0) is the floor (y = 0).
+    let width_m = f64::from(b.max.x - b.min.x) * 0.01;
+    assert!((width_m - 1.0).abs() < 1e-12);
+}
+
+const SQUARE: &str = "int[] faceVertexCounts = [4]\n        int[] faceVertexIndices = [0, 1, 2, 3]\n        \
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]";
+
+#[test]
+fn composition_arcs_compose() {
+    let dir = scratch("compose");
+    dir.write(
+        "part.usda",
+        &format!(
+            "#usda 1.0\n(\n    defaultPrim = \"Part\"\n)\ndef Xform \"Part\"\n{{\n    \
+             def Mesh \"Square\"\n    {{\n        {SQUARE}\n    }}\n}}\n"
+        ),
+    );
+    dir.write(
+        "sub.usda",
+        &format!(
+            "#usda 1.0\ndef Mesh \"FromSublayer\"\n{{\n    {SQUARE}\n    \
+             double3 xformOp:translate = (0, 0, -5)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}}\n"
+        ),
+    );
+    let root = dir.write(
+        "root.usda",
+        &format!(
+            "#usda 1.0\n(\n    metersPerUnit = 1\n    upAxis = \"Y\"\n    subLayers = [@./sub.usda@]\n)\n\
+             def Xform \"Referenced\" (\n    references = @./part.usda@\n)\n{{\n    \
+             double3 xformOp:translate = (10, 0, 0)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}}\n\
+             def Xform \"Payloaded\" (\n    payload = @./part.usda@\n)\n{{\n    \
+             double3 xformOp:translate = (20, 0, 0)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}}\n\
+             def Xform \"Variants\" (\n    variants = {{\n        string size = \"big\"\n    }}\n    \
+             prepend variantSets = \"size\"\n)\n{{\n    variantSet \"size\" = {{\n        \
+             \"big\" {{\n            def Mesh \"Big\"\n            {{\n                {SQUARE}\n                \
+             float3 xformOp:scale = (3, 3, 3)\n                uniform token[] xformOpOrder = [\"xformOp:scale\"]\n            }}\n        }}\n        \
+             \"small\" {{\n            def Mesh \"Small\"\n            {{\n                {SQUARE}\n            }}\n        }}\n    }}\n}}\n\
+             def Xform \"Hidden\"\n{{\n    token visibility = \"invisible\"\n    def Mesh \"Gone\"\n    {{\n        {SQUARE}\n    }}\n}}\n\
+             def Mesh \"Proxy\"\n{{\n    uniform token purpose = \"proxy\"\n    {SQUARE}\n}}\n"
+        ),
+    );
+    let d = read_scene(&root).unwrap();
+    let names: Vec<&str> = d.meshes.iter().map(|m| m.name.as_str()).collect();
+    println!("meshes: {names:?}\nnotes: {:#?}", d.notes);
+    for expected in [
+        "/FromSublayer",
+        "/Referenced/Square",
+        "/Payloaded/Square",
+        "/Variants/Big",
+    ] {
+        assert!(names.contains(&expected), "{expected} in {names:?}");
+    }
+    assert!(
+        !names.contains(&"/Variants/Small"),
+        "the selected variant only"
+    );
+    assert!(
+        !names
+            .iter()
+            .any(|n| n.contains("Gone") || n.contains("Proxy"))
+    );
+    let mesh = |n: &str| d.meshes.iter().find(|m| m.name == n).unwrap();
+    let max_x = |n: &str| {
+        mesh(n)
+            .positions
+            .iter()
+            .map(|p| p[0])
+            .fold(f64::MIN, f64::max)
+    };
+    assert_eq!(
+        max_x("/Referenced/Square"),
+        11.0,
+        "the reference is moved by its prim"
+    );
+    assert_eq!(max_x("/Payloaded/Square"), 21.0);
+    assert_eq!(max_x("/Variants/Big"), 3.0, "the variant's own scale");
+    assert!(mesh("/FromSublayer").positions.iter().all(|p| p[2] == -5.0));
+}
+
+#[test]
+fn instanceable_prims_store_their_prototype_once() {
+    let dir = scratch("instances");
+    let mut text = format!(
+        "#usda 1.0\n(\n    metersPerUnit = 1\n)\nclass Xform \"Proto\"\n{{\n    def Mesh \"Geom\"\n    {{\n        \
+         {SQUARE}\n    }}\n}}\n"
+    );
+    for i in 0..5 {
+        text += &format!(
+            "def Xform \"Copy{i}\" (\n    instanceable = true\n    inherits = </Proto>\n)\n{{\n    \
+             double3 xformOp:translate = ({i}, 0, 0)\n    float xformOp:rotateY = {}\n    \
+             uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:rotateY\"]\n}}\n",
+            30 * i
+        );
+    }
+    let path = dir.write("copies.usda", &text);
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
+    let scene = &loaded.scene;
+    assert_eq!(scene.triangle_count(), 10);
+    assert_eq!(scene.stored_triangle_count(), 2, "one square stored");
+    assert_eq!(scene.instance_count(), 5);
+    let names: Vec<&str> = scene.breps.iter().map(|b| b.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "/Copy0/Geom",
+            "/Copy1/Geom",
+            "/Copy2/Geom",
+            "/Copy3/Geom",
+            "/Copy4/Geom"
+        ]
+    );
+    // Copy 3 is turned 90° about y and moved to x = 3: its square spans x in 3..3 (edge-on),
+    // z in -1..0.
+    let d = read_scene(&path).unwrap();
+    let m = d.meshes[3].placement.as_ref().unwrap().world_from_local;
+    let corner = m.transform_point3(DVec3::new(1.0, 0.0, 0.0));
+    assert!(
+        (corner - DVec3::new(3.0, 0.0, -1.0)).length() < 1e-12,
+        "{corner}"
+    );
+}
+
+/// A black floor 20 m square at y = 0 (facing up) and a light prim, metres.
+fn floor_with(light: &str) -> String {
+    format!(
+        "#usda 1.0\n(\n    metersPerUnit = 1\n    upAxis = \"Y\"\n)\n\
+         def Mesh \"Floor\"\n{{\n    int[] faceVertexCounts = [4]\n    int[] faceVertexIndices = [0, 1, 2, 3]\n    \
+         point3f[] points = [(-10, 0, -10), (-10, 0, 10), (10, 0, 10), (10, 0, -10)]\n    \
+         color3f[] primvars:displayColor = [(0, 0, 0)]\n    \
+         uniform token subdivisionScheme = \"none\"\n}}\n{light}"
+    )
+}
+
+fn measure_on(
+    dir: &Scratch,
+    usda: &str,
+    grids: &str,
+    samples: u32,
+) -> Vec<tracer_core::measure::GridResult> {
+    let scene = dir.write("lit.usda", usda);
+    let sidecar = dir.write("lit.raygine.toml", grids);
+    let loaded = load(
+        &scene,
+        &LoadOptions {
+            sidecar: Some(&sidecar),
+            ..LoadOptions::default()
+        },
+    )
+    .unwrap();
+    let settings = MeasureSettings {
+        integrator: IntegratorKind::Direct,
+        max_bounces: None,
+        samples,
+        time_limit: None,
+        target_error: None,
+    };
+    measure_grids(&loaded.scene, &loaded.setup, &settings)
+}
+
+#[test]
+fn a_sphere_light_is_a_point_of_l_pi_r_squared_beyond_ten_radii() {
+    let dir = scratch("sphere");
+    // r = 1 cm at 1 m: L = 10^6 cd/m² (intensity 2.5 x 10^5 x 2^2), I = L π r² = 314.16 cd.
+    let (radius, height, nits) = (0.01, 1.0, 1.0e6);
+    let light = format!(
+        "def SphereLight \"Bulb\"\n{{\n    float inputs:intensity = 250000\n    float inputs:exposure = 2\n    \
+         float inputs:radius = {radius}\n    double3 xformOp:translate = (0, {height}, 0)\n    \
+         uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}}\n"
+    );
+    let grids = "[[grids]]\nname = \"floor\"\norigin = [0.0, 0.0, 0.0]\nu = [2.0, 0.0, 0.0]\n\
+                 v = [0.0, 0.0, 0.01]\nnu = 5\nnv = 1\nnormal = [0.0, 1.0, 0.0]\n";
+    let results = measure_on(&dir, &floor_with(&light), grids, 4_000_000);
+    let intensity = nits * PI * radius * radius;
+    let mut worst = 0.0f64;
+    for p in &results[0].points {
+        let d = v3(p.position) - DVec3::new(0.0, height, 0.0);
+        let cos = -d.y / d.length();
+        let exact = intensity * cos / d.length_squared();
+        let rel = p.illuminance_lx / exact - 1.0;
+        worst = worst.max(rel.abs());
+        println!(
+            "x = {:.1} m: {:.3} ± {:.3} lx, I cos θ / R² = {exact:.3} lx ({:+.3} %)",
+            p.position.x,
+            p.illuminance_lx,
+            p.std_error_lx,
+            rel * 100.0
+        );
+        assert!(
+            rel.abs() < 0.005 && (p.illuminance_lx - exact).abs() < 4.0 * p.std_error_lx,
+            "within 0.5 % and the noise"
+        );
+    }
+    println!("worst {:.3} %", worst * 100.0);
+}
+
+#[test]
+fn a_treat_as_point_sphere_light_is_a_point_light_of_the_same_intensity() {
+    let dir = scratch("point");
+    let light = "def SphereLight \"Bulb\"\n{\n    float inputs:intensity = 1000000\n    \
+                 float inputs:radius = 0.01\n    bool treatAsPoint = 1\n    \
+                 double3 xformOp:translate = (0, 2, 0)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\n";
+    let path = dir.write("p.usda", &floor_with(light));
+    let d = read_scene(&path).unwrap();
+    let lights = d.lights.unwrap();
+    assert_eq!(lights.len(), 1);
+    assert_eq!(lights[0].position, [0.0, 2.0, 0.0]);
+    match lights[0].distribution {
+        tracer_core::formats::LightDistribution::Isotropic { intensity_cd } => {
+            let exact = 1.0e6 * PI * 1e-4;
+            assert!(
+                (f64::from(intensity_cd) / exact - 1.0).abs() < 1e-6,
+                "{intensity_cd}"
+            );
+        }
+        ref other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_rect_light_reads_the_rectangle_form_factor() {
+    let dir = scratch("rect");
+    // 1 m x 0.5 m at 0.5 m, emitting down; normalize: L = 2000 / 0.5 m² = 4000 cd/m².
+    let light = "def RectLight \"Panel\"\n{\n    float inputs:intensity = 2000\n    bool inputs:normalize = 1\n    \
+                 float inputs:width = 1\n    float inputs:height = 0.5\n    \
+                 double3 xformOp:translate = (0, 0.5, 0)\n    float xformOp:rotateX = -90\n    \
+                 uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:rotateX\"]\n}\n";
+    let grids = "[[grids]]\nname = \"floor\"\norigin = [-0.8, 0.0, -0.6]\nu = [1.6, 0.0, 0.0]\n\
+                 v = [0.0, 0.0, 1.2]\nnu = 3\nnv = 3\nnormal = [0.0, 1.0, 0.0]\n";
+    let results = measure_on(&dir, &floor_with(light), grids, 100_000);
+    let luminance = 2000.0 / 0.5;
+    let corners = [
+        DVec3::new(-0.5, 0.5, -0.25),
+        DVec3::new(0.5, 0.5, -0.25),
+        DVec3::new(0.5, 0.5, 0.25),
+        DVec3::new(-0.5, 0.5, 0.25),
+    ];
+    for p in &results[0].points {
+        let exact = PI * luminance * form_factor(v3(p.position), DVec3::Y, &corners);
+        let rel = p.illuminance_lx / exact - 1.0;
+        println!(
+            "{}: {:.2} ± {:.2} lx, π L F = {exact:.2} lx ({:+.3} %)",
+            p.position,
+            p.illuminance_lx,
+            p.std_error_lx,
+            rel * 100.0
+        );
+        assert!(rel.abs() < 0.01 && (p.illuminance_lx - exact).abs() < 5.0 * p.std_error_lx);
+    }
+}
+
+#[test]
+fn left_handed_meshes_subsets_primvars_and_notes() {
+    let dir = scratch("mesh");
+    let path = dir.write(
+        "m.usda",
+        "#usda 1.0\n(\n    metersPerUnit = 1\n)\n\
+         def Material \"Red\"\n{\n    token outputs:surface.connect = </Red/S.outputs:surface>\n    \
+         def Shader \"S\"\n    {\n        uniform token info:id = \"UsdPreviewSurface\"\n        \
+         color3f inputs:diffuseColor = (0.8, 0.1, 0.1)\n        token outputs:surface\n    }\n}\n\
+         def Mesh \"Two\"\n{\n    int[] faceVertexCounts = [3, 4]\n    \
+         int[] faceVertexIndices = [0, 1, 2, 1, 3, 4, 2]\n    \
+         point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (2, 0, 0), (2, 1, 0)]\n    \
+         uniform token orientation = \"leftHanded\"\n    \
+         normal3f[] primvars:normals = [(0, 0, -1)] (\n        interpolation = \"constant\"\n    )\n    \
+         texCoord2f[] primvars:st = [(0, 0), (1, 0), (0, 1), (1, 0), (1, 1), (0, 1), (0, 0)] (\n        interpolation = \"faceVarying\"\n    )\n    \
+         color3f[] primvars:displayColor = [(0.2, 0.4, 0.6)]\n    \
+         def GeomSubset \"Quad\" (\n        prepend apiSchemas = [\"MaterialBindingAPI\"]\n    )\n    {\n        \
+         uniform token elementType = \"face\"\n        uniform token familyName = \"materialBind\"\n        \
+         int[] indices = [1]\n        rel material:binding = </Red>\n    }\n}\n",
+    );
+    let d = read_scene(&path).unwrap();
+    let m = &d.meshes[0];
+    assert_eq!(m.triangles.len(), 3);
+    // Left-handed: the winding is reversed, so (v1 - v0) x (v2 - v0) faces -Z, as the normals.
+    for t in &m.triangles {
+        let [a, b, c] = t.map(|i| DVec3::from(m.positions[i as usize]));
+        assert!((b - a).cross(c - a).z < 0.0);
+    }
+    assert_eq!(
+        m.normals.len(),
+        m.positions.len(),
+        "constant normals per vertex"
+    );
+    assert!(m.normals.iter().all(|n| *n == [0.0, 0.0, -1.0]));
+    // faceVarying st splits the points: one vertex per corner, V flipped.
+    assert_eq!(m.positions.len(), 7);
+    assert_eq!(m.uvs[0][2], [0.0, 0.0], "st (0, 1) is the image's top");
+    // Parts: the unbound faces with displayColor, the subset with its material.
+    assert_eq!(m.parts.len(), 2);
+    assert_eq!(m.parts[1].name.as_deref(), Some("Quad"));
+    assert_eq!(m.triangle_parts, [0, 1, 1]);
+    let red = &d.materials[m.parts[1].material.unwrap()];
+    assert_eq!(red.name, "/Red");
+    assert_eq!(red.metal_rough.unwrap().base_color, [0.8, 0.1, 0.1]);
+    let display = &d.materials[m.parts[0].material.unwrap()];
+    assert_eq!(display.diffuse, [0.2, 0.4, 0.6]);
+    // No subdivisionScheme: USD's default catmullClark, drawn as its control mesh.
+    assert!(
+        d.notes
+            .iter()
+            .any(|n| n.contains("subdivision") && n.contains("control meshes")),
+        "{:#?}",
+        d.notes
+    );
+}
+
+#[test]
+fn sidecar_keys_are_prim_paths() {
+    let dir = scratch("keys");
+    let scene = dir.write("k.usda", &z_up_cube(100.0, Some(0.01)));
+    let sidecar = dir.write(
+        "k.raygine.toml",
+        "[materials.\"/Cube\"]\nkd = [0.1, 0.2, 0.3]\n",
+    );
+    let loaded = load(
+        &scene,
+        &LoadOptions {
+            sidecar: Some(&sidecar),
+            ..LoadOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        loaded.warnings.iter().all(|w| !w.contains("/Cube")),
+        "{:?}",
+        loaded.warnings
+    );
+    let m = &loaded.setup.materials[0];
+    assert_eq!(m.kd, [0.1, 0.2, 0.3]);
+}
+
+#[test]
+fn bad_files_are_errors_naming_the_file_never_panics() {
+    let dir = scratch("bad");
+    let usdc = std::fs::read(asset("cornell.usdc")).unwrap();
+    let usdz = std::fs::read(asset("cornell.usdz")).unwrap();
+    let mut corrupt = usdc.clone();
+    for (k, b) in corrupt.iter_mut().enumerate().skip(88) {
+        if k % 7 == 0 {
+            *b ^= 0x5a;
+        }
+    }
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        ("truncated.usdc", usdc[..usdc.len() / 2].to_vec(), "USD"),
+        ("truncated.usdz", usdz[..usdz.len() / 2].to_vec(), "USD"),
+        ("corrupt.usdc", corrupt, ""),
+        ("empty.usda", b"#usda 1.0\n".to_vec(), "nothing to draw"),
+        ("text.usda", b"#usda 1.0\ndef Mesh \"M\" {\n".to_vec(), "USD"),
+        (
+            "cycle_a.usda",
+            b"#usda 1.0\ndef \"A\" (\n    references = @./cycle_b.usda@</B>\n)\n{\n}\n".to_vec(),
+            "",
+        ),
+        (
+            "missing.usda",
+            b"#usda 1.0\n(\n    subLayers = [@./not_here.usda@]\n)\n".to_vec(),
+            "compose",
+        ),
+        (
+            "counts.usda",
+            b"#usda 1.0\ndef Mesh \"M\"\n{\n    int[] faceVertexCounts = [3, 3]\n    int[] faceVertexIndices = [0, 1, 2]\n    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n".to_vec(),
+            "/M: faceVertexCounts add up to 6 corners",
+        ),
+        (
+            "index.usda",
+            b"#usda 1.0\ndef Mesh \"M\"\n{\n    int[] faceVertexCounts = [3]\n    int[] faceVertexIndices = [0, 1, 9]\n    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n".to_vec(),
+            "/M: faceVertexIndices: index 9 outside the 3 points",
+        ),
+        (
+            "up.usda",
+            b"#usda 1.0\n(\n    upAxis = \"X\"\n)\n".to_vec(),
+            "upAxis",
+        ),
+    ];
+    dir.write(
+        "cycle_b.usda",
+        "#usda 1.0\ndef \"B\" (\n    references = @./cycle_a.usda@</A>\n)\n{\n}\n",
+    );
+    for (name, bytes, expect) in cases {
+        let path = dir.0.join(name);
+        std::fs::write(&path, &bytes).unwrap();
+        let result = std::panic::catch_unwind(|| usd::read(&path, &ReadOptions::default()));
+        let Ok(result) = result else {
+            panic!("{name}: panicked");
+        };
+        let e = result.expect_err(name).to_string();
+        println!("{name}: {e}");
+        assert!(
+            e.starts_with(&path.display().to_string()),
+            "{name} names the file: {e}"
+        );
+        assert!(e.contains(expect), "{name}: {e}");
+    }
+}
+
+/// The Stanford bunny's mesh as a prototype placed 100 times: stored once.
+#[test]
+fn a_hundred_instanced_bunnies_store_one() {
+    let Some(obj) = raygine_fixtures::shared("models/stanford-bunny.obj") else {
+        println!("skipped: ../shared (the bunny) is absent");
+        return;
+    };
+    let bunny = load(&obj, &LoadOptions::default()).unwrap();
+    let tris: Vec<[glam::Vec3; 3]> = bunny.scene.triangles().collect();
+    let mut points = String::new();
+    for t in &tris {
+        for p in t {
+            points += &format!("({}, {}, {}), ", p.x, p.y, p.z);
+        }
+    }
+    let counts = vec!["3"; tris.len()].join(", ");
+    let indices: Vec<String> = (0..tris.len() * 3).map(|i| i.to_string()).collect();
+    let mut text = format!(
+        "#usda 1.0\n(\n    metersPerUnit = 1\n)\nclass Xform \"Bunny\"\n{{\n    def Mesh \"Geom\"\n    {{\n        \
+         int[] faceVertexCounts = [{counts}]\n        int[] faceVertexIndices = [{}]\n        \
+         point3f[] points = [{points}]\n        uniform token subdivisionScheme = \"none\"\n    }}\n}}\n",
+        indices.join(", ")
+    );
+    for i in 0..100 {
+        text += &format!(
+            "def Xform \"B{i}\" (\n    instanceable = true\n    inherits = </Bunny>\n)\n{{\n    \
+             double3 xformOp:translate = ({}, 0, {})\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}}\n",
+            (i % 10) as f64 * 0.3,
+            (i / 10) as f64 * 0.3
+        );
+    }
+    let dir = scratch("bunnies");
+    let path = dir.write("bunnies.usda", &text);
+    let started = std::time::Instant::now();
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
+    let scene = &loaded.scene;
+    println!(
+        "100 bunnies: {} triangles drawn, {} stored, {} instances, geometry {:.1} MB, loaded in {:.2} s",
+        scene.triangle_count(),
+        scene.stored_triangle_count(),
+        scene.instance_count(),
+        scene.geometry_bytes() as f64 / 1e6,
+        started.elapsed().as_secs_f64()
+    );
+    assert_eq!(scene.triangle_count(), 100 * tris.len());
+    assert_eq!(scene.stored_triangle_count(), tris.len());
+    assert_eq!(scene.instance_count(), 100);
+    assert!(
+        scene.geometry_bytes() < 40 * tris.len() * 100 / 10,
+        "far under 100 copies"
+    );
+}
