@@ -126,6 +126,20 @@ pub fn describe(loaded: &LoadedScene) -> Value {
         },
         "grids": setup.grids.iter().map(|g| json!({"name": g.name, "points": g.point_count()})).collect::<Vec<_>>(),
         "daylight": setup.daylight.as_ref().map(|d| daylight_json(d, setup.handedness)),
+        "sun": setup.sun.map(|s| json!({
+            "direction": s.direction,
+            "diameter_deg": s.diameter_deg,
+            "normal_illuminance_lx": s.normal_illuminance_lx,
+        })),
+        "environment": setup.environment.as_ref().map(|e| match &e.source {
+            tracer_core::light::EnvironmentSource::Uniform { luminance_cd_m2, color } => json!({
+                "kind": "uniform", "luminance_cd_m2": luminance_cd_m2, "color": color,
+                "rotation_deg": e.rotation_deg,
+            }),
+            tracer_core::light::EnvironmentSource::Map(map) => json!({
+                "kind": "map", "map": map.file.display().to_string(), "scale": e.scale, "rotation_deg": e.rotation_deg,
+            }),
+        }),
     })
 }
 
@@ -308,6 +322,29 @@ fn print_text(v: &Value) {
     }
     for g in v["grids"].as_array().into_iter().flatten() {
         println!("grid {}: {} points", g["name"], g["points"]);
+    }
+    let s = &v["sun"];
+    if !s.is_null() {
+        println!(
+            "sun (the file's distant light): towards {}, {}° across, {:.1} lx on a plane facing it",
+            s["direction"],
+            s["diameter_deg"],
+            s["normal_illuminance_lx"].as_f64().unwrap_or(0.0)
+        );
+    }
+    let e = &v["environment"];
+    match e["kind"].as_str() {
+        Some("uniform") => println!(
+            "environment: uniform, {:.1} cd/m²",
+            e["luminance_cd_m2"].as_f64().unwrap_or(0.0)
+        ),
+        Some(_) => println!(
+            "environment: map {}, {} cd/m² per unit, turned {:.1}° about the vertical",
+            e["map"],
+            e["scale"],
+            e["rotation_deg"].as_f64().unwrap_or(0.0)
+        ),
+        None => {}
     }
     let d = &v["daylight"];
     if !d.is_null() {

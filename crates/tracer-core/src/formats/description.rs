@@ -48,6 +48,10 @@ pub struct SceneDescription {
     /// Place, time and orientation for the sun, when the format gives them (Integra's
     /// `Geography`), as the sidecar's `[daylight]` writes them.
     pub daylight: Option<crate::light::daylight::DaylightSpec>,
+    /// Light from every direction at infinity, when the format designs it (USD's DomeLight).
+    pub environment: Option<crate::light::Environment>,
+    /// A directional light at infinity (USD's DistantLight).
+    pub sun: Option<crate::light::DistantSun>,
     /// Length of one scene unit in metres, when the format states it (Integra: 1).
     pub metres_per_unit: Option<f32>,
     /// Non-fatal findings for the user: skipped blocks, features drawn without, clamped values.

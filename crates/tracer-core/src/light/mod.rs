@@ -27,7 +27,8 @@ mod triangle;
 
 pub use emitters::{EmissionSides, EmissiveTriangle, EmitterSample, EmitterTable};
 pub use environment::{
-    Environment, EnvironmentLight, EnvironmentMap, EnvironmentSource, SunDisc, map_direction,
+    DistantSun, Environment, EnvironmentLight, EnvironmentMap, EnvironmentSource, SunDisc,
+    map_direction,
 };
 pub use goniometric::{LuminaireInfo, Photometry, PhotometryError, Plane, cosine_flux};
 pub use handle::LightHandle;

@@ -101,11 +101,15 @@ impl<'a> LitScene<'a> {
             .as_ref()
             .filter(|e| e.is_valid())
             .map(|e| EnvironmentLight::new(e, handedness_sign, centre, radius, mpu * mpu));
-        // Daylight's sun joins the environment (or is all of it).
-        let sun = setup.daylight.as_ref().and_then(|d| {
-            let (dir, e_n) = d.sun_disc(setup.handedness == Handedness::Right)?;
-            Some(SunDisc::new(dir, SUN_DIAMETER_DEG, e_n))
-        });
+        // Daylight's sun joins the environment (or is all of it); else the file's.
+        let sun = setup
+            .daylight
+            .as_ref()
+            .and_then(|d| {
+                let (dir, e_n) = d.sun_disc(setup.handedness == Handedness::Right)?;
+                Some(SunDisc::new(dir, SUN_DIAMETER_DEG, e_n))
+            })
+            .or_else(|| setup.sun.as_ref().and_then(crate::light::DistantSun::disc));
         let environment = match (environment, sun) {
             (Some(env), Some(sun)) => Some(env.with_sun(sun)),
             (None, Some(sun)) => Some(EnvironmentLight::sun_only(sun, centre, radius, mpu * mpu)),

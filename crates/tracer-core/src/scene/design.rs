@@ -24,6 +24,10 @@ pub struct Design {
     pub resolution: Option<[u32; 2]>,
     /// Place, time and orientation for the sun (Integra's `Geography`).
     pub daylight: Option<crate::light::daylight::Daylight>,
+    /// The file's environment (USD's DomeLight).
+    pub environment: Option<crate::light::Environment>,
+    /// The file's directional light at infinity (USD's DistantLight).
+    pub sun: Option<crate::light::DistantSun>,
     /// Non-fatal findings (the reader's and the mapping's), for the user.
     pub notes: Vec<String>,
 }
@@ -64,8 +68,10 @@ impl Design {
             .lights
             .as_ref()
             .map(|ls| ls.iter().map(light_from_description).collect());
-        // A surface that glows lights the scene: no warning then.
-        let glows = materials.iter().flatten().any(|m| m.emission_cd_m2 > 0.0);
+        // A surface that glows, a sky or a sun lights the scene: no warning then.
+        let glows = materials.iter().flatten().any(|m| m.emission_cd_m2 > 0.0)
+            || desc.environment.is_some()
+            || desc.sun.is_some();
         if lights.as_ref().is_some_and(Vec::is_empty) && !glows {
             notes.push(format!(
                 "{}: the scene designs no light that is on: the picture stays dark until a \
@@ -101,6 +107,8 @@ impl Design {
                 .daylight
                 .as_ref()
                 .and_then(|d| d.to_model().map_err(|e| notes.push(e)).ok()),
+            environment: desc.environment.clone(),
+            sun: desc.sun,
             notes,
         }
     }

@@ -27,6 +27,9 @@ pub struct Setup {
     pub environment: Option<crate::light::Environment>,
     /// The place, time and orientation of the sidecar's `[daylight]` (None: no daylight).
     pub daylight: Option<crate::light::daylight::Daylight>,
+    /// A directional light at infinity the file designs (USD's DistantLight); drawn when no
+    /// daylight sun is.
+    pub sun: Option<crate::light::DistantSun>,
     /// Eyes where glare is judged (`[[observers]]`).
     pub observers: Vec<super::observer::Observer>,
 }
@@ -64,8 +67,9 @@ impl Setup {
             hidden: vec![false; slots],
             grids: Vec::new(),
             maintenance_factor: 1.0,
-            environment: None,
+            environment: design.environment.clone(),
             daylight: design.daylight.clone(),
+            sun: design.sun,
             observers: Vec::new(),
         }
     }

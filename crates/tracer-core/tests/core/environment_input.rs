@@ -32,7 +32,7 @@ fn scratch(name: &str) -> Scratch {
 
 /// One texel in Radiance's shared-exponent RGBE: the largest channel's mantissa is in
 /// [128, 256), each channel truncated (as Radiance writes them).
-fn rgbe(c: Vec3) -> [u8; 4] {
+pub(crate) fn rgbe(c: Vec3) -> [u8; 4] {
     let m = c.max_element();
     if m < 1e-32 {
         return [0; 4];
@@ -54,7 +54,7 @@ fn rgbe(c: Vec3) -> [u8; 4] {
 }
 
 /// A Radiance .hdr of flat (not run-length encoded) scanlines, top row first.
-fn hdr(width: usize, height: usize, texel: impl Fn(usize, usize) -> Vec3) -> Vec<u8> {
+pub(crate) fn hdr(width: usize, height: usize, texel: impl Fn(usize, usize) -> Vec3) -> Vec<u8> {
     let mut out =
         format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {height} +X {width}\n").into_bytes();
     for y in 0..height {

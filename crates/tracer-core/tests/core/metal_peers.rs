@@ -179,6 +179,7 @@ fn render_case(area: bool, spp: u32) -> Film {
         maintenance_factor: 1.0,
         environment: None,
         daylight: None,
+        sun: None,
         observers: Vec::new(),
     };
     let settings = RenderSettings {

@@ -40,6 +40,7 @@ fn setup(scene: &Scene, unit: LengthUnit, lights: Vec<Light>, mats: Vec<Material
         maintenance_factor: 1.0,
         environment: None,
         daylight: None,
+        sun: None,
         observers: Vec::new(),
     }
 }

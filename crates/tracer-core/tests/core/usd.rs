@@ -6,7 +6,8 @@
 //! - Z-up files in centimetres stand up at the right size; composition arcs (sublayers,
 //!   references, payloads, variants, instancing) compose.
 //! - Light units: a SphereLight against E = I cos θ / R² with I = L π r², a RectLight against
-//!   the exact rectangle form factor.
+//!   the exact rectangle form factor, a normalised DistantLight against its intensity in lux, a
+//!   uniform DomeLight against π L; a dome texture's orientation is OpenEXR's.
 //! - Bad files (truncated, corrupt, cyclic, missing layers, bad meshes) are errors naming the
 //!   file and prim, never panics.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
@@ -614,4 +615,146 @@ fn a_hundred_instanced_bunnies_store_one() {
         scene.geometry_bytes() < 40 * tris.len() * 100 / 10,
         "far under 100 copies"
     );
+}
+
+fn grid_line(name: &str, origin: [f64; 3], normal: [f64; 3]) -> String {
+    format!(
+        "[[grids]]\nname = \"{name}\"\norigin = {origin:?}\nu = [0.01, 0.0, 0.0]\n\
+         v = [0.0, 0.0, 0.01]\nnu = 1\nnv = 1\nnormal = {normal:?}\n"
+    )
+}
+
+#[test]
+fn a_normalised_distant_light_gives_its_intensity_in_lux_facing_it() {
+    let dir = scratch("distant");
+    // Emitting along its -Z turned -60° about X: it shines from 60° above the horizon, +Z side.
+    let light = "def DistantLight \"Sun\"\n{\n    float inputs:intensity = 1000\n    \
+                 bool inputs:normalize = 1\n    float inputs:angle = 0.53\n    \
+                 float xformOp:rotateX = -60\n    uniform token[] xformOpOrder = [\"xformOp:rotateX\"]\n}\n";
+    let towards = [0.0, 60f64.to_radians().sin(), 60f64.to_radians().cos()];
+    let grids = grid_line("facing", [0.0, 0.5, 0.0], towards)
+        + &grid_line("floor", [0.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let results = measure_on(&dir, &floor_with(light), &grids, 20_000);
+    for (g, exact) in results
+        .iter()
+        .zip([1000.0, 1000.0 * 60f64.to_radians().sin()])
+    {
+        let p = &g.points[0];
+        println!(
+            "{}: {:.2} ± {:.2} lx, expected {exact:.2} lx",
+            g.name, p.illuminance_lx, p.std_error_lx
+        );
+        assert!((p.illuminance_lx / exact - 1.0).abs() < 0.005, "{}", g.name);
+    }
+}
+
+#[test]
+fn a_uniform_dome_light_gives_pi_l_on_the_floor() {
+    let dir = scratch("dome");
+    let light = "def DomeLight \"Sky\"\n{\n    float inputs:intensity = 500\n}\n";
+    let grids = grid_line("floor", [0.0, 0.0, 0.0], [0.0, 1.0, 0.0])
+        + &grid_line("wall", [0.0, 0.001, 0.0], [1.0, 0.0, 0.0]);
+    let results = measure_on(&dir, &floor_with(light), &grids, 100_000);
+    // Up: the whole sky, π L. Sideways over a black floor: the upper quarter-sphere, π L / 2.
+    for (g, exact) in results.iter().zip([PI * 500.0, PI * 250.0]) {
+        let p = &g.points[0];
+        println!(
+            "{}: {:.2} ± {:.2} lx, expected {exact:.2} lx",
+            g.name, p.illuminance_lx, p.std_error_lx
+        );
+        assert!(
+            (p.illuminance_lx / exact - 1.0).abs() < 0.01
+                && (p.illuminance_lx - exact).abs() < 5.0 * p.std_error_lx,
+            "{}",
+            g.name
+        );
+    }
+}
+
+/// A latitude-longitude map dark but for a bright patch at longitude +π/2 on the horizon: in
+/// OpenEXR's (and USD's) orientation that is the dome's +X.
+#[test]
+fn a_dome_texture_has_openexrs_orientation_and_turns_with_the_light() {
+    let dir = scratch("dometex");
+    let (w, h) = (64usize, 32usize);
+    let map = crate::environment_input::hdr(w, h, |x, y| {
+        // Longitude runs from +π at x = 0 to -π at x = w: +π/2 is at x = w / 4.
+        let bright = (14..18).contains(&x) && (14..18).contains(&y);
+        glam::Vec3::splat(if bright { 1000.0 } else { 0.0 })
+    });
+    std::fs::write(dir.0.join("patch.hdr"), map).unwrap();
+    let facing = |name: &str, normal: [f64; 3]| grid_line(name, [0.0, 1.0, 0.0], normal);
+    for (turn, bright_side) in [(0.0, [1.0, 0.0, 0.0]), (90.0, [0.0, 0.0, -1.0])] {
+        let light = format!(
+            "def DomeLight \"Sky\"\n{{\n    asset inputs:texture:file = @./patch.hdr@\n    \
+             token inputs:texture:format = \"latlong\"\n    float xformOp:rotateY = {turn}\n    \
+             uniform token[] xformOpOrder = [\"xformOp:rotateY\"]\n}}\n"
+        );
+        let opposite = bright_side.map(|c| -c);
+        let grids = facing("towards", bright_side) + &facing("away", opposite);
+        let r = measure_on(&dir, &floor_with(&light), &grids, 20_000);
+        let (lit, dark) = (r[0].points[0].illuminance_lx, r[1].points[0].illuminance_lx);
+        println!("dome turned {turn}°: {lit:.2} lx facing {bright_side:?}, {dark:.4} lx away");
+        assert!(lit > 1.0 && dark < lit * 1e-3, "turned {turn}°");
+    }
+    // A Z-up stage: the dome's pole is the stage's up (poleAxis "scene"), its +X stays +X.
+    let z_up = "#usda 1.0\n(\n    metersPerUnit = 1\n    upAxis = \"Z\"\n)\n\
+                def Mesh \"Floor\"\n{\n    int[] faceVertexCounts = [4]\n    int[] faceVertexIndices = [0, 1, 2, 3]\n    \
+                point3f[] points = [(-10, -10, 0), (10, -10, 0), (10, 10, 0), (-10, 10, 0)]\n    \
+                color3f[] primvars:displayColor = [(0, 0, 0)]\n}\n\
+                def DomeLight \"Sky\"\n{\n    asset inputs:texture:file = @./patch.hdr@\n}\n";
+    let grids = facing("towards", [1.0, 0.0, 0.0]) + &facing("away", [-1.0, 0.0, 0.0]);
+    let r = measure_on(&dir, z_up, &grids, 20_000);
+    let (lit, dark) = (r[0].points[0].illuminance_lx, r[1].points[0].illuminance_lx);
+    println!("Z-up stage: {lit:.2} lx facing +X, {dark:.4} lx away");
+    assert!(lit > 1.0 && dark < lit * 1e-3, "Z up");
+}
+
+#[test]
+fn ies_shaping_is_a_shape_scaled_to_the_light() {
+    let dir = scratch("ies");
+    let gammas: Vec<f64> = (0..=18).map(|i| f64::from(i) * 5.0).collect();
+    // A cosine distribution of any absolute scale: its flux is π I0 (cosine_flux).
+    let file = crate::gi_support::ies(&gammas, &[0.0], |_, g| 345.0 * g.to_radians().cos());
+    std::fs::write(dir.0.join("beam.ies"), file).unwrap();
+    for (normalize, expect_peak, expect_flux) in [
+        (false, Some(50.0), None),
+        (true, None, Some(4.0 * PI * 50.0)),
+    ] {
+        let light = format!(
+            "def SphereLight \"Spot\" (\n    prepend apiSchemas = [\"ShapingAPI\"]\n)\n{{\n    \
+             float inputs:intensity = 200\n    float inputs:radius = 0\n    bool inputs:normalize = 1\n    \
+             asset inputs:shaping:ies:file = @./beam.ies@\n    bool inputs:shaping:ies:normalize = {}\n    \
+             double3 xformOp:translate = (0, 2, 0)\n    float xformOp:rotateX = -90\n    \
+             uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:rotateX\"]\n}}\n",
+            u8::from(normalize)
+        );
+        let path = dir.write("ies.usda", &floor_with(&light));
+        let d = read_scene(&path).unwrap();
+        let l = &d.lights.unwrap()[0];
+        // A radius-0 normalised sphere of intensity 200 is a 50 cd point: the shape's peak
+        // (or flux) is taken from that.
+        let tracer_core::formats::LightDistribution::Goniometric { photometry, .. } =
+            &l.distribution
+        else {
+            panic!("{:?}", l.distribution);
+        };
+        assert!(
+            l.aim[1] < -0.999,
+            "nadir along the light's -Z, turned down: {:?}",
+            l.aim
+        );
+        let (peak, flux) = (f64::from(photometry.max_cd()), photometry.flux_lm());
+        println!("normalize {normalize}: peak {peak:.3} cd, flux {flux:.2} lm");
+        if let Some(p) = expect_peak {
+            assert!((peak / p - 1.0).abs() < 1e-5);
+            assert!(
+                (flux / (PI * p) - 1.0).abs() < 0.01,
+                "a cosine's flux is π I0"
+            );
+        }
+        if let Some(f) = expect_flux {
+            assert!((flux / f - 1.0).abs() < 1e-5);
+        }
+    }
 }

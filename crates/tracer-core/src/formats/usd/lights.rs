@@ -14,8 +14,20 @@
 //!   intensity I = L · π r² cd. A sphere of radius 0 with `normalize` keeps its flux: L = i / 4πr²
 //!   gives I = i / 4 cd for intensity i; without `normalize` it would emit nothing and is
 //!   noted. With `ShapingAPI`'s `shaping:cone:angle` θ and `softness` s, the point light is a
-//!   spot: full out to θ (1 − s), zero from θ.
-//! - `DistantLight`, `DomeLight`, IES shaping and textures on area lights: noted, not drawn.
+//!   spot: full out to θ (1 − s), zero from θ. With `shaping:ies:file`, the point emits the
+//!   file's distribution (its nadir along the light's −Z) scaled so that its peak is I (the
+//!   file is a shape, not absolute candela), or with `shaping:ies:normalize` so that its flux
+//!   is the unshaped point's 4π I lm.
+//! - `DistantLight` (`angle`, 0.53°): a disc of uniform luminance at infinity towards the
+//!   light's +Z (it emits along −Z), drawn as the daylight sun is; with `normalize`, L =
+//!   intensity / (π sin²(angle / 2)), so that a plane facing it gets the intensity in lux. One
+//!   per scene (a daylight sun replaces it).
+//! - `DomeLight`: the environment, uniform at the light's luminance, or its latitude-longitude
+//!   `texture:file` (`.hdr`, `.exr`) with texels times intensity × 2^exposure, in OpenEXR's
+//!   orientation (the image's centre towards the dome's +Z), turned about the vertical by the
+//!   light's transform; its pole is the stage's up axis (DomeLight_1's `poleAxis = "scene"`)
+//!   unless `poleAxis = "Y"`. One per scene.
+//! - Cones, IES shaping and textures on area lights, and `shaping:focus`: noted, not drawn.
 
 use super::Reader;
 use super::values::{self, Time};
@@ -41,7 +53,7 @@ pub(super) const LIGHT_TYPES: [&str; 7] = [
     "CylinderLight",
     "DistantLight",
     "DomeLight",
-    "PortalLight",
+    "DomeLight_1",
 ];
 
 /// Luminance and tint of a light's surface before `normalize`.
@@ -111,10 +123,178 @@ impl Reader<'_> {
                     self.point_light(prim, name, world, r, output)?;
                 }
             }
+            "DistantLight" => {
+                let angle = num("angle", 0.53)?;
+                self.distant_light(prim, world, angle, output);
+            }
+            "DomeLight" | "DomeLight_1" => self.dome_light(prim, world, output)?,
             other => {
                 *self.skipped_lights.entry(other.to_owned()).or_insert(0) += 1;
             }
         }
+        Ok(())
+    }
+
+    /// A DistantLight: a disc `angle` degrees across towards its +Z, of luminance L (with
+    /// `normalize`, L = intensity / (π sin²(angle / 2)), its projected solid angle, so that
+    /// the illuminance on a plane facing it is the intensity in lux).
+    fn distant_light(&mut self, prim: &Prim, world: DMat4, angle: f64, output: Output) {
+        if self.desc.sun.is_some() {
+            *self
+                .skipped_lights
+                .entry("second DistantLight".into())
+                .or_insert(0) += 1;
+            return;
+        }
+        let towards = world.transform_vector3(DVec3::Z).normalize_or_zero();
+        if towards == DVec3::ZERO || !(angle > 0.0 && angle < 180.0) {
+            self.desc.notes.push(format!(
+                "{}: a DistantLight with no direction or an angle outside 0-180° (not drawn)",
+                self.at(prim)
+            ));
+            return;
+        }
+        let projected = PI * (angle / 2.0).to_radians().sin().powi(2);
+        let luminance = if output.normalize {
+            output.luminance / projected
+        } else {
+            output.luminance
+        };
+        if output
+            .color
+            .iter()
+            .any(|&c| (c - output.color[0]).abs() > 1e-3)
+        {
+            self.desc.notes.push(format!(
+                "{}: the DistantLight's colour is drawn white (its luminance kept)",
+                self.at(prim)
+            ));
+        }
+        self.desc.sun = Some(crate::light::DistantSun {
+            direction: towards.as_vec3().to_array(),
+            diameter_deg: angle as f32,
+            normal_illuminance_lx: (luminance * projected) as f32,
+        });
+        self.desc.lights.get_or_insert_with(Vec::new);
+    }
+
+    /// A DomeLight: the environment, of luminance L, or its latlong texture times
+    /// intensity × 2^exposure in OpenEXR's orientation (the image's centre towards the dome's
+    /// +Z, its +X a quarter of the width left of the centre), turned about the pole by the
+    /// light's transform.
+    fn dome_light(&mut self, prim: &Prim, world: DMat4, output: Output) -> Result<(), FormatError> {
+        use crate::light::{Environment, EnvironmentMap, EnvironmentSource};
+        if self.desc.environment.is_some() {
+            *self
+                .skipped_lights
+                .entry("second DomeLight".into())
+                .or_insert(0) += 1;
+            return Ok(());
+        }
+        // The dome's pole: its +Y, which DomeLight_1's poleAxis = "scene" (the default) aligns
+        // with the stage's up axis. The original DomeLight says +Y whatever the stage; files
+        // from Z-up tools expect the sky up all the same, so Z-up stages get the turn too
+        // unless poleAxis = "Y" says otherwise.
+        let pole_axis = values::attr_token(prim, "poleAxis")
+            .map_err(|e| self.error_at(prim, e))?
+            .unwrap_or_else(|| "scene".into());
+        let world = if pole_axis == "Z" || (pole_axis == "scene" && self.z_up) {
+            world * DMat4::from_rotation_x(std::f64::consts::FRAC_PI_2)
+        } else {
+            world
+        };
+        let pole = world.transform_vector3(DVec3::Y).normalize_or_zero();
+        if pole.dot(DVec3::Y) < 0.999 {
+            self.desc.notes.push(format!(
+                "{}: the dome is tilted; raygine draws it with its pole up (only turns about                  the vertical are kept)",
+                self.at(prim)
+            ));
+        }
+        // raygine's map centre looks along −Z turned by rotation_deg about +Y; OpenEXR's looks
+        // along the dome's +Z.
+        let front = world.transform_vector3(DVec3::Z);
+        let rotation_deg = (-front.x).atan2(-front.z).to_degrees() as f32;
+        let time = self.time;
+        let file = values::first_value(prim, &["inputs:texture:file", "texture:file"], time)
+            .map_err(|e| self.error_at(prim, e))?;
+        let format = values::first_value(prim, &["inputs:texture:format", "texture:format"], time)
+            .map_err(|e| self.error_at(prim, e))?
+            .as_ref()
+            .and_then(values::token)
+            .unwrap_or("automatic")
+            .to_owned();
+        let file = file
+            .as_ref()
+            .and_then(|v| v.as_str())
+            .map(str::trim)
+            .filter(|f| !f.is_empty());
+        let map = match file {
+            Some(_) if !matches!(format.as_str(), "automatic" | "latlong") => {
+                self.desc.notes.push(format!(
+                    "{}: a {format} dome texture is not read (latitude-longitude only); the                      dome glows uniformly",
+                    self.at(prim)
+                ));
+                None
+            }
+            Some(file) => {
+                let loaded = if self.is_usdz {
+                    self.package_bytes(file).and_then(|bytes| {
+                        EnvironmentMap::from_bytes(&bytes, std::path::Path::new(file))
+                    })
+                } else {
+                    let folder = self.path.parent().unwrap_or(std::path::Path::new(""));
+                    EnvironmentMap::load(&folder.join(file))
+                };
+                match loaded {
+                    Ok((map, notes)) => {
+                        self.desc.notes.extend(notes);
+                        Some(map)
+                    }
+                    Err(e) => {
+                        self.desc.notes.push(format!(
+                            "{}: the dome's texture {file}: {e}; the dome glows uniformly",
+                            self.at(prim)
+                        ));
+                        None
+                    }
+                }
+            }
+            None => None,
+        };
+        let source = match map {
+            Some(map) => {
+                if output
+                    .color
+                    .iter()
+                    .any(|&c| (c - output.color[0]).abs() > 1e-3)
+                {
+                    self.desc.notes.push(format!(
+                        "{}: the dome texture's tint (color) is not applied",
+                        self.at(prim)
+                    ));
+                }
+                EnvironmentSource::Map(std::sync::Arc::new(map))
+            }
+            None => EnvironmentSource::Uniform {
+                luminance_cd_m2: output.luminance as f32,
+                color: output.color,
+            },
+        };
+        let scale = match &source {
+            // A texel's luminance times intensity × 2^exposure (the white tint's luminance 1).
+            EnvironmentSource::Map(_) => {
+                let y = f64::from(crate::light::luminance(Vec3::from(output.color)));
+                (output.luminance / y.max(f64::MIN_POSITIVE)) as f32
+            }
+            EnvironmentSource::Uniform { .. } => 1.0,
+        };
+        self.desc.environment = Some(Environment {
+            source,
+            scale,
+            rotation_deg,
+            background: true,
+        });
+        self.desc.lights.get_or_insert_with(Vec::new);
         Ok(())
     }
 
@@ -281,7 +461,9 @@ impl Reader<'_> {
             .map_err(|e| self.error_at(prim, e))?
             .clamp(0.0, 1.0);
         let intensity_cd = intensity_cd as f32;
-        let distribution = if angle < 90.0 && aim != Vec3::ZERO {
+        let distribution = if let Some(d) = self.ies_shaping(prim, intensity_cd)? {
+            d
+        } else if angle < 90.0 && aim != Vec3::ZERO {
             let falloff = angle.clamp(0.0, 90.0) as f32;
             LightDistribution::Spot {
                 intensity_cd,
@@ -311,6 +493,73 @@ impl Reader<'_> {
         Ok(())
     }
 
+    /// `shaping:ies:file` on a point: the file's distribution scaled so that its peak is the
+    /// light's intensity, or with `shaping:ies:normalize` so that its flux is the unshaped
+    /// light's (4π I lm). None without a file, or with a note when it cannot be read.
+    fn ies_shaping(
+        &mut self,
+        prim: &Prim,
+        intensity_cd: f32,
+    ) -> Result<Option<LightDistribution>, FormatError> {
+        let time = self.time;
+        let file =
+            values::first_value(prim, &["inputs:shaping:ies:file", "shaping:ies:file"], time)
+                .map_err(|e| self.error_at(prim, e))?;
+        let Some(file) = file
+            .as_ref()
+            .and_then(|v| v.as_str())
+            .map(str::trim)
+            .filter(|f| !f.is_empty())
+        else {
+            return Ok(None);
+        };
+        let normalize = values::first_value(
+            prim,
+            &["inputs:shaping:ies:normalize", "shaping:ies:normalize"],
+            time,
+        )
+        .map_err(|e| self.error_at(prim, e))?
+        .as_ref()
+        .and_then(values::boolean)
+        .unwrap_or(false);
+        let read = if self.is_usdz {
+            self.package_bytes(file).and_then(|bytes| {
+                crate::formats::parse_photometry(&bytes, std::path::Path::new(file))
+                    .map_err(|e| e.to_string())
+            })
+        } else {
+            let folder = self.path.parent().unwrap_or(std::path::Path::new(""));
+            crate::formats::read_photometry(&folder.join(file)).map_err(|e| e.to_string())
+        };
+        let photometry = match read {
+            Ok(p) => p,
+            Err(e) => {
+                self.desc.notes.push(format!(
+                    "{}: shaping:ies:file {file}: {e}; the light is drawn without it",
+                    self.at(prim)
+                ));
+                return Ok(None);
+            }
+        };
+        let (peak, flux) = (photometry.max_cd(), photometry.flux_lm());
+        let k = if normalize {
+            4.0 * PI * f64::from(intensity_cd) / flux
+        } else {
+            f64::from(intensity_cd) / f64::from(peak)
+        };
+        if !(k.is_finite() && k >= 0.0) {
+            self.desc.notes.push(format!(
+                "{}: shaping:ies:file {file} emits nothing; the light is drawn without it",
+                self.at(prim)
+            ));
+            return Ok(None);
+        }
+        Ok(Some(LightDistribution::Goniometric {
+            photometry: photometry.scaled(k as f32),
+            label: file.to_owned(),
+        }))
+    }
+
     /// Notes the ShapingAPI inputs raygine does not draw (`cone` on an area light, IES files,
     /// `focus`).
     fn note_shaping(&mut self, prim: &Prim, cone_drawn: bool) {
@@ -328,8 +577,8 @@ impl Reader<'_> {
         if !cone_drawn && has("cone:angle") {
             unread.push("shaping:cone (area lights emit as Lambertian surfaces)");
         }
-        if has("ies:file") {
-            unread.push("shaping:ies:file");
+        if !cone_drawn && has("ies:file") {
+            unread.push("shaping:ies:file (on an area light)");
         }
         if has("focus") {
             unread.push("shaping:focus");

@@ -166,21 +166,13 @@ impl Reader<'_> {
             return None;
         }
         let image = if self.is_usdz {
-            let inner = file.trim_start_matches("./");
-            let name = format!("{}[{inner}]", self.path.display());
-            use openusd::ar::Resolver;
-            match openusd::ar::DefaultResolver::new()
-                .open_asset(&openusd::ar::ResolvedPath::new(&name))
-                .and_then(|mut a| a.read_all())
-            {
+            let name = format!("{}[{}]", self.path.display(), file.trim_start_matches("./"));
+            match self.package_bytes(file) {
                 Ok(bytes) => ImageSource::Embedded {
                     name,
                     bytes: bytes.into(),
                 },
-                Err(e) => ImageSource::Missing {
-                    name,
-                    why: e.to_string(),
-                },
+                Err(why) => ImageSource::Missing { name, why },
             }
         } else {
             let folder = self.path.parent().unwrap_or(std::path::Path::new(""));

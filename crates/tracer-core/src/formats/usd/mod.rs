@@ -20,7 +20,7 @@
 //! - Attributes are read at their default value (an attribute with time samples only: its
 //!   earliest), or at the time [`ReadOptions::usd_time`] gives (`--usd-time`).
 //! - Not drawn, and noted: subdivision (the control mesh is drawn), gprims other than meshes
-//!   (Cube, Sphere, ...), points, curves, point instancers, DistantLight and DomeLight.
+//!   (Cube, Sphere, ...), points, curves and point instancers.
 //!
 //! Any failure (a truncated or corrupt file, a missing or cyclic layer, a bad mesh) is one
 //! [`FormatError`] naming the file and, where there is one, the prim path.
@@ -125,6 +125,7 @@ fn read_stage(
         is_usdz: path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("usdz")),
+        z_up: up == "Z",
         desc: SceneDescription {
             path: path.to_owned(),
             format: SceneFormat::Usd,
@@ -208,6 +209,8 @@ pub(super) struct Reader<'r> {
     emission_scale: f32,
     metres_per_unit: f64,
     is_usdz: bool,
+    /// The stage is Z up.
+    z_up: bool,
     desc: SceneDescription,
     /// Material prim path (or displayColor key) to description index (None: not drawn).
     materials: HashMap<String, Option<usize>>,
@@ -232,6 +235,16 @@ impl Reader<'_> {
 
     fn error_at(&self, prim: &Prim, why: String) -> FormatError {
         FormatError::new(self.path, 0, format!("{}: {why}", prim.path().as_str()))
+    }
+
+    /// The bytes of a file inside the `.usdz` being read (a texture).
+    fn package_bytes(&self, file: &str) -> Result<Vec<u8>, String> {
+        use openusd::ar::Resolver;
+        let name = format!("{}[{}]", self.path.display(), file.trim_start_matches("./"));
+        openusd::ar::DefaultResolver::new()
+            .open_asset(&openusd::ar::ResolvedPath::new(&name))
+            .and_then(|mut a| a.read_all())
+            .map_err(|e| e.to_string())
     }
 
     fn prim(&mut self, prim: &Prim, parent: DMat4, depth: usize) -> Result<(), FormatError> {

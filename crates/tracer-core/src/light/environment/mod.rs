@@ -16,7 +16,7 @@ mod map;
 mod sun_disc;
 
 pub use map::EnvironmentMap;
-pub use sun_disc::SunDisc;
+pub use sun_disc::{DistantSun, SunDisc};
 
 use super::{Emission, Incident, LightBounds, LightSource, Receiver, luminance};
 use crate::sampling::{frame_from_normal, uniform_sphere};

@@ -12,6 +12,39 @@ use crate::sampling::frame_from_normal;
 use glam::Vec3;
 use std::f32::consts::PI;
 
+/// A directional light at infinity a scene file designs (USD's DistantLight): a disc of
+/// uniform luminance, as the daylight sun is, in a fixed direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DistantSun {
+    /// Scene direction towards the light (any length).
+    pub direction: [f32; 3],
+    /// The disc's angular diameter, degrees (> 0).
+    pub diameter_deg: f32,
+    /// Its illuminance on a plane facing it, lx.
+    pub normal_illuminance_lx: f32,
+}
+
+impl DistantSun {
+    /// The disc it draws (None when its numbers cannot draw one).
+    pub fn disc(&self) -> Option<SunDisc> {
+        let dir = Vec3::from(self.direction);
+        let ok = dir.is_finite()
+            && dir.length_squared() > 0.0
+            && self.diameter_deg.is_finite()
+            && self.diameter_deg > 0.0
+            && self.diameter_deg < 180.0
+            && self.normal_illuminance_lx.is_finite()
+            && self.normal_illuminance_lx > 0.0;
+        ok.then(|| {
+            SunDisc::new(
+                dir,
+                f64::from(self.diameter_deg),
+                f64::from(self.normal_illuminance_lx),
+            )
+        })
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct SunDisc {
     /// Unit scene direction towards the sun.

@@ -120,6 +120,7 @@ pub fn setup(scene: &Scene, camera: Camera, lights: Vec<Light>, materials: Vec<M
         maintenance_factor: 1.0,
         environment: None,
         daylight: None,
+        sun: None,
         observers: Vec::new(),
     }
 }
