@@ -758,3 +758,85 @@ fn ies_shaping_is_a_shape_scaled_to_the_light() {
         }
     }
 }
+
+#[test]
+fn time_samples_read_at_the_default_or_the_chosen_time() {
+    let dir = scratch("time");
+    let path = dir.write(
+        "moving.usda",
+        &format!(
+            "#usda 1.0\n(\n    metersPerUnit = 1\n)\ndef Mesh \"M\"\n{{\n    {SQUARE}\n    \
+             double3 xformOp:translate.timeSamples = {{\n        0: (0, 0, 0),\n        10: (10, 0, 0),\n    }}\n    \
+             uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}}\n"
+        ),
+    );
+    let min_x = |time: Option<f64>| {
+        let options = ReadOptions {
+            usd_time: time,
+            ..ReadOptions::default()
+        };
+        let d = usd::read(&path, &options).unwrap();
+        d.meshes[0]
+            .positions
+            .iter()
+            .map(|p| p[0])
+            .fold(f64::MAX, f64::min)
+    };
+    assert_eq!(min_x(None), 0.0, "samples only: the earliest");
+    assert_eq!(min_x(Some(10.0)), 10.0);
+    assert_eq!(min_x(Some(5.0)), 5.0, "linear between samples");
+    assert_eq!(min_x(Some(20.0)), 10.0, "held after the last");
+}
+
+/// A UsdUVTexture on diffuseColor: a 2 x 1 PNG (red | green) on a quad whose st runs across
+/// it; rendered straight on, the left half of the picture is red and the right half green.
+#[test]
+fn a_diffuse_texture_is_read_with_its_st() {
+    let dir = scratch("texture");
+    let mut png = Vec::new();
+    image::RgbImage::from_fn(2, 1, |x, _| {
+        if x == 0 {
+            image::Rgb([255, 0, 0])
+        } else {
+            image::Rgb([0, 255, 0])
+        }
+    })
+    .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+    .unwrap();
+    std::fs::write(dir.0.join("two.png"), png).unwrap();
+    let path = dir.write(
+        "tex.usda",
+        "#usda 1.0\n(\n    metersPerUnit = 1\n)\n\
+         def Material \"Look\"\n{\n    token outputs:surface.connect = </Look/S.outputs:surface>\n    \
+         def Shader \"S\"\n    {\n        uniform token info:id = \"UsdPreviewSurface\"\n        \
+         color3f inputs:diffuseColor.connect = </Look/Tex.outputs:rgb>\n        float inputs:roughness = 1\n        token outputs:surface\n    }\n    \
+         def Shader \"Tex\"\n    {\n        uniform token info:id = \"UsdUVTexture\"\n        asset inputs:file = @two.png@\n        \
+         token inputs:sourceColorSpace = \"sRGB\"\n        float3 outputs:rgb\n    }\n}\n\
+         def Mesh \"Quad\"\n{\n    int[] faceVertexCounts = [4]\n    int[] faceVertexIndices = [0, 1, 2, 3]\n    \
+         point3f[] points = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]\n    \
+         texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (\n        interpolation = \"vertex\"\n    )\n    \
+         uniform token subdivisionScheme = \"none\"\n    rel material:binding = </Look>\n}\n\
+         def SphereLight \"Lamp\"\n{\n    float inputs:intensity = 1000\n    float inputs:radius = 0.05\n    \
+         double3 xformOp:translate = (0, 0, 3)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\n\
+         def Camera \"Cam\"\n{\n    float focalLength = 20\n    float verticalAperture = 24\n    \
+         double3 xformOp:translate = (0, 0, 2)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\n",
+    );
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
+    let settings = RenderSettings {
+        width: 40,
+        height: 20,
+        samples_per_pixel: 4,
+        integrator: IntegratorKind::Direct,
+        ..RenderSettings::default()
+    };
+    let film = render(&loaded.scene, &loaded.setup, &settings).0;
+    let rgb = |x: usize, y: usize| film.mean_rgb(y * 40 + x);
+    // Texel centres u = 0.25 and 0.75 fall in pixels 15 and 24 (bilinear, repeat).
+    let (left, right) = (rgb(15, 10), rgb(24, 10));
+    println!("left {left:?}, right {right:?}");
+    assert!(left[0] > 5.0 * left[1].max(1e-6), "left is red: {left:?}");
+    assert!(
+        right[1] > 5.0 * right[0].max(1e-6),
+        "right is green: {right:?}"
+    );
+}
