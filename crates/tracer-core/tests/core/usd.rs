@@ -840,3 +840,66 @@ fn a_diffuse_texture_is_read_with_its_st() {
         "right is green: {right:?}"
     );
 }
+
+#[test]
+fn a_point_instancer_places_its_prototypes_once_stored() {
+    let dir = scratch("pointinstancer");
+    let path = dir.write(
+        "scatter.usda",
+        &format!(
+            "#usda 1.0\n(\n    metersPerUnit = 1\n)\n\
+             def PointInstancer \"Scatter\"\n{{\n    rel prototypes = [</Scatter/Protos/Square>, </Scatter/Protos/Tall>]\n    \
+             int[] protoIndices = [0, 1, 0, 1, 7]\n    \
+             point3f[] positions = [(0, 0, 0), (5, 0, 0), (10, 0, 0), (15, 0, 0), (20, 0, 0)]\n    \
+             quath[] orientations = [(1, 0, 0, 0), (1, 0, 0, 0), (0.7071, 0, 0.7071, 0), (1, 0, 0, 0), (1, 0, 0, 0)]\n    \
+             float3[] scales = [(1, 1, 1), (1, 1, 1), (2, 2, 2), (1, 1, 1), (1, 1, 1)]\n    \
+             int64[] invisibleIds = [3]\n    \
+             double3 xformOp:translate = (0, 1, 0)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n    \
+             def Scope \"Protos\"\n    {{\n        def Mesh \"Square\"\n        {{\n            {SQUARE}\n        }}\n        \
+             def Xform \"Tall\"\n        {{\n            float3 xformOp:scale = (1, 3, 1)\n            \
+             uniform token[] xformOpOrder = [\"xformOp:scale\"]\n            def Mesh \"Geom\"\n            {{\n                {SQUARE}\n            }}\n        }}\n    }}\n}}\n"
+        ),
+    );
+    let d = read_scene(&path).unwrap();
+    let names: Vec<&str> = d.meshes.iter().map(|m| m.name.as_str()).collect();
+    println!("{names:?}\n{:#?}", d.notes);
+    // Points 0, 1, 2 drawn; 3 is invisible; 4 names no prototype (noted).
+    assert_eq!(
+        names,
+        [
+            "/Scatter[0]/Square",
+            "/Scatter[1]/Tall/Geom",
+            "/Scatter[2]/Square"
+        ]
+    );
+    assert!(
+        d.notes
+            .iter()
+            .any(|n| n.contains("1 points name no prototype"))
+    );
+    assert_eq!(d.meshes[2].instance_of, Some(0));
+    // Point 2: scaled 2, turned 90° about y, at x = 10, in the instancer's frame (y + 1): the
+    // square's corner (1, 0, 0) lands at (10, 1, -2).
+    let m = d.meshes[2].placement.as_ref().unwrap().world_from_local;
+    let corner = m.transform_point3(DVec3::new(1.0, 0.0, 0.0));
+    assert!(
+        (corner - DVec3::new(10.0, 1.0, -2.0)).length() < 1e-3,
+        "{corner}"
+    );
+    // The prototype's own transform is included: Tall's (1, 1, 0) corner is 3 high.
+    let tall = &d.meshes[1];
+    let m = tall.placement.as_ref().unwrap().world_from_local;
+    let top = tall
+        .positions
+        .iter()
+        .map(|p| m.transform_point3(DVec3::from(*p)).y)
+        .fold(f64::MIN, f64::max);
+    assert!((top - 4.0).abs() < 1e-9, "{top}");
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
+    assert_eq!(
+        loaded.scene.stored_triangle_count(),
+        4,
+        "two squares stored"
+    );
+    assert_eq!(loaded.scene.triangle_count(), 6);
+}

@@ -19,8 +19,9 @@
 //!   GeomSubsets, named after them. Sidecar keys are these paths.
 //! - Attributes are read at their default value (an attribute with time samples only: its
 //!   earliest), or at the time [`ReadOptions::usd_time`] gives (`--usd-time`).
+//! - Point instancers ([`point_instancer`]): each prototype read once, each point an instance.
 //! - Not drawn, and noted: subdivision (the control mesh is drawn), gprims other than meshes
-//!   (Cube, Sphere, ...), points, curves and point instancers.
+//!   (Cube, Sphere, ...), points and curves.
 //!
 //! Any failure (a truncated or corrupt file, a missing or cyclic layer, a bad mesh) is one
 //! [`FormatError`] naming the file and, where there is one, the prim path.
@@ -29,6 +30,7 @@ mod camera;
 mod lights;
 mod material;
 mod mesh;
+mod point_instancer;
 mod values;
 mod xform;
 
@@ -38,6 +40,7 @@ use glam::DMat4;
 use openusd::usd::{self, Prim, Stage};
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::path::Path;
+use std::rc::Rc;
 use values::Time;
 
 /// Deepest namespace walked (real scenes are tens of levels deep).
@@ -193,6 +196,9 @@ struct Item {
 /// What a prototype's walk collected.
 #[derive(Clone, Default)]
 struct Prototype {
+    /// What it is cached under (the prototype's path, or the point instancer's target).
+    key: String,
+    /// The path its meshes' names are taken relative to.
     root: String,
     items: Vec<Item>,
     /// Point lights in the prototype's frame.
@@ -214,8 +220,8 @@ pub(super) struct Reader<'r> {
     desc: SceneDescription,
     /// Material prim path (or displayColor key) to description index (None: not drawn).
     materials: HashMap<String, Option<usize>>,
-    /// Prototype path to what it holds, once walked.
-    prototypes: HashMap<String, Prototype>,
+    /// Prototype key to what it holds, once walked.
+    prototypes: HashMap<String, Rc<Prototype>>,
     /// The prototypes being walked, innermost last.
     recording: Vec<Prototype>,
     /// Prototype meshes no instance has placed yet (the first placement takes the mesh itself).
@@ -298,6 +304,10 @@ impl Reader<'_> {
         if prim.is_instance().map_err(fails)? {
             return self.instance(prim, world, depth);
         }
+        if kind == "PointInstancer" {
+            // What is below it is drawn through it only.
+            return self.point_instancer(prim, world, depth);
+        }
         match kind.as_str() {
             "Mesh" => {
                 let name = prim.path().as_str().to_owned();
@@ -358,37 +368,56 @@ impl Reader<'_> {
             return Ok(());
         };
         let key = proto_path.as_str().to_owned();
-        if !self.prototypes.contains_key(&key) {
-            if self.recording.iter().any(|p| p.root == key) {
-                return Err(self.error_at(prim, format!("instancing cycle through {key}")));
+        let proto = self.prototype(&key, &key, prim, |reader| {
+            let root = reader.stage.prim(proto_path.clone());
+            for child in root.children().map_err(fails)? {
+                reader.prim(&child, DMat4::IDENTITY, depth + 1)?;
             }
-            self.recording.push(Prototype {
-                root: key.clone(),
-                ..Prototype::default()
-            });
-            let lights_before = self.desc.lights.as_ref().map_or(0, Vec::len);
-            let proto = self.stage.prim(proto_path);
-            let walked = proto.children().map_err(fails).and_then(|children| {
-                children
-                    .iter()
-                    .try_for_each(|c| self.prim(c, DMat4::IDENTITY, depth + 1))
-            });
-            let mut recorded = self.recording.pop().unwrap_or_default();
-            walked?;
-            if let Some(lights) = &mut self.desc.lights {
-                recorded.lights = lights.split_off(lights_before.min(lights.len()));
-            }
-            self.prototypes.insert(key.clone(), recorded);
+            Ok(())
+        })?;
+        self.place(&proto, world, prim.path().as_str());
+        Ok(())
+    }
+
+    /// The prototype cached under `key`, walked by `walk` the first time (its meshes named
+    /// relative to `root`). `prim` names the instance in errors.
+    fn prototype(
+        &mut self,
+        key: &str,
+        root: &str,
+        prim: &Prim,
+        walk: impl FnOnce(&mut Self) -> Result<(), FormatError>,
+    ) -> Result<Rc<Prototype>, FormatError> {
+        if let Some(known) = self.prototypes.get(key) {
+            return Ok(Rc::clone(known));
         }
-        let Some(proto) = self.prototypes.get(&key).cloned() else {
-            return Ok(());
-        };
-        let instance_path = prim.path().as_str().to_owned();
+        if self.recording.iter().any(|p| p.key == key) {
+            return Err(self.error_at(prim, format!("instancing cycle through {key}")));
+        }
+        self.recording.push(Prototype {
+            key: key.to_owned(),
+            root: root.to_owned(),
+            ..Prototype::default()
+        });
+        let lights_before = self.desc.lights.as_ref().map_or(0, Vec::len);
+        let walked = walk(self);
+        let mut recorded = self.recording.pop().unwrap_or_default();
+        walked?;
+        if let Some(lights) = &mut self.desc.lights {
+            recorded.lights = lights.split_off(lights_before.min(lights.len()));
+        }
+        let recorded = Rc::new(recorded);
+        self.prototypes.insert(key.to_owned(), Rc::clone(&recorded));
+        Ok(recorded)
+    }
+
+    /// Places `proto`'s meshes and lights by `world` as the instance `instance_path` (inside
+    /// another prototype's walk: as items of that one, placed when it is).
+    fn place(&mut self, proto: &Prototype, world: DMat4, instance_path: &str) {
         for item in &proto.items {
             let placement = world * item.frame;
             let name = format!("{instance_path}{}", item.relative);
             if let Some(outer) = self.recording.last_mut() {
-                // Placed when the enclosing prototype is.
                 let relative = name
                     .strip_prefix(&outer.root)
                     .unwrap_or_default()
@@ -443,7 +472,6 @@ impl Reader<'_> {
                 None => self.desc.lights.get_or_insert_with(Vec::new).push(light),
             }
         }
-        Ok(())
     }
 
     /// The notes the walk collected, and the final checks.
