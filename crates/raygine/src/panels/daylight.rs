@@ -73,7 +73,20 @@ pub fn daylight_ui(ui: &mut egui::Ui, setup: &mut Setup, draft: &mut DaylightDra
     let current = setup.daylight.as_ref().map(|d| d.spec.clone());
     let Some(applied) = current else {
         draft.spec = None;
-        ui.label("No daylight: the scene is lit by its lights alone.");
+        match setup.sun {
+            Some(sun) => {
+                let d = glam::Vec3::from(sun.direction).normalize_or_zero();
+                ui.label(format!(
+                    "No daylight. The file's distant light: {:.0} lx on a plane facing it,                      {:.2}° across, {:.1}° above the horizon.",
+                    sun.normal_illuminance_lx,
+                    sun.diameter_deg,
+                    d.y.clamp(-1.0, 1.0).asin().to_degrees()
+                ));
+            }
+            None => {
+                ui.label("No daylight: the scene is lit by its lights alone.");
+            }
+        }
         if ui
             .button("Add daylight")
             .on_hover_text("A sky (and optionally the sun) for a place, date and time")

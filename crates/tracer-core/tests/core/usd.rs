@@ -538,6 +538,17 @@ fn bad_files_are_errors_naming_the_file_never_panics() {
             "/M: faceVertexIndices: index 9 outside the 3 points",
         ),
         (
+            // The fuzzer's find: a count declaring 12 PB; openusd allocates it and the
+            // process would abort, so a child process tries the file first.
+            "huge.usdc",
+            std::fs::read(
+                Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join("../../fuzz/regressions/usd/crash-046a1824-huge-declared-count.usdc"),
+            )
+            .unwrap(),
+            "a trial read in a child process failed, it aborted",
+        ),
+        (
             "up.usda",
             b"#usda 1.0\n(\n    upAxis = \"X\"\n)\n".to_vec(),
             "upAxis",

@@ -27,6 +27,7 @@
 //! [`FormatError`] naming the file and, where there is one, the prim path.
 
 mod camera;
+mod guard;
 mod lights;
 mod material;
 mod mesh;
@@ -63,7 +64,10 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<SceneDescription, Form
     let Some(name) = path.to_str() else {
         return Err(FormatError::new(path, 0, "the file's path is not UTF-8"));
     };
-    // openusd 0.6 is young: a file it trips on must not take the viewer down with it.
+    // openusd 0.6 is young: a file it trips on must not take the viewer down with it. An
+    // allocation it cannot make aborts (not catchable): a child process tries the file first.
+    guard::trial_read(|| read_stage(path, name, options).is_ok())
+        .map_err(|why| FormatError::new(path, 0, why))?;
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         read_stage(path, name, options)
     })) {
