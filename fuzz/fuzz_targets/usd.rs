@@ -7,6 +7,11 @@ use libfuzzer_sys::fuzz_target;
 use tracer_core::formats::{ReadOptions, usd};
 
 fuzz_target!(|data: &[u8]| {
+    // A file openusd loops on is refused after 3 s (libFuzzer's own limit is 10 s).
+    let options = ReadOptions {
+        usd_trial_secs: Some(3.0),
+        ..ReadOptions::default()
+    };
     let ext = if data.starts_with(b"PXR-USDC") {
         "usdc"
     } else if data.starts_with(b"PK") {
@@ -16,7 +21,7 @@ fuzz_target!(|data: &[u8]| {
     };
     let path = std::env::temp_dir().join(format!("raygine-fuzz-{}.{ext}", std::process::id()));
     if std::fs::write(&path, data).is_ok()
-        && let Ok(desc) = usd::read(&path, &ReadOptions::default())
+        && let Ok(desc) = usd::read(&path, &options)
     {
         let _ = tracer_core::scene::Scene::build(&desc, "fuzz");
     }

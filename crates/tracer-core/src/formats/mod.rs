@@ -41,6 +41,9 @@ pub struct ReadOptions {
     /// The USD time code attributes are read at (`--usd-time`, the sidecar's `usd_time`);
     /// None: their default values.
     pub usd_time: Option<f64>,
+    /// How long a USD file's trial read may take, seconds (None: `RAYGINE_USD_TRIAL_SECS`,
+    /// else 60 s and 2 s a megabyte).
+    pub usd_trial_secs: Option<f64>,
 }
 
 impl ReadOptions {

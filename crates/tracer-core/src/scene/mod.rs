@@ -106,6 +106,7 @@ pub fn load(path: &Path, options: &LoadOptions<'_>) -> Result<LoadedScene, Scene
     let read_options = crate::formats::ReadOptions {
         emission_scale: sidecar.emission_scale,
         usd_time: options.usd_time.or(sidecar.usd_time),
+        ..crate::formats::ReadOptions::default()
     };
     let desc = crate::formats::read_scene_with(path, &read_options)?;
     let parse_secs = started.elapsed().as_secs_f64();

@@ -549,6 +549,17 @@ fn bad_files_are_errors_naming_the_file_never_panics() {
             "a trial read in a child process failed, it aborted",
         ),
         (
+            // The fuzzer's second find: openusd's instancing resolution recursing without end
+            // on a mangled Cornell box; the trial read is stopped (3 s here, 60 s by default).
+            "loop.usda",
+            std::fs::read(
+                Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join("../../fuzz/regressions/usd/timeout-fc6bb632-instancing-loop.usda"),
+            )
+            .unwrap(),
+            "did not finish reading this file within 3 s",
+        ),
+        (
             "up.usda",
             b"#usda 1.0\n(\n    upAxis = \"X\"\n)\n".to_vec(),
             "upAxis",
@@ -561,7 +572,11 @@ fn bad_files_are_errors_naming_the_file_never_panics() {
     for (name, bytes, expect) in cases {
         let path = dir.0.join(name);
         std::fs::write(&path, &bytes).unwrap();
-        let result = std::panic::catch_unwind(|| usd::read(&path, &ReadOptions::default()));
+        let options = ReadOptions {
+            usd_trial_secs: Some(3.0),
+            ..ReadOptions::default()
+        };
+        let result = std::panic::catch_unwind(|| usd::read(&path, &options));
         let Ok(result) = result else {
             panic!("{name}: panicked");
         };
@@ -913,4 +928,62 @@ fn a_point_instancer_places_its_prototypes_once_stored() {
         "two squares stored"
     );
     assert_eq!(loaded.scene.triangle_count(), 6);
+}
+
+/// glTF's packing read from USD: roughness from `outputs:g` and metallic from `outputs:b` of
+/// one image is the metallic-roughness map; a textured input's factor is 1 (the texture gives
+/// the value), and opacity from an image is an alpha map.
+#[test]
+fn packed_roughness_metallic_and_opacity_textures_map_as_gltf_does() {
+    let dir = scratch("orm");
+    for name in ["orm.png", "base.png", "cut.png"] {
+        let mut png = Vec::new();
+        image::RgbaImage::from_pixel(2, 2, image::Rgba([200, 100, 50, 128]))
+            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        std::fs::write(dir.0.join(name), png).unwrap();
+    }
+    let tex = |name: &str, file: &str| {
+        format!(
+            "    def Shader \"{name}\"\n    {{\n        uniform token info:id = \"UsdUVTexture\"\n        \
+             asset inputs:file = @{file}@\n        float outputs:r\n        float outputs:g\n        \
+             float outputs:b\n        float outputs:a\n        float3 outputs:rgb\n    }}\n"
+        )
+    };
+    let path = dir.write(
+        "orm.usda",
+        &format!(
+            "#usda 1.0\n(\n    metersPerUnit = 1\n)\n\
+             def Material \"Look\"\n{{\n    token outputs:surface.connect = </Look/S.outputs:surface>\n    \
+             def Shader \"S\"\n    {{\n        uniform token info:id = \"UsdPreviewSurface\"\n        \
+             color3f inputs:diffuseColor.connect = </Look/Base.outputs:rgb>\n        \
+             float inputs:roughness = 0.3\n        float inputs:roughness.connect = </Look/Orm.outputs:g>\n        \
+             float inputs:metallic.connect = </Look/Orm.outputs:b>\n        \
+             float inputs:opacity.connect = </Look/Cut.outputs:a>\n        float inputs:opacityThreshold = 0.5\n        \
+             token outputs:surface\n    }}\n{}{}{}}}\n\
+             def Mesh \"Quad\"\n{{\n    {SQUARE}\n    rel material:binding = </Look>\n}}\n",
+            tex("Orm", "orm.png"),
+            tex("Base", "base.png"),
+            tex("Cut", "cut.png")
+        ),
+    );
+    let d = read_scene(&path).unwrap();
+    let m = &d.materials[0];
+    let model = m.metal_rough.unwrap();
+    assert_eq!(model.base_color, [1.0; 3], "the texture is the base colour");
+    assert_eq!((model.roughness, model.metallic), (1.0, 1.0));
+    let maps = m.maps.as_ref().unwrap();
+    let file = |t: &Option<tracer_core::texture::TextureRef<tracer_core::formats::ImageSource>>| {
+        t.as_ref().map(|t| t.texture.name())
+    };
+    assert!(file(&maps.metal_rough).unwrap().ends_with("orm.png"));
+    assert!(file(&maps.base_color).unwrap().ends_with("base.png"));
+    assert!(file(&maps.alpha_map).unwrap().ends_with("cut.png"));
+    assert!(maps.roughness.is_none() && maps.metallic.is_none());
+    assert_eq!(
+        maps.alpha_mode,
+        tracer_core::texture::AlphaMode::Mask { cutoff: 0.5 }
+    );
+    // The scene builds with them (images decoded).
+    load(&path, &LoadOptions::default()).unwrap();
 }

@@ -6,13 +6,34 @@
 //! runs in it. A child that reads the file to the end exits 0 (or 1 on a clean error, which
 //! the real read then reports).
 //!
+//! openusd 0.6 also loops without end on some malformed files (the fuzzer found one: its
+//! instancing resolution recursing); a child that has not finished after [`limit`] is killed
+//! and the file refused.
+//!
 //! The child shares the parent's memory copy-on-write and runs only the read (no other
 //! thread exists in it); glibc's allocator resets its locks across fork. Unix only; elsewhere
 //! the read runs unguarded.
 
-/// Reads the file in a child with `read`; `Err` says how the child died.
+/// How long the trial may take: `given` seconds, else `RAYGINE_USD_TRIAL_SECS`, else 60 s and
+/// 2 s a megabyte of the file opened (its layers are not counted).
+pub(super) fn limit(given: Option<f64>, file_bytes: u64) -> std::time::Duration {
+    let secs = given
+        .or_else(|| {
+            std::env::var("RAYGINE_USD_TRIAL_SECS")
+                .ok()
+                .and_then(|s| s.trim().parse::<f64>().ok())
+        })
+        .filter(|s| s.is_finite() && *s > 0.0)
+        .unwrap_or(60.0 + 2.0 * file_bytes as f64 / 1e6);
+    std::time::Duration::from_secs_f64(secs)
+}
+
+/// Reads the file in a child with `read`, for at most `limit`; `Err` says how the child died.
 #[cfg(unix)]
-pub(super) fn trial_read(read: impl FnOnce() -> bool) -> Result<(), String> {
+pub(super) fn trial_read(
+    limit: std::time::Duration,
+    read: impl FnOnce() -> bool,
+) -> Result<(), String> {
     // SAFETY: fork has no preconditions; the child only runs `read` and leaves by `_exit`,
     // never returning into the parent's code or running its destructors.
     let pid = unsafe { libc::fork() };
@@ -35,15 +56,29 @@ pub(super) fn trial_read(read: impl FnOnce() -> bool) -> Result<(), String> {
         unsafe { libc::_exit(if ok { 0 } else { 1 }) };
     }
     let mut status = 0;
+    let started = std::time::Instant::now();
     loop {
-        // SAFETY: waits for the child just forked; `status` is a valid out-pointer.
-        let r = unsafe { libc::waitpid(pid, &mut status, 0) };
+        // SAFETY: polls the child just forked; `status` is a valid out-pointer.
+        let r = unsafe { libc::waitpid(pid, &mut status, libc::WNOHANG) };
         if r == pid {
             break;
         }
         if r < 0 && std::io::Error::last_os_error().kind() != std::io::ErrorKind::Interrupted {
             return Ok(());
         }
+        if started.elapsed() > limit {
+            // SAFETY: ends and reaps our own child.
+            unsafe {
+                libc::kill(pid, libc::SIGKILL);
+                libc::waitpid(pid, &mut status, 0);
+            }
+            return Err(format!(
+                "the USD reader (openusd 0.6) did not finish reading this file within {:.0} s \
+                 (it loops on some damaged files; RAYGINE_USD_TRIAL_SECS sets the limit)",
+                limit.as_secs_f64()
+            ));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(2));
     }
     if libc::WIFSIGNALED(status) {
         let signal = libc::WTERMSIG(status);
@@ -62,6 +97,9 @@ pub(super) fn trial_read(read: impl FnOnce() -> bool) -> Result<(), String> {
 }
 
 #[cfg(not(unix))]
-pub(super) fn trial_read(_read: impl FnOnce() -> bool) -> Result<(), String> {
+pub(super) fn trial_read(
+    _limit: std::time::Duration,
+    _read: impl FnOnce() -> bool,
+) -> Result<(), String> {
     Ok(())
 }

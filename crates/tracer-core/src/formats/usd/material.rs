@@ -6,9 +6,13 @@
 //! - `opacity` (1) below 1 makes the surface present with that probability (glTF's BLEND), or,
 //!   with `opacityThreshold` > 0, cut where opacity is below the threshold (glTF's MASK);
 //! - `emissiveColor` glows at `emission_scale` cd/m² per unit (as glTF emission; noted);
-//! - `UsdUVTexture` inputs: `diffuseColor` (sRGB base colour), `emissiveColor` and `normal`
-//!   (tangent space) are read from files beside the layer or inside the `.usdz`, with UV set 0
-//!   (`st`); textures on other inputs are noted and their constant (or default) used.
+//! - `UsdUVTexture` inputs, read from files beside the layer or inside the `.usdz` with UV set
+//!   0 (`st`), repeat and bilinear: `diffuseColor` (sRGB base colour), `emissiveColor`, `normal`
+//!   (tangent space), `roughness` and `metallic` from an image's `r` output (or glTF's packing:
+//!   roughness from `g` and metallic from `b` of one image), `opacity` (alpha, else red). A
+//!   textured input takes the texture's value (its constant is not a factor). Occlusion and
+//!   clearcoat are noted, not used; UsdUVTexture's `scale`, `bias`, `wrapS/T` and
+//!   UsdTransform2d are not read.
 //! - `useSpecularWorkflow = 1`: drawn with the metallic workflow (noted).
 //!
 //! A material that is not a UsdPreviewSurface (MDL, MaterialX) draws with the prim's
@@ -77,12 +81,15 @@ impl Reader<'_> {
                 return None;
             }
         };
+        // A textured input takes the texture's value: its factor is 1.
         let color = |c: &Channel<openusd::gf::Vec3f>, default: [f32; 3]| match c {
             Channel::Value(v) => [v.x, v.y, v.z],
-            _ => default,
+            Channel::Texture(_) => [1.0; 3],
+            Channel::Unset => default,
         };
         let number = |c: &Channel<f32>, default: f32| match c {
             Channel::Value(v) if v.is_finite() => *v,
+            Channel::Texture(_) => 1.0,
             _ => default,
         };
         let model = MetalRoughDescription {
@@ -121,9 +128,39 @@ impl Reader<'_> {
         maps.emissive = self.texture(surface.emissive_color.texture(), &at);
         maps.normal = self.texture(surface.normal.texture(), &at);
         maps.normal_scale = 1.0;
+        // Roughness and metallic: from the red channel of their own images, or glTF's packing
+        // (roughness in G, metallic in B of one image).
+        let channel = |input: &str| output_channel(&shader, input);
+        let (rough_file, metal_file) = (surface.roughness.texture(), surface.metallic.texture());
+        let mut unread_maps = Vec::new();
+        match (
+            rough_file,
+            metal_file,
+            channel("roughness"),
+            channel("metallic"),
+        ) {
+            (Some(r), Some(m), Some('g'), Some('b')) if r == m => {
+                maps.metal_rough = self.texture(Some(r), &at);
+            }
+            (r, m, rc, mc) => {
+                match (r, rc) {
+                    (Some(file), Some('r')) => maps.roughness = self.texture(Some(file), &at),
+                    (Some(_), _) => unread_maps.push("roughness (a channel other than r)"),
+                    _ => {}
+                }
+                match (m, mc) {
+                    (Some(file), Some('r')) => maps.metallic = self.texture(Some(file), &at),
+                    (Some(_), _) => unread_maps.push("metallic (a channel other than r)"),
+                    _ => {}
+                }
+            }
+        }
+        if let Some(file) = surface.opacity.texture() {
+            maps.alpha_map = self.texture(Some(file), &at);
+        }
         let opacity = number(&surface.opacity, 1.0).clamp(0.0, 1.0);
         let threshold = number(&surface.opacity_threshold, 0.0).clamp(0.0, 1.0);
-        if opacity < 1.0 {
+        if opacity < 1.0 || maps.alpha_map.is_some() {
             maps.alpha_factor = opacity;
             maps.alpha_mode = if threshold > 0.0 {
                 AlphaMode::Mask { cutoff: threshold }
@@ -132,14 +169,12 @@ impl Reader<'_> {
             };
         }
         let unread: Vec<&str> = [
-            ("metallic", surface.metallic.texture().is_some()),
-            ("roughness", surface.roughness.texture().is_some()),
-            ("opacity", surface.opacity.texture().is_some()),
             ("occlusion", surface.occlusion.texture().is_some()),
             ("clearcoat", surface.clearcoat.is_set()),
         ]
         .into_iter()
         .filter_map(|(name, has)| has.then_some(name))
+        .chain(unread_maps)
         .collect();
         if !unread.is_empty() {
             self.desc.notes.push(format!(
@@ -196,5 +231,22 @@ impl Reader<'_> {
             wrap: [Wrap::Repeat; 2],
             filter: Filter::Linear,
         })
+    }
+}
+
+/// The channel (`r`, `g`, `b`, `a`) of the UsdUVTexture output that `inputs:NAME` of `shader`
+/// connects to (`outputs:g` gives `g`; `outputs:rgb` gives None).
+fn output_channel(shader: &Prim, input: &str) -> Option<char> {
+    let source = shader
+        .attribute(format!("inputs:{input}"))
+        .connections()
+        .ok()?
+        .into_iter()
+        .next()?;
+    let name = source.as_str().rsplit_once(".outputs:")?.1.to_owned();
+    let mut chars = name.chars();
+    match (chars.next(), chars.next()) {
+        (Some(c @ ('r' | 'g' | 'b' | 'a')), None) => Some(c),
+        _ => None,
     }
 }

@@ -66,8 +66,10 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<SceneDescription, Form
     };
     // openusd 0.6 is young: a file it trips on must not take the viewer down with it. An
     // allocation it cannot make aborts (not catchable): a child process tries the file first.
-    guard::trial_read(|| read_stage(path, name, options).is_ok())
-        .map_err(|why| FormatError::new(path, 0, why))?;
+    guard::trial_read(guard::limit(options.usd_trial_secs, meta.len()), || {
+        read_stage(path, name, options).is_ok()
+    })
+    .map_err(|why| FormatError::new(path, 0, why))?;
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         read_stage(path, name, options)
     })) {
