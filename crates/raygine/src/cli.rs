@@ -18,8 +18,8 @@ pub use crate::cli_args::{
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// Scene to open (Lumicept .shp or .brs, an Integra bundle's .shp, OBJ, glTF or .glb);
-    /// without one, the last scene or the built-in Cornell box.
+    /// Scene to open (Lumicept .shp or .brs, an Integra bundle's .shp, OBJ, glTF, .glb or USD:
+    /// .usda, .usdc, .usdz, .usd); without one, the last scene or the built-in Cornell box.
     pub scene: Option<PathBuf>,
     /// Render threads of the viewer (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]

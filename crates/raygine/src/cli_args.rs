@@ -13,8 +13,8 @@ pub const PATH_DEFAULT_SAMPLES: u32 = 64;
 /// The scene and sampling options every command shares.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
-    /// Scene file (Lumicept .shp, an Integra bundle's .shp, .brs, .obj, .gltf, .glb, .usda, .usdc, .usdz, .usd). Without it, the built-in
-    /// Cornell box.
+    /// Scene file (Lumicept .shp, an Integra bundle's .shp, .brs, .obj, .gltf, .glb, .usda,
+    /// .usdc, .usdz, .usd). Without it, the built-in Cornell box.
     #[arg(
         short = 'S',
         long = "scene_path",

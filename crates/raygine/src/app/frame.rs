@@ -331,7 +331,7 @@ impl RaygineApp {
     }
 }
 
-/// A file dropped on the window: a scene (`.shp`, `.brs`, `.obj`, `.gltf`, `.glb`) is opened
+/// A file dropped on the window: a scene (`.shp`, `.brs`, `.obj`, `.gltf`, `.glb`, USD) is opened
 /// (asking first about unsaved edits); anything else is an error.
 fn dropped_file(ctx: &egui::Context) -> Option<Command> {
     let path = ctx.input(|i| i.raw.dropped_files.first().map(|f| f.path().to_path_buf()))?;

@@ -224,7 +224,7 @@ fn help_ui(ctx: &egui::Context, show_help: &mut bool) {
                 for (k, what) in [
                     (
                         "Ctrl+O",
-                        "open a scene (.shp, .brs, .obj, .gltf/.glb) or its NAME.raygine.toml (or drop one on the window)",
+                        "open a scene (.shp, .brs, .obj, .gltf/.glb, .usda/.usdc/.usdz) or its NAME.raygine.toml (or drop one on the window)",
                     ),
                     (
                         "Ctrl+S",

@@ -22,6 +22,12 @@ use tracer_core::measure::{MeasureSettings, measure_grids};
 use tracer_core::render::{RenderSettings, render};
 use tracer_core::scene::{LoadOptions, LoadedScene, load};
 
+/// A saved fuzz find (`fuzz/regressions/usd/`).
+fn regression(name: &str) -> Vec<u8> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/usd");
+    std::fs::read(dir.join(name)).unwrap()
+}
+
 fn asset(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../assets/usd")
@@ -541,22 +547,14 @@ fn bad_files_are_errors_naming_the_file_never_panics() {
             // The fuzzer's find: a count declaring 12 PB; openusd allocates it and the
             // process would abort, so a child process tries the file first.
             "huge.usdc",
-            std::fs::read(
-                Path::new(env!("CARGO_MANIFEST_DIR"))
-                    .join("../../fuzz/regressions/usd/crash-046a1824-huge-declared-count.usdc"),
-            )
-            .unwrap(),
+            regression("crash-046a1824-huge-declared-count.usdc"),
             "a trial read in a child process failed, it aborted",
         ),
         (
             // The fuzzer's second find: openusd's instancing resolution recursing without end
             // on a mangled Cornell box; the trial read is stopped (3 s here, 60 s by default).
             "loop.usda",
-            std::fs::read(
-                Path::new(env!("CARGO_MANIFEST_DIR"))
-                    .join("../../fuzz/regressions/usd/timeout-fc6bb632-instancing-loop.usda"),
-            )
-            .unwrap(),
+            regression("timeout-fc6bb632-instancing-loop.usda"),
             "did not finish reading this file within 3 s",
         ),
         (

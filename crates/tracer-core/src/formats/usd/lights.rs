@@ -288,6 +288,11 @@ impl Reader<'_> {
             }
             EnvironmentSource::Uniform { .. } => 1.0,
         };
+        // A uniform dome has no orientation to show.
+        let rotation_deg = match &source {
+            EnvironmentSource::Map(_) => rotation_deg,
+            EnvironmentSource::Uniform { .. } => 0.0,
+        };
         self.desc.environment = Some(Environment {
             source,
             scale,
