@@ -77,7 +77,8 @@ pub fn daylight_ui(ui: &mut egui::Ui, setup: &mut Setup, draft: &mut DaylightDra
             Some(sun) => {
                 let d = glam::Vec3::from(sun.direction).normalize_or_zero();
                 ui.label(format!(
-                    "No daylight. The file's distant light: {:.0} lx on a plane facing it,                      {:.2}° across, {:.1}° above the horizon.",
+                    "No daylight. The file's distant light: {:.0} lx on a plane facing it, {:.2}° \
+                     across, {:.1}° above the horizon (a daylight sun replaces it).",
                     sun.normal_illuminance_lx,
                     sun.diameter_deg,
                     d.y.clamp(-1.0, 1.0).asin().to_degrees()
