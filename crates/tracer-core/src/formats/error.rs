@@ -66,6 +66,12 @@ pub fn check_memory(
 
 /// Reads a whole file after checking its size against [`MAX_SCENE_FILE_BYTES`].
 pub fn read_limited(path: &Path, what: &str) -> Result<Vec<u8>, FormatError> {
+    check_size(path, what)?;
+    std::fs::read(path).map_err(|e| FormatError::new(path, 0, format!("cannot read {what}: {e}")))
+}
+
+/// The size of a file `what` names, refused above [`MAX_SCENE_FILE_BYTES`].
+pub fn check_size(path: &Path, what: &str) -> Result<u64, FormatError> {
     let meta = std::fs::metadata(path)
         .map_err(|e| FormatError::new(path, 0, format!("cannot read {what}: {e}")))?;
     if meta.len() > MAX_SCENE_FILE_BYTES {
@@ -78,5 +84,5 @@ pub fn read_limited(path: &Path, what: &str) -> Result<Vec<u8>, FormatError> {
             ),
         ));
     }
-    std::fs::read(path).map_err(|e| FormatError::new(path, 0, format!("cannot read {what}: {e}")))
+    Ok(meta.len())
 }

@@ -35,7 +35,7 @@ mod point_instancer;
 mod values;
 mod xform;
 
-use super::error::{FormatError, MAX_SCENE_FILE_BYTES};
+use super::error::{FormatError, check_size};
 use super::{MeshDescription, ReadOptions, SceneDescription, SceneFormat};
 use glam::DMat4;
 use openusd::usd::{self, Prim, Stage};
@@ -49,24 +49,13 @@ const MAX_DEPTH: usize = 512;
 
 /// Reads a `.usda`, `.usdc` or `.usdz` file with the layers it names.
 pub fn read(path: &Path, options: &ReadOptions) -> Result<SceneDescription, FormatError> {
-    let meta = std::fs::metadata(path)
-        .map_err(|e| FormatError::new(path, 0, format!("cannot read the USD file: {e}")))?;
-    if meta.len() > MAX_SCENE_FILE_BYTES {
-        return Err(FormatError::new(
-            path,
-            0,
-            format!(
-                "the USD file of {} bytes is larger than raygine reads ({MAX_SCENE_FILE_BYTES})",
-                meta.len()
-            ),
-        ));
-    }
+    let bytes = check_size(path, "the USD file")?;
     let Some(name) = path.to_str() else {
         return Err(FormatError::new(path, 0, "the file's path is not UTF-8"));
     };
     // openusd 0.6 is young: a file it trips on must not take the viewer down with it. An
     // allocation it cannot make aborts (not catchable): a child process tries the file first.
-    guard::trial_read(guard::limit(options.usd_trial_secs, meta.len()), || {
+    guard::trial_read(guard::limit(options.usd_trial_secs, bytes), || {
         read_stage(path, name, options).is_ok()
     })
     .map_err(|why| FormatError::new(path, 0, why))?;
