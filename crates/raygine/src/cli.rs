@@ -48,6 +48,49 @@ pub enum Command {
     /// Measure the grids and write a lighting report (PDF): settings, a view, per grid a plan
     /// and its statistics, the luminaire schedule and the requirements check.
     Report(ReportArgs),
+    /// Glare at the sidecar's [[observers]]: UGR and DGP with their standard errors, from a
+    /// 180° fisheye at each eye (sources from the image and from luminaires' openings).
+    Glare(GlareArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct GlareArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Only this observer (repeat for several; default: every observer).
+    #[arg(long, value_name = "NAME")]
+    pub observer: Vec<String>,
+    /// Side of the square fisheye, pixels.
+    #[arg(long, value_name = "PX", default_value_t = tracer_core::glare::DEFAULT_IMAGE_SIZE,
+          value_parser = clap::value_parser!(u32).range(32..=4096))]
+    pub size: u32,
+    /// Glare pixels (evalglare's -b): above this factor times the image's mean luminance, or
+    /// above this luminance (cd/m²) when it is over 100.
+    #[arg(long, value_name = "B", default_value_t = 5.0, value_parser = parse_positive)]
+    pub threshold: f64,
+    /// evalglare's -r (radians, full angle): glare pixels within half of it of each other
+    /// form one source.
+    #[arg(long, value_name = "RAD", default_value_t = 0.2, value_parser = parse_positive)]
+    pub search_radius: f64,
+    /// Apply evalglare's low-light correction of DGP below 1000 lx (-C l+).
+    #[arg(long)]
+    pub dgp_low_light: bool,
+    /// Write every figure and source here (JSON).
+    #[arg(long, value_name = "PATH")]
+    pub json: Option<std::path::PathBuf>,
+    /// Write one row per observer and way of finding sources here (CSV).
+    #[arg(long, value_name = "PATH")]
+    pub csv: Option<std::path::PathBuf>,
+    /// Write each observer's fisheye as DIR/NAME.hdr, a Radiance picture for evalglare.
+    #[arg(long, value_name = "DIR")]
+    pub hdr: Option<std::path::PathBuf>,
+}
+
+fn parse_positive(s: &str) -> Result<f64, String> {
+    s.parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .ok_or_else(|| format!("`{s}` is not a positive number"))
 }
 
 #[derive(Debug, Args)]

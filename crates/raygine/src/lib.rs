@@ -12,6 +12,7 @@ pub mod cli_args;
 pub mod cli_shards;
 pub mod cli_support;
 pub mod format;
+pub mod glare_cmd;
 pub mod info_cmd;
 pub mod measure_cmd;
 pub mod merge_cmd;
@@ -86,6 +87,7 @@ pub fn run() -> ExitCode {
         Some(cli::Command::Render(render)) => render_cmd::run(&render),
         Some(cli::Command::Measure(measure)) => measure_cmd::run(&measure),
         Some(cli::Command::Info(info)) => info_cmd::run(&info),
+        Some(cli::Command::Glare(glare)) => glare_cmd::run(&glare),
         Some(cli::Command::Merge(merge)) => merge_cmd::run(&merge),
         Some(cli::Command::Sweep(sweep)) => sweep_cmd::run(&sweep),
         Some(cli::Command::Report(report)) => report_cmd::run(&report),

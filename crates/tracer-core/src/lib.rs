@@ -31,6 +31,7 @@ pub mod display;
 pub mod export;
 pub mod formats;
 pub mod geometry;
+pub mod glare;
 pub mod integrator;
 mod lanes8;
 pub mod light;

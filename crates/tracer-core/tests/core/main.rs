@@ -23,6 +23,8 @@ mod environment_input;
 mod film_precision;
 mod fuzz_corpus;
 mod gi_analytic;
+mod glare;
+mod guth_table_copy;
 mod illuminance_on_demand;
 mod instancing;
 mod integra_bundle;

@@ -1,0 +1,253 @@
+//! UGR (CIE 117:1995) and DGP (Wienold & Christoffersen 2006) from a glare image and its
+//! sources, each with a standard error.
+//!
+//! - Ev = Σ L cos θ ω over the image (the vertical illuminance at the eye).
+//! - Lb = (Ev − the sources' share of it) / π: the indirect illuminance at the eye over π, i.e.
+//!   the mean background luminance an eye adapts to.
+//! - UGR = 8 log₁₀(0.25 / Lb · Σ L² ω / p²).
+//! - DGP = 5.87·10⁻⁵ Ev + 9.18·10⁻² log₁₀(1 + Σ L² ω / (Ev^1.87 p²)) + 0.16 (the paper's
+//!   constants; evalglare 3.06 rounds them to 0.092 and 0.159, 0.001 lower), at most 1; with
+//!   the low-light correction (evalglare's `-C l+`, for Ev < 1000 lx, only when asked) times
+//!   e^(0.024 Ev − 4) / (1 + e^(0.024 Ev − 4)).
+//!
+//! The uncertainty: every figure is a smooth function of the pixels' mean luminances, which are
+//! independent Monte Carlo estimates with known standard errors (an analytic source's luminance
+//! is exact). Its standard error is the first-order (delta-method) one, √(Σ (∂F/∂Lⱼ)² σⱼ²), with
+//! the derivatives worked out below. It says how far the figure may move with more samples; it
+//! does not cover the image's resolution or the choice of threshold.
+
+use super::image::GlareImage;
+use super::position_index::evalglare_index;
+use super::source::GlareSource;
+use std::f64::consts::{LN_10, PI};
+
+/// evalglare applies its low-light correction below this vertical illuminance (lx).
+pub const LOW_LIGHT_LX: f64 = 1000.0;
+
+/// The figures of one way of finding the sources.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GlareFigures {
+    /// Vertical illuminance at the eye (lx) and its standard error.
+    pub ev: f64,
+    pub ev_se: f64,
+    /// Background luminance (cd/m²) and its standard error.
+    pub lb: f64,
+    pub lb_se: f64,
+    /// UGR, None without sources (or without background light); its standard error.
+    pub ugr: Option<f64>,
+    pub ugr_se: f64,
+    /// UGR with evalglare's position indices (Levin's form above the line of sight) at the same
+    /// sources: what evalglare would make of them.
+    pub ugr_evalglare_index: Option<f64>,
+    pub dgp: f64,
+    pub dgp_se: f64,
+    /// Whether the low-light correction was asked for, and whether it changed DGP.
+    pub low_light_asked: bool,
+    pub low_light_applied: bool,
+    pub sources: Vec<GlareSource>,
+}
+
+impl GlareFigures {
+    /// Notes on where the figures leave their models' ranges.
+    pub fn notes(&self) -> Vec<String> {
+        let mut notes = Vec::new();
+        let outside = self.sources.iter().filter(|s| s.outside_cie117()).count();
+        if outside > 0 {
+            notes.push(format!(
+                "{outside} of {} sources lie outside CIE 117's 0.0003–0.1 sr (CIE 147:2002 \
+                 treats small and large sources)",
+                self.sources.len()
+            ));
+        }
+        if self.lb <= 0.0 {
+            notes.push("no background luminance: UGR is undefined".to_owned());
+        }
+        if !self.low_light_asked && self.ev < LOW_LIGHT_LX {
+            notes.push(format!(
+                "Ev {:.0} lx is below {LOW_LIGHT_LX:.0} lx: DGP is uncorrected \
+                 (--dgp-low-light applies evalglare's low-light correction)",
+                self.ev
+            ));
+        }
+        notes
+    }
+}
+
+/// The figures of `image` with `sources` (from the image, analytic, or both).
+pub fn glare_figures(
+    image: &GlareImage,
+    sources: Vec<GlareSource>,
+    low_light: bool,
+) -> GlareFigures {
+    let n = image.luminance.len();
+    // Which image source each pixel belongs to.
+    let mut owner: Vec<Option<usize>> = vec![None; n];
+    for (k, s) in sources.iter().enumerate() {
+        for &i in &s.pixels {
+            owner[i] = Some(k);
+        }
+    }
+    let cos_sr = |i: usize| image.direction[i].z.max(0.0) * image.solid_angle[i];
+    let (ev, _) = image.illuminance();
+    let analytic_e: f64 = sources
+        .iter()
+        .filter(|s| s.pixels.is_empty())
+        .map(|s| s.eye_illuminance)
+        .sum();
+    let background_e: f64 = image
+        .seen()
+        .filter(|&i| owner[i].is_none())
+        .map(|i| image.luminance[i] * cos_sr(i))
+        .sum();
+    let lb = ((background_e - analytic_e) / PI).max(0.0);
+    let terms: Vec<f64> = sources
+        .iter()
+        .map(|s| s.luminance * s.luminance * s.solid_angle / (s.position_index * s.position_index))
+        .collect();
+    let sum: f64 = terms.iter().sum();
+    let ugr = (sum > 0.0 && lb > 0.0).then(|| 8.0 * (0.25 * sum / lb).log10());
+    let sum_evalglare: f64 = sources
+        .iter()
+        .map(|s| {
+            let p = evalglare_index(s.direction).unwrap_or(s.position_index);
+            s.luminance * s.luminance * s.solid_angle / (p * p)
+        })
+        .sum();
+    let ugr_evalglare_index =
+        (sum_evalglare > 0.0 && lb > 0.0).then(|| 8.0 * (0.25 * sum_evalglare / lb).log10());
+    let ev_pow = ev.max(1e-12).powf(1.87);
+    let g = sum / ev_pow;
+    let raw_dgp = 5.87e-5 * ev + 9.18e-2 * (1.0 + g).log10() + 0.16;
+    let (factor, dfactor) = if low_light && ev < LOW_LIGHT_LX {
+        let e = (0.024 * ev - 4.0).exp();
+        let f = e / (1.0 + e);
+        (f, 0.024 * f * (1.0 - f))
+    } else {
+        (1.0, 0.0)
+    };
+    // DGP is a probability: evalglare holds it at 1.
+    let capped = raw_dgp * factor > 1.0;
+    let dgp = (raw_dgp * factor).min(1.0);
+
+    // Derivatives with respect to each pixel's luminance, and the variances they carry.
+    let (mut var_ev, mut var_lb, mut var_ugr, mut var_dgp) = (0.0, 0.0, 0.0, 0.0);
+    for i in image.seen() {
+        let se = image.std_error[i];
+        if se == 0.0 {
+            continue;
+        }
+        let d_ev = cos_sr(i);
+        let (d_sum, d_lb) = match owner[i] {
+            Some(k) => {
+                let s = &sources[k];
+                let p2 = s.position_index * s.position_index;
+                (2.0 * s.luminance * image.solid_angle[i] / p2, 0.0)
+            }
+            None => (0.0, d_ev / PI),
+        };
+        var_ev += (d_ev * se).powi(2);
+        var_lb += (d_lb * se).powi(2);
+        if ugr.is_some() {
+            let d_ugr = 8.0 / LN_10 * (d_sum / sum - d_lb / lb);
+            var_ugr += (d_ugr * se).powi(2);
+        }
+        let d_g = d_sum / ev_pow - 1.87 * g * d_ev / ev.max(1e-12);
+        let d_raw = 5.87e-5 * d_ev + 9.18e-2 / LN_10 * d_g / (1.0 + g);
+        if !capped {
+            let d_dgp = d_raw * factor + raw_dgp * dfactor * d_ev;
+            var_dgp += (d_dgp * se).powi(2);
+        }
+    }
+    GlareFigures {
+        ev,
+        ev_se: var_ev.sqrt(),
+        lb,
+        lb_se: var_lb.sqrt(),
+        ugr,
+        ugr_se: var_ugr.sqrt(),
+        ugr_evalglare_index,
+        dgp,
+        dgp_se: var_dgp.sqrt(),
+        low_light_asked: low_light,
+        low_light_applied: factor < 1.0,
+        sources,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+    use crate::glare::position_index::IndexRule;
+    use glam::DVec3;
+
+    /// A two-pixel "image": one source pixel straight ahead, one background pixel.
+    fn two_pixels(l_src: f64, l_bg: f64, se: f64) -> GlareImage {
+        GlareImage {
+            width: 2,
+            height: 1,
+            luminance: vec![l_src, l_bg],
+            std_error: vec![se, se],
+            direction: vec![DVec3::Z, DVec3::new(0.6, 0.0, 0.8)],
+            solid_angle: vec![0.01, 2.0],
+            basis: None,
+        }
+    }
+
+    fn source_of(image: &GlareImage) -> GlareSource {
+        GlareSource {
+            label: "s".into(),
+            direction: DVec3::Z,
+            luminance: image.luminance[0],
+            luminance_se: image.std_error[0],
+            solid_angle: image.solid_angle[0],
+            eye_illuminance: image.luminance[0] * image.solid_angle[0],
+            position_index: 1.0,
+            index_rule: IndexRule::GuthTable,
+            pixels: vec![0],
+        }
+    }
+
+    #[test]
+    fn figures_follow_the_formulas() {
+        let image = two_pixels(10_000.0, 50.0, 0.0);
+        let f = glare_figures(&image, vec![source_of(&image)], false);
+        let ev = 10_000.0 * 0.01 + 50.0 * 0.8 * 2.0;
+        let lb = 50.0 * 0.8 * 2.0 / PI;
+        assert!((f.ev - ev).abs() < 1e-9 && (f.lb - lb).abs() < 1e-9);
+        let ugr = 8.0 * (0.25 / lb * 1e8 * 0.01).log10();
+        assert!((f.ugr.unwrap() - ugr).abs() < 1e-9);
+        let dgp = 5.87e-5 * ev + 0.0918 * (1.0 + 1e6 / ev.powf(1.87)).log10() + 0.16;
+        assert!((f.dgp - dgp).abs() < 1e-12);
+        assert_eq!((f.ugr_se, f.dgp_se), (0.0, 0.0));
+        let low = glare_figures(&image, vec![source_of(&image)], true);
+        let a = (0.024f64 * ev - 4.0).exp();
+        assert!((low.dgp - dgp * a / (1.0 + a)).abs() < 1e-12 && low.low_light_applied);
+    }
+
+    /// The delta-method standard errors against finite differences of the figures.
+    #[test]
+    fn standard_errors_are_the_first_order_propagation() {
+        let se = 30.0;
+        let image = two_pixels(10_000.0, 50.0, se);
+        let base = glare_figures(&image, vec![source_of(&image)], true);
+        let mut var_ugr = 0.0;
+        let mut var_dgp = 0.0;
+        for i in 0..2 {
+            let mut moved = image.clone();
+            let h = 1e-3;
+            moved.luminance[i] += h;
+            let m = glare_figures(&moved, vec![source_of(&moved)], true);
+            var_ugr += ((m.ugr.unwrap() - base.ugr.unwrap()) / h * se).powi(2);
+            var_dgp += ((m.dgp - base.dgp) / h * se).powi(2);
+        }
+        assert!(
+            (base.ugr_se / var_ugr.sqrt() - 1.0).abs() < 1e-4,
+            "{base:?}"
+        );
+        assert!(
+            (base.dgp_se / var_dgp.sqrt() - 1.0).abs() < 1e-4,
+            "{base:?}"
+        );
+    }
+}
