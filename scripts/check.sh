@@ -32,6 +32,22 @@ if [ "${CI:-}" = true ]; then
     export RAYGINE_REQUIRE_OIDN=1
 fi
 
+echo "== Radiance's evalglare for the glare tests (pip, outside the repository)"
+if [ -z "${RAYGINE_EVALGLARE:-}" ]; then
+    if exe=$(scripts/evalglare.sh); then
+        export RAYGINE_EVALGLARE="$exe"
+        echo "check.sh: RAYGINE_EVALGLARE=$RAYGINE_EVALGLARE"
+    elif [ "${CI:-}" = true ]; then
+        echo "check.sh: FAIL: CI needs evalglare (scripts/evalglare.sh failed)" >&2
+        exit 1
+    else
+        echo "check.sh: no evalglare: the glare comparisons skip with the reason"
+    fi
+fi
+if [ "${CI:-}" = true ]; then
+    export RAYGINE_REQUIRE_EVALGLARE=1
+fi
+
 echo "== cargo fmt --check"
 cargo fmt --all -- --check
 

@@ -24,6 +24,7 @@ mod film_precision;
 mod fuzz_corpus;
 mod gi_analytic;
 mod glare;
+mod glare_evalglare;
 mod guth_table_copy;
 mod illuminance_on_demand;
 mod instancing;
