@@ -44,6 +44,8 @@ pub mod file_ops;
 #[cfg(feature = "viewer")]
 pub mod frame_stats;
 #[cfg(feature = "viewer")]
+pub mod glare_worker;
+#[cfg(feature = "viewer")]
 pub mod grid_overlay;
 #[cfg(feature = "viewer")]
 pub mod history;

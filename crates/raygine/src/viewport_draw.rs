@@ -85,6 +85,105 @@ pub fn draw_observers(
     }
 }
 
+/// When the camera looks through an observer's fisheye ("View from observer"), that observer's
+/// glare sources: the image's outlined pixel by pixel (orange), the luminaires' as circles of
+/// their solid angle (cyan), each labelled with its luminance; UGR and DGP in the corner.
+pub fn draw_glare_sources(
+    ui: &egui::Ui,
+    setup: &tracer_core::scene::Setup,
+    readings: &crate::glare_worker::GlareReadings,
+    basis: &CameraBasis,
+    rect: Rect,
+) {
+    let Some(observer) = setup
+        .observers
+        .iter()
+        .find(|o| o.fisheye_camera() == setup.camera)
+    else {
+        return;
+    };
+    let Some(Ok(judged)) = readings
+        .observers
+        .iter()
+        .find(|r| r.name == observer.name)
+        .map(|r| &r.result)
+    else {
+        return;
+    };
+    let painter = ui.painter_at(rect);
+    let [right, up, forward] = judged.frame;
+    let to_world = |d: glam::DVec3| {
+        (right * d.x as f32 + up * d.y as f32 + forward * d.z as f32).normalize_or_zero()
+    };
+    let sx = rect.width() / basis.width as f32;
+    let sy = rect.height() / basis.height as f32;
+    let screen = |d: glam::DVec3| {
+        basis
+            .film_position(to_world(d))
+            .map(|(x, y)| Pos2::new(rect.min.x + x * sx, rect.min.y + y * sy))
+    };
+    let orange = Color32::from_rgb(255, 150, 40);
+    let cyan = Color32::from_rgb(120, 220, 255);
+    for (s, edge) in judged.from_image.sources.iter().zip(&judged.outlines) {
+        for &d in edge {
+            if let Some(p) = screen(d) {
+                painter.rect_filled(Rect::from_center_size(p, Vec2::splat(1.5)), 0.0, orange);
+            }
+        }
+        if let Some(p) = screen(s.direction) {
+            painter.text(
+                p,
+                Align2::CENTER_CENTER,
+                format!("{:.0} cd/m²", s.luminance),
+                FontId::proportional(11.0),
+                orange,
+            );
+        }
+    }
+    if let Some(a) = &judged.analytic {
+        for s in &a.sources {
+            // A cone of the source's solid angle about its direction.
+            let half = (1.0 - s.solid_angle / std::f64::consts::TAU)
+                .clamp(-1.0, 1.0)
+                .acos();
+            let d = s.direction;
+            let helper = if d.y.abs() < 0.9 {
+                glam::DVec3::Y
+            } else {
+                glam::DVec3::X
+            };
+            let (u, v) = {
+                let u = d.cross(helper).normalize();
+                (u, d.cross(u))
+            };
+            let ring: Vec<Pos2> = (0..=48)
+                .filter_map(|k| {
+                    let phi = std::f64::consts::TAU * f64::from(k) / 48.0;
+                    let dir = d * half.cos() + (u * phi.cos() + v * phi.sin()) * half.sin();
+                    screen(dir)
+                })
+                .collect();
+            painter.add(egui::Shape::line(ring, Stroke::new(1.5, cyan)));
+        }
+    }
+    let f = &judged.from_image;
+    let pm = crate::glare_worker::plus_minus;
+    let ugr = f.ugr.map_or("—".to_owned(), |u| pm(u, f.ugr_se, 1));
+    painter.text(
+        rect.left_top() + Vec2::new(8.0, 24.0),
+        Align2::LEFT_TOP,
+        format!(
+            "{}: UGR {ugr}, DGP {}, Ev {} lx ({} spp; glare sources outlined)",
+            observer.name,
+            pm(f.dgp, f.dgp_se, 3),
+            pm(f.ev, f.ev_se, 0),
+            readings.samples
+        ),
+        FontId::proportional(13.0),
+        orange,
+    );
+}
+
 /// The point an orbit turns about: a small ring with a cross.
 pub fn draw_pivot(ui: &egui::Ui, basis: &CameraBasis, rect: Rect, pivot: Vec3) {
     let Some(pos) = to_screen(rect, basis, pivot) else {

@@ -25,6 +25,7 @@ pub struct Viewport<'a> {
     pub worker: &'a mut RenderWorker,
     pub doc: &'a mut Document,
     pub measure: &'a MeasureWorker,
+    pub glare: &'a crate::glare_worker::GlareWorker,
     /// The display mapping in force (false colour included).
     pub display: DisplaySettings,
     /// Film pixels per screen pixel (0.25 ..= 1).
@@ -81,6 +82,9 @@ pub fn viewport_ui(ui: &mut egui::Ui, mut v: Viewport<'_>, out: &mut Commands) {
         let size = v.doc.scene.bounds.extent().length();
         crate::viewport_draw::draw_observers(ui, &v.doc.setup.observers, b, rect, size);
         draw_light_markers(ui, v.doc, b, rect, v.selected_light);
+        if let Some(readings) = v.glare.readings() {
+            crate::viewport_draw::draw_glare_sources(ui, &v.doc.setup, &readings, b, rect);
+        }
         if let Some(pivot) = *v.orbit_pivot {
             crate::viewport_draw::draw_pivot(ui, b, rect, pivot);
         }

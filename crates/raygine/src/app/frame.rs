@@ -114,6 +114,13 @@ impl RaygineApp {
             self.daylight_factor,
             &ctx,
         );
+        self.glare.update(
+            &self.doc.scene,
+            &self.doc.setup,
+            self.render.integrator,
+            self.panels.glare,
+            &ctx,
+        );
         self.poll_report();
         let mut commands = crate::shortcuts::Pressed::read(&ctx).commands();
         commands.extend(dropped_file(&ctx));
@@ -263,6 +270,7 @@ impl RaygineApp {
             show_grids: &mut self.show_grids,
             daylight_factor: &mut self.daylight_factor,
             measure,
+            glare: self.glare.readings(),
             state: &mut self.panels,
             adding_luminaire: self.adding_luminaire.is_some(),
             loading_environment: self.loading_environment.is_some(),
@@ -279,6 +287,7 @@ impl RaygineApp {
             worker: &mut self.worker,
             doc: &mut self.doc,
             measure: &self.measure,
+            glare: &self.glare,
             resolution_scale: self.render.resolution_scale,
             show_grids: self.show_grids,
             selected_light: self.panels.selected_light,

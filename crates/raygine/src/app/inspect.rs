@@ -36,6 +36,11 @@ impl RaygineApp {
     }
 
     /// The grids' background measurement.
+    /// The observers' latest glare (None while the first refinement runs).
+    pub fn glare_readings(&self) -> Option<crate::glare_worker::GlareReadings> {
+        self.glare.readings()
+    }
+
     pub fn measure(&self) -> &MeasureWorker {
         &self.measure
     }

@@ -99,6 +99,7 @@ pub struct RaygineApp {
     last_scroll: Option<std::time::Instant>,
     /// The grids' background measurement (Measure panel, grid overlay).
     pub(crate) measure: crate::measure_worker::MeasureWorker,
+    pub(crate) glare: crate::glare_worker::GlareWorker,
     /// Whether grid readings are drawn over the picture.
     pub(crate) show_grids: bool,
     /// The Measure section reads daylight factors instead of illuminance.
@@ -209,6 +210,7 @@ impl RaygineApp {
             map_thumbnails: crate::map_thumbnail::MapThumbnails::default(),
             focus_asked: false,
             measure: crate::measure_worker::MeasureWorker::default(),
+            glare: crate::glare_worker::GlareWorker::default(),
             show_grids: true,
             daylight_factor: false,
             meter: None,

@@ -191,8 +191,6 @@ pub fn measure_ui(
             }
         },
     );
-    ui.separator();
-    super::observers::observers_ui(ui, doc);
 }
 
 /// The grid's numbers as editable fields; returns the edited grid when it changed and is valid.

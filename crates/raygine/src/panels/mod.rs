@@ -6,6 +6,7 @@ mod camera;
 mod daylight;
 mod environment;
 mod frame;
+mod glare;
 mod lights;
 pub mod materials;
 mod measure;
@@ -54,6 +55,8 @@ pub struct PanelState {
     pub environment: EnvironmentMemory,
     /// The Daylight section's draft of `[daylight]`.
     pub daylight: daylight::DaylightDraft,
+    /// How glare is judged (the Glare section).
+    pub glare: tracer_core::glare::GlareOptions,
 }
 
 /// What the side panel shows and edits: the document (its setup edited in place; the app makes
@@ -71,6 +74,8 @@ pub struct SidePanel<'a> {
     /// The grids read daylight factors.
     pub daylight_factor: &'a mut bool,
     pub measure: MeasureView,
+    /// The observers' latest glare (None while the first refinement runs).
+    pub glare: Option<crate::glare_worker::GlareReadings>,
     pub state: &'a mut PanelState,
     /// A luminaire file is being read ("Add luminaire").
     pub adding_luminaire: bool,
@@ -94,6 +99,7 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         show_grids,
         daylight_factor,
         measure,
+        glare,
         state,
         adding_luminaire,
         loading_environment,
@@ -164,6 +170,10 @@ pub fn controls_ui(ui: &mut egui::Ui, p: SidePanel<'_>, out: &mut Commands) {
         .show(ui, |ui| {
             measure::measure_ui(ui, doc, measure, show_grids, daylight_factor, out)
         });
+    egui::CollapsingHeader::new("Glare")
+        .id_salt(("glare", doc.path.clone()))
+        .default_open(!doc.setup.observers.is_empty())
+        .show(ui, |ui| glare::glare_ui(ui, doc, glare, &mut state.glare));
     egui::CollapsingHeader::new("Render")
         .default_open(true)
         .show(ui, |ui| {

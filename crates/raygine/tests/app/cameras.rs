@@ -148,9 +148,9 @@ fn an_orthographic_scene_under_the_light_tracer_switches_to_bidirectional_with_a
     );
 }
 
-/// The Measure section's observers: one added where the camera stands, then "View from
-/// observer" looks through a 180° equidistant fisheye from it; the eye stays where the camera
-/// was.
+/// The Glare section's observers: one added where the camera stands, its glare judged in the
+/// background and shown (UGR and DGP with their errors), then "View from observer" looks
+/// through a 180° equidistant fisheye from it; the eye stays where the camera was.
 #[test]
 fn an_observer_is_added_at_the_camera_and_viewed_through_a_fisheye() {
     let mut h = crate::box_viewer(Vec2::new(960.0, 900.0), IntegratorKind::Direct, 1, 0.25);
@@ -159,7 +159,7 @@ fn an_observer_is_added_at_the_camera_and_viewed_through_a_fisheye() {
         h.get_by_label(group).click();
         h.step();
     }
-    h.get_by_label("Measure").click();
+    h.get_by_label("Glare").click();
     h.run_steps(2);
     let before = h.state().document().setup.camera;
     h.get_by_role_and_label(Role::Button, "Add observer at camera")
@@ -169,6 +169,23 @@ fn an_observer_is_added_at_the_camera_and_viewed_through_a_fisheye() {
     assert_eq!(observers.len(), 1);
     assert_eq!(observers[0].name, "observer1");
     assert_eq!(observers[0].position, before.position);
+    // The glare worker's first refinement (4 spp at 400 x 400 on one thread).
+    let started = std::time::Instant::now();
+    while h.state().glare_readings().is_none() && started.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        h.step();
+    }
+    let readings = h.state().glare_readings().expect("glare within a minute");
+    let judged = readings.observers[0].result.as_ref().expect("the eye sees");
+    // The box's light is in view from the default camera: one source, a UGR and a DGP.
+    assert!(!judged.from_image.sources.is_empty());
+    assert!(judged.from_image.ugr.is_some_and(|u| u.is_finite()));
+    assert!(judged.from_image.dgp > 0.16 && judged.from_image.dgp < 1.0);
+    h.run_steps(2);
+    assert!(
+        h.query_by_label_contains("Image: UGR").is_some(),
+        "the Glare section shows the image's UGR"
+    );
     h.get_by_role_and_label(Role::Button, "View from observer")
         .click();
     h.run_steps(2);

@@ -1,0 +1,284 @@
+//! The viewer's glare: UGR and DGP at every observer, judged on a background thread from a
+//! fisheye rendered at each eye, refined progressively (4, 16, 64 samples a pixel, each a
+//! complete deterministic judgement, as `raygine glare --samples N` gives), restarted when the
+//! scene, its setup (the camera aside), the integrator or the glare options change. The UI
+//! thread never waits: it polls the latest results.
+
+use glam::DVec3;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use tracer_core::glare::{
+    GlareFigures, GlareOptions, check_eye, judge_observer, light_names, observer_basis,
+    observer_setup,
+};
+use tracer_core::integrator::IntegratorKind;
+use tracer_core::lit_scene::LitScene;
+use tracer_core::render::{Film, RenderSettings, render_samples};
+use tracer_core::scene::{Observer, Scene, Setup};
+
+/// Samples a pixel of the successive refinements, and the fisheye's side.
+pub const REFINEMENTS: [u32; 3] = [4, 16, 64];
+pub const IMAGE_SIZE: u32 = tracer_core::glare::DEFAULT_IMAGE_SIZE;
+
+/// Samples a pixel rendered between two checks for cancellation.
+const CHUNK: u32 = 4;
+
+/// What a judgement depends on.
+#[derive(Clone, Debug, PartialEq)]
+struct Key {
+    scene: usize,
+    setup: Setup,
+    integrator: IntegratorKind,
+    options: GlareOptions,
+}
+
+/// One observer's glare, for the panel and the viewport.
+#[derive(Clone, Debug)]
+pub struct ObserverReading {
+    pub name: String,
+    /// The figures, or why there are none (an eye inside a solid).
+    pub result: Result<Judged, String>,
+}
+
+/// The figures of both ways, and what the viewport outlines.
+#[derive(Clone, Debug)]
+pub struct Judged {
+    pub from_image: GlareFigures,
+    pub analytic: Option<GlareFigures>,
+    /// The observer's frame in the scene: right, up, forward.
+    pub frame: [glam::Vec3; 3],
+    /// Per image source, the directions (observer frame) of its edge pixels.
+    pub outlines: Vec<Vec<DVec3>>,
+}
+
+/// The latest finished refinement of the current job.
+#[derive(Clone, Debug, Default)]
+pub struct GlareReadings {
+    pub observers: Vec<ObserverReading>,
+    /// Samples a pixel behind them.
+    pub samples: u32,
+    pub finished: bool,
+}
+
+/// Background glare of the current document's observers.
+#[derive(Debug, Default)]
+pub struct GlareWorker {
+    key: Option<Key>,
+    cancel: Option<Arc<AtomicBool>>,
+    latest: Arc<Mutex<Option<GlareReadings>>>,
+}
+
+impl GlareWorker {
+    /// Starts a new job when what glare depends on changed (none without observers).
+    pub fn update(
+        &mut self,
+        scene: &Arc<Scene>,
+        setup: &Setup,
+        integrator: IntegratorKind,
+        options: GlareOptions,
+        ctx: &egui::Context,
+    ) {
+        // The observers look through their own fisheyes: orbiting must not restart glare.
+        let mut without_camera = setup.clone();
+        without_camera.camera = tracer_core::scene::Camera::default();
+        let key = Key {
+            scene: Arc::as_ptr(scene) as usize,
+            setup: without_camera,
+            integrator,
+            options,
+        };
+        if self.key.as_ref() == Some(&key) {
+            return;
+        }
+        if let Some(c) = self.cancel.take() {
+            c.store(true, Ordering::Release);
+        }
+        self.latest = Arc::new(Mutex::new(None));
+        self.key = Some(key);
+        if setup.observers.is_empty() {
+            return;
+        }
+        let cancel = Arc::new(AtomicBool::new(false));
+        self.cancel = Some(Arc::clone(&cancel));
+        let latest = Arc::clone(&self.latest);
+        let (scene, setup, ctx) = (Arc::clone(scene), setup.clone(), ctx.clone());
+        let spawned = std::thread::Builder::new()
+            .name("raygine-glare".into())
+            .spawn(move || run(&scene, &setup, integrator, options, &cancel, &latest, &ctx));
+        if let Err(e) = spawned {
+            eprintln!("raygine: cannot start the glare thread: {e}");
+        }
+    }
+
+    /// The latest readings of the current job (None before the first refinement).
+    pub fn readings(&self) -> Option<GlareReadings> {
+        self.latest.lock().ok().and_then(|l| l.clone())
+    }
+}
+
+impl Drop for GlareWorker {
+    fn drop(&mut self) {
+        if let Some(c) = self.cancel.take() {
+            c.store(true, Ordering::Release);
+        }
+    }
+}
+
+/// The directions of the pixels of `pixels` that have a neighbour outside the set.
+fn edge_directions(image: &tracer_core::glare::GlareImage, pixels: &[usize]) -> Vec<DVec3> {
+    let w = image.width as usize;
+    let set: std::collections::HashSet<usize> = pixels.iter().copied().collect();
+    pixels
+        .iter()
+        .copied()
+        .filter(|&i| {
+            let (x, y) = (i % w, i / w);
+            let outside = |nx: Option<usize>, ny: Option<usize>| match (nx, ny) {
+                (Some(nx), Some(ny)) if nx < w && ny < image.height as usize => {
+                    !set.contains(&(ny * w + nx))
+                }
+                _ => true,
+            };
+            outside(x.checked_sub(1), Some(y))
+                || outside(Some(x + 1), Some(y))
+                || outside(Some(x), y.checked_sub(1))
+                || outside(Some(x), Some(y + 1))
+        })
+        .map(|i| image.direction[i])
+        .collect()
+}
+
+/// Judges one observer from `film`, or says why not.
+fn judge(
+    scene: &Scene,
+    setup: &Setup,
+    observer: &Observer,
+    film: &Film,
+    options: &GlareOptions,
+    max_depth: u32,
+) -> Judged {
+    let obs_setup = observer_setup(setup, observer);
+    let lit = LitScene::new(scene, &obs_setup, max_depth);
+    let g = judge_observer(
+        &lit,
+        &obs_setup,
+        observer,
+        film,
+        options,
+        &light_names(setup),
+    );
+    let basis = observer_basis(setup, observer, IMAGE_SIZE);
+    let outlines = g
+        .from_image
+        .sources
+        .iter()
+        .map(|s| edge_directions(&g.image, &s.pixels))
+        .collect();
+    Judged {
+        from_image: g.from_image,
+        analytic: g.analytic,
+        frame: [basis.right, basis.up, basis.forward],
+        outlines,
+    }
+}
+
+fn run(
+    scene: &Scene,
+    setup: &Setup,
+    integrator: IntegratorKind,
+    options: GlareOptions,
+    cancel: &AtomicBool,
+    latest: &Mutex<Option<GlareReadings>>,
+    ctx: &egui::Context,
+) {
+    // One worker thread: the picture's render keeps the other cores.
+    let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() else {
+        return;
+    };
+    let settings = RenderSettings {
+        width: IMAGE_SIZE,
+        height: IMAGE_SIZE,
+        integrator,
+        pixel_illuminance: false,
+        ..RenderSettings::default()
+    };
+    let observers = &setup.observers;
+    // Each observer's film so far, and the eyes that cannot see.
+    let mut films: Vec<Option<Film>> = vec![None; observers.len()];
+    let eyes: Vec<Result<(), String>> = observers
+        .iter()
+        .map(|o| {
+            let s = observer_setup(setup, o);
+            check_eye(&LitScene::new(scene, &s, settings.max_depth), o)
+        })
+        .collect();
+    let mut done = 0;
+    for (k, &target) in REFINEMENTS.iter().enumerate() {
+        for (i, o) in observers.iter().enumerate() {
+            if eyes[i].is_err() {
+                continue;
+            }
+            let obs_setup = observer_setup(setup, o);
+            let mut at = done;
+            while at < target {
+                if cancel.load(Ordering::Acquire) {
+                    return;
+                }
+                let end = (at + CHUNK).min(target);
+                let (part, _) =
+                    pool.install(|| render_samples(scene, &obs_setup, &settings, at..end));
+                match &mut films[i] {
+                    Some(f) => {
+                        if f.merge(&part).is_err() {
+                            return;
+                        }
+                    }
+                    None => films[i] = Some(part),
+                }
+                at = end;
+            }
+        }
+        done = target;
+        let readings: Vec<ObserverReading> = observers
+            .iter()
+            .enumerate()
+            .map(|(i, o)| ObserverReading {
+                name: o.name.clone(),
+                result: match (&eyes[i], &films[i]) {
+                    (Err(e), _) => Err(e.clone()),
+                    (Ok(()), Some(film)) => {
+                        Ok(pool
+                            .install(|| judge(scene, setup, o, film, &options, settings.max_depth)))
+                    }
+                    (Ok(()), None) => Err("not rendered".to_owned()),
+                },
+            })
+            .collect();
+        if cancel.load(Ordering::Acquire) {
+            return;
+        }
+        if let Ok(mut l) = latest.lock() {
+            *l = Some(GlareReadings {
+                observers: readings,
+                samples: target,
+                finished: k + 1 == REFINEMENTS.len(),
+            });
+        }
+        ctx.request_repaint();
+    }
+}
+
+/// "23.9 ± 0.1", "0.2213 ± 0.0004": at least `decimals` decimals, more until the error shows
+/// a significant digit (at most 4).
+pub fn plus_minus(value: f64, se: f64, decimals: usize) -> String {
+    if !se.is_finite() {
+        return format!("{value:.decimals$}");
+    }
+    let needed = if se > 0.0 {
+        (-se.log10().floor()).max(0.0) as usize
+    } else {
+        decimals
+    };
+    let d = needed.clamp(decimals, 4);
+    format!("{value:.d$} ± {se:.d$}")
+}
