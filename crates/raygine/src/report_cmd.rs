@@ -12,7 +12,7 @@ use tracer_core::display::DisplaySettings;
 use tracer_core::integrator::IntegratorKind;
 use tracer_core::light::LightKind;
 use tracer_core::measure::requirements::{
-    DEFAULT_REQUIREMENTS, DEFAULT_SOURCE, GridCheck, Requirements, check,
+    DEFAULT_REQUIREMENTS, DEFAULT_SOURCE, GridCheck, ObserverUgr, Requirements, check,
 };
 use tracer_core::measure::{Grid, GridResult, MeasureSettings, measure_grids};
 use tracer_core::render::{RenderSettings, render};
@@ -204,12 +204,29 @@ pub fn build(scene: &Scene, setup: &Setup, options: &ReportOptions) -> Result<Re
         .collect();
     let schedule = schedule(setup);
     let ra = least_ra(&schedule);
+    let mut judged: std::collections::HashMap<String, ObserverUgr> = Default::default();
     let checks: Vec<GridCheck> = grids
         .iter()
         .filter_map(|g| {
             let task = g.grid.task.as_deref()?;
             let activity = options.requirements.activity(task).ok()?;
-            Some(check(&g.result, activity, ra, &g.grid.observers))
+            let ugr: Vec<ObserverUgr> = if activity.ugr_l.is_some() {
+                g.grid
+                    .observers
+                    .iter()
+                    .map(|name| {
+                        judged
+                            .entry(name.clone())
+                            .or_insert_with(|| {
+                                observer_ugr(scene, setup, name, integrator, options.view_samples)
+                            })
+                            .clone()
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            Some(check(&g.result, activity, ra, &ugr))
         })
         .collect();
     Ok(Report {
@@ -286,6 +303,46 @@ fn reached_error(results: &[GridResult], target_pct: Option<f64>) -> String {
 }
 
 /// The scene's camera, rendered and mapped for display (auto exposure), RGBA8.
+/// UGR from the 180° fisheye at the observer `name` (image sources, as `raygine glare`), with
+/// its standard error; None when no glare source is in view.
+fn observer_ugr(
+    scene: &Scene,
+    setup: &Setup,
+    name: &str,
+    integrator: IntegratorKind,
+    samples: u32,
+) -> ObserverUgr {
+    let judged = (|| {
+        let observer = setup
+            .observers
+            .iter()
+            .find(|o| o.name == name)
+            .ok_or_else(|| format!("no observer {name} in the scene"))?;
+        let view = tracer_core::glare::observer_setup(setup, observer);
+        let settings = RenderSettings {
+            width: tracer_core::glare::DEFAULT_IMAGE_SIZE,
+            height: tracer_core::glare::DEFAULT_IMAGE_SIZE,
+            samples_per_pixel: samples.max(2),
+            integrator,
+            pixel_illuminance: false,
+            ..RenderSettings::default()
+        };
+        let lit = tracer_core::lit_scene::LitScene::new(scene, &view, settings.max_depth);
+        tracer_core::glare::check_eye(&lit, observer)?;
+        let (film, _) = render(scene, &view, &settings);
+        let g = tracer_core::glare::judge_observer(
+            &lit,
+            &view,
+            observer,
+            &film,
+            &Default::default(),
+            &tracer_core::glare::light_names(setup),
+        );
+        Ok(g.from_image.ugr.map(|u| (u, g.from_image.ugr_se)))
+    })();
+    (name.to_owned(), judged)
+}
+
 fn scene_view(
     scene: &Scene,
     setup: &Setup,

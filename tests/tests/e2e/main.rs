@@ -8,6 +8,7 @@ mod denoise;
 mod errors;
 mod exr_and_units;
 mod gi_and_measure;
+mod glare;
 mod integra;
 mod obj_gltf;
 mod report;

@@ -448,7 +448,7 @@ fn checks_page(c: &mut Canvas<'_, '_>, r: &Report, pw: f32) {
         y += 11.0;
         for line in &check.lines {
             let mark = if line.passes() { GREEN } else { RED };
-            c.text(cols[0], y, 8.5, BLACK, line.what);
+            c.text(cols[0], y, 8.5, BLACK, &line.what);
             c.text(
                 cols[1],
                 y,

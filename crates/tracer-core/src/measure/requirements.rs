@@ -77,19 +77,25 @@ impl Requirements {
     }
 }
 
-/// One requirement checked: the value, what is required, the margin (value − required; the
-/// requirement is a minimum) and the margin's standard error.
+/// One requirement checked: the value, what is required, the margin (value − required for a
+/// minimum, required − value for a maximum: positive passes) and the margin's standard error.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Line {
-    pub what: &'static str,
+    pub what: String,
     pub value: f64,
     pub required: f64,
     pub std_error: f64,
+    /// The requirement is a maximum (UGR), not a minimum.
+    pub at_most: bool,
 }
 
 impl Line {
     pub fn margin(&self) -> f64 {
-        self.value - self.required
+        if self.at_most {
+            self.required - self.value
+        } else {
+            self.value - self.required
+        }
     }
 
     pub fn passes(&self) -> bool {
@@ -118,13 +124,18 @@ impl GridCheck {
     }
 }
 
+/// The UGR judged at one of a grid's observers: (UGR, its standard error), None when no glare
+/// source is seen from it, or why it could not be judged.
+pub type ObserverUgr = (String, Result<Option<(f64, f64)>, String>);
+
 /// Checks `result` (maintained values) against `activity`; `ra` is the least colour rendering
-/// index the luminaires' files give (None: not given); `observers` are the grid's (for UGR).
+/// index the luminaires' files give (None: not given); `ugr` holds the grid's observers and
+/// what glare they were judged to see.
 pub fn check(
     result: &GridResult,
     activity: &Activity,
     ra: Option<f64>,
-    observers: &[String],
+    ugr: &[ObserverUgr],
 ) -> GridCheck {
     let s = result.statistics();
     let [se_min, se_avg, _] = result.statistics_std_errors();
@@ -132,35 +143,51 @@ pub fn check(
     let u0_se = s.u0 * (rel(s.e_min_lx, se_min).powi(2) + rel(s.e_avg_lx, se_avg).powi(2)).sqrt();
     let mut lines = vec![
         Line {
-            what: "Em (maintained average, lx)",
+            what: "Em (maintained average, lx)".to_owned(),
             value: s.e_avg_lx,
             required: activity.em_lx,
             std_error: se_avg,
+            at_most: false,
         },
         Line {
-            what: "U0 = Emin / Eavg",
+            what: "U0 = Emin / Eavg".to_owned(),
             value: s.u0,
             required: activity.u0,
             std_error: u0_se,
+            at_most: false,
         },
     ];
     let mut not_checked = Vec::new();
     if let Some(limit) = activity.ugr_l {
-        let who = if observers.is_empty() {
-            String::new()
-        } else {
-            format!(", observers {}", observers.join(", "))
-        };
-        not_checked.push(format!(
-            "UGR (limit {limit}{who}): not computed, raygine has no glare rating yet"
-        ));
+        if ugr.is_empty() {
+            not_checked.push(format!(
+                "UGR (at most {limit}): the grid names no observers (observers = [...])"
+            ));
+        }
+        for (name, judged) in ugr {
+            match judged {
+                Ok(Some((value, se))) => lines.push(Line {
+                    what: format!("UGR at observer {name} (at most)"),
+                    value: *value,
+                    required: limit,
+                    std_error: *se,
+                    at_most: true,
+                }),
+                Ok(None) => not_checked.push(format!(
+                    "UGR at observer {name} (at most {limit}): no glare source in view, below \
+                     any limit"
+                )),
+                Err(e) => not_checked.push(format!("UGR at observer {name}: {e}")),
+            }
+        }
     }
     match (activity.ra, ra) {
         (Some(required), Some(given)) => lines.push(Line {
-            what: "Ra (lamps, from the luminaire files)",
+            what: "Ra (lamps, from the luminaire files)".to_owned(),
             value: given,
             required,
             std_error: 0.0,
+            at_most: false,
         }),
         (Some(required), None) => not_checked.push(format!(
             "Ra (at least {required}): not given by the luminaire files"
@@ -223,7 +250,8 @@ mod tests {
         assert!(bad.starts_with("mine.toml: line 2"), "{bad}");
     }
 
-    /// A grid built to pass (Eavg 600 lx, U0 0.83) and one built to fail (Eavg 450 lx).
+    /// A grid built to pass (Eavg 600 lx, U0 0.83, UGR 17.2 ± 0.1 against 19) and one built
+    /// to fail (Eavg 450 lx, UGR 20.5); UGR is a maximum.
     #[test]
     fn a_grid_built_to_pass_passes_and_one_built_to_fail_fails() {
         let r = Requirements::parse(DEFAULT_REQUIREMENTS, "table").unwrap();
@@ -232,16 +260,34 @@ mod tests {
             &grid(&[500.0, 600.0, 700.0], 5.0),
             office,
             Some(85.0),
-            &["desk".into()],
+            &[
+                ("desk".into(), Ok(Some((17.2, 0.1)))),
+                ("door".into(), Ok(None)),
+            ],
         );
         assert!(pass.passes(), "{pass:?}");
         assert!(pass.lines.iter().all(Line::certain));
         assert!((pass.lines[0].margin() - 100.0).abs() < 1e-9);
-        assert_eq!(pass.not_checked.len(), 1, "UGR is not computed");
+        let ugr = pass.lines.iter().find(|l| l.at_most).unwrap();
+        assert!((ugr.margin() - 1.8).abs() < 1e-9 && ugr.what.contains("desk"));
+        assert_eq!(pass.not_checked.len(), 1, "{:?}", pass.not_checked);
         assert!(
-            pass.not_checked[0].contains("observers desk"),
+            pass.not_checked[0].contains("door"),
             "{:?}",
             pass.not_checked
+        );
+        let glaring = check(
+            &grid(&[500.0, 600.0, 700.0], 5.0),
+            office,
+            Some(85.0),
+            &[("desk".into(), Ok(Some((20.5, 0.1))))],
+        );
+        assert!(!glaring.passes());
+        let none = check(&grid(&[500.0, 600.0, 700.0], 5.0), office, Some(85.0), &[]);
+        assert!(
+            none.not_checked[0].contains("names no observers"),
+            "{:?}",
+            none.not_checked
         );
         let fail = check(&grid(&[400.0, 450.0, 500.0], 5.0), office, None, &[]);
         assert!(!fail.passes());

@@ -143,7 +143,7 @@ fn replay_requirements(data: &[u8]) {
     };
     for a in &table.activities {
         assert!(table.activity(&a.key).is_ok());
-        let _ = check(&grid, a, Some(80.0), &["o".into()]).passes();
+        let _ = check(&grid, a, Some(80.0), &[("o".into(), Ok(Some((18.0, 0.2))))]).passes();
     }
     let _ = table.activity("no such key");
 }
