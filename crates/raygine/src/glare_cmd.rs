@@ -60,8 +60,20 @@ pub fn run(args: &GlareArgs) -> Result<()> {
         check_eye(&lit, observer).map_err(anyhow::Error::msg)?;
         let at = Instant::now();
         let time_limit = args.scene.time_limit.map(Duration::from_secs_f64);
+        let mut last_line = Instant::now();
+        let target = settings.samples_per_pixel;
+        let mut progress = |s: &tracer_core::render::RenderStats| {
+            // A line every few seconds on stderr, so long judgements say where they are.
+            if last_line.elapsed().as_secs_f64() >= 5.0 && s.samples_per_pixel < target {
+                last_line = Instant::now();
+                eprintln!(
+                    "observer {}: {}/{target} spp of its fisheye, {:.1} s",
+                    observer.name, s.samples_per_pixel, s.elapsed_secs
+                );
+            }
+        };
         let (film, stats) = pool.install(|| {
-            render_with_progress(&loaded.scene, &setup, &settings, time_limit, &mut |_| {})
+            render_with_progress(&loaded.scene, &setup, &settings, time_limit, &mut progress)
         });
         if film.rejected_samples() > 0 {
             bail!(
@@ -81,7 +93,8 @@ pub fn run(args: &GlareArgs) -> Result<()> {
                 &args.threshold,
                 stats.samples_per_pixel,
                 &settings,
-                secs
+                secs,
+                loaded.setup.unit.symbol()
             )
         );
         if let Some(dir) = &args.hdr {
@@ -201,13 +214,14 @@ fn summary(
     spp: u32,
     settings: &RenderSettings,
     secs: f64,
+    unit: &str,
 ) -> String {
     let mut out = String::new();
     let [x, y, z] = o.position;
     let [dx, dy, dz] = o.direction;
     let _ = writeln!(
         out,
-        "observer {}: eye ({x}, {y}, {z}), looking ({dx}, {dy}, {dz}); {}x{} fisheye \
+        "observer {}: eye ({x}, {y}, {z}) {unit}, looking ({dx}, {dy}, {dz}); {}x{} fisheye \
          (180°, equidistant), {spp} spp {}, {secs:.1} s",
         o.name, settings.width, settings.height, settings.integrator
     );

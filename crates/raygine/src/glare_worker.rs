@@ -4,6 +4,7 @@
 //! scene, its setup (the camera aside), the integrator or the glare options change. The UI
 //! thread never waits: it polls the latest results.
 
+use crate::background_job::Restartable;
 use glam::DVec3;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
@@ -63,9 +64,7 @@ pub struct GlareReadings {
 /// Background glare of the current document's observers.
 #[derive(Debug, Default)]
 pub struct GlareWorker {
-    key: Option<Key>,
-    cancel: Option<Arc<AtomicBool>>,
-    latest: Arc<Mutex<Option<GlareReadings>>>,
+    job: Restartable<Key, GlareReadings>,
 }
 
 impl GlareWorker {
@@ -87,20 +86,13 @@ impl GlareWorker {
             integrator,
             options,
         };
-        if self.key.as_ref() == Some(&key) {
+        let Some(handles) = self.job.restart(key) else {
             return;
-        }
-        if let Some(c) = self.cancel.take() {
-            c.store(true, Ordering::Release);
-        }
-        self.latest = Arc::new(Mutex::new(None));
-        self.key = Some(key);
+        };
         if setup.observers.is_empty() {
             return;
         }
-        let cancel = Arc::new(AtomicBool::new(false));
-        self.cancel = Some(Arc::clone(&cancel));
-        let latest = Arc::clone(&self.latest);
+        let (cancel, latest) = (Arc::clone(&handles.cancel), Arc::clone(&handles.latest));
         let (scene, setup, ctx) = (Arc::clone(scene), setup.clone(), ctx.clone());
         let spawned = std::thread::Builder::new()
             .name("raygine-glare".into())
@@ -112,15 +104,7 @@ impl GlareWorker {
 
     /// The latest readings of the current job (None before the first refinement).
     pub fn readings(&self) -> Option<GlareReadings> {
-        self.latest.lock().ok().and_then(|l| l.clone())
-    }
-}
-
-impl Drop for GlareWorker {
-    fn drop(&mut self) {
-        if let Some(c) = self.cancel.take() {
-            c.store(true, Ordering::Release);
-        }
+        self.job.latest()
     }
 }
 

@@ -30,6 +30,8 @@ pub mod app;
 #[cfg(feature = "viewer")]
 pub mod backdrop;
 #[cfg(feature = "viewer")]
+pub mod background_job;
+#[cfg(feature = "viewer")]
 pub mod banners;
 #[cfg(feature = "viewer")]
 pub mod camera_control;

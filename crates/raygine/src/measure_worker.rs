@@ -5,6 +5,7 @@
 //! daylight factor asked for, the grids are measured under the CIE overcast sky alone
 //! (`tracer_core::measure::DaylightFactorSetup`) and read in % of the open horizontal.
 
+use crate::background_job::Restartable;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use tracer_core::integrator::IntegratorKind;
@@ -42,9 +43,7 @@ pub struct Readings {
 /// Background measurement of the current document's grids.
 #[derive(Debug, Default)]
 pub struct MeasureWorker {
-    key: Option<Key>,
-    cancel: Option<Arc<AtomicBool>>,
-    latest: Arc<Mutex<Option<Readings>>>,
+    job: Restartable<Key, Readings>,
 }
 
 impl MeasureWorker {
@@ -72,14 +71,9 @@ impl MeasureWorker {
             integrator,
             daylight_factor,
         };
-        if self.key.as_ref() == Some(&key) {
+        let Some(handles) = self.job.restart(key) else {
             return;
-        }
-        if let Some(c) = self.cancel.take() {
-            c.store(true, Ordering::Release);
-        }
-        self.latest = Arc::new(Mutex::new(None));
-        self.key = Some(key);
+        };
         if setup.grids.is_empty() {
             return;
         }
@@ -88,23 +82,19 @@ impl MeasureWorker {
             match DaylightFactorSetup::new(setup) {
                 Ok(df) => (df.setup, Some(100.0 / df.outdoor_lx)),
                 Err(e) => {
-                    if let Ok(mut l) = self.latest.lock() {
-                        *l = Some(Readings {
-                            error: Some(e),
-                            daylight_factor: true,
-                            ..Readings::default()
-                        });
-                    }
+                    handles.publish(Readings {
+                        error: Some(e),
+                        daylight_factor: true,
+                        ..Readings::default()
+                    });
                     return;
                 }
             }
         } else {
             (setup.clone(), None)
         };
-        let cancel = Arc::new(AtomicBool::new(false));
-        self.cancel = Some(Arc::clone(&cancel));
-        let latest = Arc::clone(&self.latest);
         let (scene, ctx) = (Arc::clone(scene), ctx.clone());
+        let (cancel, latest) = (Arc::clone(&handles.cancel), Arc::clone(&handles.latest));
         let job = Job {
             integrator,
             df_scale,
@@ -114,24 +104,14 @@ impl MeasureWorker {
             .spawn(move || run(&scene, &setup, job, &cancel, &latest, &ctx));
         if let Err(e) = spawned {
             // Shown in the panel instead of readings.
-            if let Ok(mut l) = self.latest.lock() {
-                *l = Some(Readings::default());
-            }
+            handles.publish(Readings::default());
             eprintln!("raygine: cannot start the measurement thread: {e}");
         }
     }
 
     /// The latest readings of the current job (None before the first refinement).
     pub fn readings(&self) -> Option<Readings> {
-        self.latest.lock().ok().and_then(|l| l.clone())
-    }
-}
-
-impl Drop for MeasureWorker {
-    fn drop(&mut self) {
-        if let Some(c) = self.cancel.take() {
-            c.store(true, Ordering::Release);
-        }
+        self.job.latest()
     }
 }
 

@@ -1,9 +1,48 @@
 //! Observers: the eyes where glare is judged (`[[observers]]`). Each can be looked through (a
-//! 180° equidistant fisheye at the eye, the view glare is computed from) or removed; one can be
+//! 180° equidistant fisheye at the eye, the view glare is computed from), edited number by
+//! number (an edit that makes it invalid is refused with the reason) or removed; one can be
 //! added where the camera stands. Edits the setup in place, like the camera's numbers.
 
 use crate::document::Document;
 use tracer_core::scene::Observer;
+
+/// The observer's numbers as editable fields; the edited observer when it changed and is valid
+/// (else the reason is shown and the observer kept).
+fn edit_ui(ui: &mut egui::Ui, o: &Observer, unit: &str, speed: f64) -> Option<Observer> {
+    let mut e = o.clone();
+    egui::CollapsingHeader::new(format!("edit {}", o.name))
+        .default_open(false)
+        .show(ui, |ui| {
+            for (label, v, step) in [
+                (format!("eye ({unit})"), &mut e.position, speed),
+                ("line of sight".to_owned(), &mut e.direction, 0.01),
+                ("up".to_owned(), &mut e.up, 0.01),
+            ] {
+                ui.horizontal(|ui| {
+                    let name = ui.label(label);
+                    for (axis, c) in v.iter_mut().enumerate() {
+                        ui.add(
+                            egui::DragValue::new(c)
+                                .speed(step)
+                                .prefix(["x ", "y ", "z "][axis])
+                                .update_while_editing(false),
+                        )
+                        .labelled_by(name.id);
+                    }
+                });
+            }
+        });
+    if e == *o {
+        return None;
+    }
+    match e.check() {
+        Ok(()) => Some(e),
+        Err(reason) => {
+            ui.colored_label(egui::Color32::from_rgb(255, 120, 100), reason);
+            None
+        }
+    }
+}
 
 pub fn observers_ui(ui: &mut egui::Ui, doc: &mut Document) {
     let unit = doc.setup.unit.symbol();
@@ -11,7 +50,9 @@ pub fn observers_ui(ui: &mut egui::Ui, doc: &mut Document) {
     if doc.setup.observers.is_empty() {
         ui.label("None yet: add one where the camera stands, or [[observers]] in the sidecar.");
     }
-    let (mut view, mut remove) = (None, None);
+    let (mut view, mut remove, mut edited) = (None, None, None);
+    // Lengths drag at a 400th of the scene's size a point, as the camera's.
+    let speed = f64::from(doc.scene.bounds.extent().max_element().max(1e-6)) / 400.0;
     for (i, o) in doc.setup.observers.iter().enumerate() {
         ui.horizontal(|ui| {
             // The name only, so the row's buttons fit the panel; where it stands on hover.
@@ -38,6 +79,14 @@ pub fn observers_ui(ui: &mut egui::Ui, doc: &mut Document) {
                 remove = Some(i);
             }
         });
+        ui.push_id(("observer", i), |ui| {
+            if let Some(changed) = edit_ui(ui, o, unit, speed) {
+                edited = Some((i, changed));
+            }
+        });
+    }
+    if let Some((i, o)) = edited {
+        doc.setup.observers[i] = o;
     }
     if let Some(i) = view {
         doc.setup.camera = doc.setup.observers[i].fisheye_camera();

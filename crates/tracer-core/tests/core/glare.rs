@@ -18,7 +18,7 @@ use tracer_core::render::{RenderSettings, render};
 use tracer_core::scene::{Observer, Scene, Setup, Sidecar};
 
 /// Judges glare at `observer` from a `size`² direct-mode fisheye of `spp` samples.
-fn judge(
+pub fn judge(
     sc: &Scene,
     st: &Setup,
     observer: &Observer,

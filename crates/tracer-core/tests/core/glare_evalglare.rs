@@ -15,12 +15,7 @@ use crate::gi_support::*;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use tracer_core::glare::hdr::{View, write_radiance_hdr};
-use tracer_core::glare::{
-    GlareOptions, ObserverGlare, judge_observer, light_names, observer_basis, observer_setup,
-};
-use tracer_core::integrator::IntegratorKind;
-use tracer_core::lit_scene::LitScene;
-use tracer_core::render::{RenderSettings, render};
+use tracer_core::glare::{GlareOptions, ObserverGlare, observer_basis};
 use tracer_core::scene::{Observer, Scene, Setup, Sidecar};
 
 /// evalglare's path, or None (with the reason printed) when it is not installed; under
@@ -98,24 +93,7 @@ fn compare(
     spp: u32,
 ) -> (ObserverGlare, Evalglare) {
     let size = 400;
-    let setup = observer_setup(st, observer);
-    let settings = RenderSettings {
-        width: size,
-        height: size,
-        samples_per_pixel: spp,
-        integrator: IntegratorKind::Direct,
-        ..RenderSettings::default()
-    };
-    let (film, _) = render(sc, &setup, &settings);
-    let lit = LitScene::new(sc, &setup, settings.max_depth);
-    let g = judge_observer(
-        &lit,
-        &setup,
-        observer,
-        &film,
-        &GlareOptions::default(),
-        &light_names(st),
-    );
+    let g = crate::glare::judge(sc, st, observer, size, spp, &GlareOptions::default());
     let basis = observer_basis(st, observer, size);
     let view = View {
         position: observer.position,
