@@ -156,7 +156,8 @@ fn with_error(value: f64, se: f64, min_decimals: usize) -> String {
         return format!("{value:.min_decimals$} ± ? (one sample a pixel)");
     }
     let decimals = if se > 0.0 {
-        ((1.0 - se.log10().floor()) as i64).clamp(min_decimals as i64, 6) as usize
+        ((1.0 - se.log10().floor()) as i64).clamp(min_decimals as i64, min_decimals as i64 + 2)
+            as usize
     } else {
         min_decimals
     };
@@ -249,8 +250,8 @@ fn summary(
         Some(a) => {
             let _ = writeln!(
                 out,
-                "  from the luminaires' openings (L = I / A_proj, ω = A_proj / d²; drawn into \
-                 {} pixels of the image): {} source(s)",
+                "  from the luminaires' openings (L = I / A_proj, ω of the part the eye sees; \
+                 drawn into {} pixels of the image): {} source(s)",
                 g.opening_pixels,
                 a.sources.len()
             );

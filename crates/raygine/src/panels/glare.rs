@@ -14,10 +14,11 @@ fn figures_ui(ui: &mut egui::Ui, way: &str, f: &GlareFigures) {
     } else {
         ""
     };
+    let n = f.sources.len();
     ui.label(format!(
-        "{way}: UGR {ugr}, DGP {}{low} ({} sources)",
+        "{way}: UGR {ugr}, DGP {}{low} ({n} source{})",
         pm(f.dgp, f.dgp_se, 3),
-        f.sources.len()
+        if n == 1 { "" } else { "s" }
     ))
     .on_hover_text(sources_text(f));
 }
