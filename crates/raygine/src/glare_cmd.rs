@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use tracer_core::glare::hdr::{View, write_radiance_hdr};
 use tracer_core::glare::{
     Detection, GlareFigures, GlareOptions, ObserverGlare, check_eye, judge_observer, light_names,
-    observer_setup,
+    observer_basis, observer_setup,
 };
 use tracer_core::lit_scene::LitScene;
 use tracer_core::render::{RenderSettings, render_with_progress};
@@ -99,10 +99,13 @@ pub fn run(args: &GlareArgs) -> Result<()> {
         );
         if let Some(dir) = &args.hdr {
             let path = dir.join(format!("{}.hdr", observer.name));
+            // Up made perpendicular to the line of sight: evalglare takes its τ angle from
+            // -vu as written (a tilted observer's plain +Y would turn its position indices).
+            let basis = observer_basis(&loaded.setup, observer, args.size);
             let view = View {
                 position: observer.position,
-                direction: observer.direction,
-                up: observer.up,
+                direction: basis.forward.to_array(),
+                up: basis.up.to_array(),
             };
             write_radiance_hdr(&path, &glare.image, &view)
                 .with_context(|| format!("cannot write {}", path.display()))?;

@@ -13,7 +13,7 @@ use glam::{DVec3, Vec3};
 
 /// Side of the square fisheye glare is judged from, pixels (evalglare's own examples use
 /// 800-1500). The image's sources lose about a quarter of a pixel row around their edge in
-/// L²ω: a luminaire of 300 pixels (0.016 sr at 400) reads 0.3 UGR low at 400, about 0.15 at
+/// L²ω: a luminaire of 300 pixels (0.016 sr at 400) reads 0.3 UGR low at 400, about 0.2 at
 /// 800.
 pub const DEFAULT_IMAGE_SIZE: u32 = 800;
 
