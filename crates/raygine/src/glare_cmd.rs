@@ -53,11 +53,16 @@ pub fn run(args: &GlareArgs) -> Result<()> {
     }
     let pool = thread_pool(&args.scene)?;
     let names = light_names(&loaded.setup);
+    // Every eye is checked before anything is rendered or written.
+    for observer in &observers {
+        let setup = observer_setup(&loaded.setup, observer);
+        let lit = LitScene::new(&loaded.scene, &setup, settings.max_depth);
+        check_eye(&lit, observer).map_err(anyhow::Error::msg)?;
+    }
     let mut results = Vec::new();
     for observer in observers {
         let setup = observer_setup(&loaded.setup, observer);
         let lit = LitScene::new(&loaded.scene, &setup, settings.max_depth);
-        check_eye(&lit, observer).map_err(anyhow::Error::msg)?;
         let at = Instant::now();
         let time_limit = args.scene.time_limit.map(Duration::from_secs_f64);
         let mut last_line = Instant::now();
@@ -174,7 +179,8 @@ fn figures_lines(out: &mut String, f: &GlareFigures) {
             with_error(u, f.ugr_se, 1)
         ),
         (Some(u), None) => with_error(u, f.ugr_se, 1),
-        (None, _) => "— (no glare source)".to_owned(),
+        (None, _) if f.sources.is_empty() => "— (no glare source)".to_owned(),
+        (None, _) => "— (no background luminance)".to_owned(),
     };
     let correction = if f.low_light_applied {
         "low-light correction applied"
@@ -263,8 +269,8 @@ fn summary(
         None => {
             let _ = writeln!(
                 out,
-                "  from the luminaires' openings: none has one (point sources have no \
-                 luminous area)"
+                "  from the luminaires' openings: no luminaire has one (point lights have no \
+                 luminous area; glowing surfaces, windows and the sun are found in the image)"
             );
         }
     }

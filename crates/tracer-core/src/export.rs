@@ -136,6 +136,32 @@ fn write_atomically(
     if path.is_dir() {
         return Err(io_err("is a directory".to_owned()));
     }
+    // A symbolic link is followed (its target is replaced, the link kept), and what is not a
+    // regular file (/dev/stdout, a pipe) is written directly: renaming over it would replace a
+    // device or a link with a plain file.
+    let resolved;
+    let path = match std::fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_symlink() => {
+            resolved = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_owned());
+            resolved.as_path()
+        }
+        _ => path,
+    };
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        let file = std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .map_err(|e| io_err(format!("cannot write: {e}")))?;
+        let mut w = BufWriter::new(file);
+        encode(&mut w).map_err(|reason| ExportError::Encode {
+            path: path.to_owned(),
+            reason,
+        })?;
+        return w
+            .into_inner()
+            .map(|_| ())
+            .map_err(|e| io_err(format!("cannot write: {}", e.error())));
+    }
     let file_name = path
         .file_name()
         .ok_or_else(|| io_err("not a file path".to_owned()))?;
@@ -172,6 +198,30 @@ fn write_atomically(
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
     use super::*;
+
+    /// A link is followed (the link stays a link, its target gets the text), and what is not a
+    /// regular file is written in place, never renamed over.
+    #[cfg(unix)]
+    #[test]
+    fn writing_through_a_link_keeps_the_link() {
+        let dir = std::env::temp_dir().join(format!("raygine-link-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (target, link) = (dir.join("target.json"), dir.join("link.json"));
+        std::fs::write(&target, "old").unwrap();
+        let _ = std::fs::remove_file(&link);
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write_text(&link, "new").unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "new");
+        write_text(Path::new("/dev/null"), "nothing").unwrap();
+        assert!(!std::fs::metadata("/dev/null").unwrap().is_file());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     /// Reads every channel of an EXR: name → samples (row-major).
     fn channels(path: &Path) -> Vec<(String, Vec<f32>)> {

@@ -96,8 +96,8 @@ fn bad_observers_are_errors_naming_them_and_write_nothing() {
     let dir = temp_dir();
     let json = dir.path().join("g.json");
     let json_arg = ["--json", json.to_str().unwrap()];
-    // An eye inside the tall block.
-    let inside = "[[observers]]\nname = \"buried\"\nposition = [370.0, 150.0, -350.0]\n\
+    // An eye low inside the tall block, which stands open-bottomed on the floor.
+    let inside = "[[observers]]\nname = \"buried\"\nposition = [368.0, 20.0, -351.0]\n\
                   direction = [0.0, 0.0, 1.0]\n";
     let shp = scene(dir.path(), inside);
     let run = raygine_in(dir.path(), glare_args(&shp, &json_arg));

@@ -3,7 +3,8 @@
 //!
 //! - Ev = Σ L cos θ ω over the image (the vertical illuminance at the eye).
 //! - Lb = (Ev − the sources' share of it) / π: the indirect illuminance at the eye over π, i.e.
-//!   the mean background luminance an eye adapts to.
+//!   the mean background luminance an eye adapts to. The image's sources' share is their pixels';
+//!   the openings' (analytic sources), the light drawn into the image for them.
 //! - UGR = 8 log₁₀(0.25 / Lb · Σ L² ω / p²).
 //! - DGP = 5.87·10⁻⁵ Ev + 9.18·10⁻² log₁₀(1 + Σ L² ω / (Ev^1.87 p²)) + 0.16 (the paper's
 //!   constants; evalglare 3.06 rounds them to 0.092 and 0.159, 0.001 lower), at most 1; with
@@ -59,8 +60,19 @@ impl GlareFigures {
                 self.sources.len()
             ));
         }
-        if self.lb <= 0.0 {
+        if self.ev <= 0.0 {
+            notes.push("Ev is 0: the eye sees no light (is it inside a solid?)".to_owned());
+        } else if self.lb <= 0.0 {
             notes.push("no background luminance: UGR is undefined".to_owned());
+        }
+        if self.ugr.is_some_and(|u| u > 30.0) {
+            notes.push(
+                "UGR above 30 lies beyond CIE 117's scale (10 to 30): read it as intolerable"
+                    .to_owned(),
+            );
+        }
+        if self.dgp >= 1.0 {
+            notes.push("DGP is held at 1 (its formula gives more)".to_owned());
         }
         if !self.low_light_asked && self.ev < LOW_LIGHT_LX {
             notes.push(format!(
@@ -89,17 +101,23 @@ pub fn glare_figures(
     }
     let cos_sr = |i: usize| image.direction[i].z.max(0.0) * image.solid_angle[i];
     let (ev, _) = image.illuminance();
-    let analytic_e: f64 = sources
-        .iter()
-        .filter(|s| s.pixels.is_empty())
-        .map(|s| s.eye_illuminance)
-        .sum();
+    // Analytic sources (openings) are the light drawn into the image for them: the background
+    // is the rest of those pixels (the same light, so Lb does not hang on how finely the image
+    // resolves the opening against the exact integral).
+    let analytic = sources.iter().any(|s| s.pixels.is_empty());
     let background_e: f64 = image
         .seen()
         .filter(|&i| owner[i].is_none())
-        .map(|i| image.luminance[i] * cos_sr(i))
+        .map(|i| {
+            let opening = if analytic {
+                image.opening.get(i).copied().unwrap_or(0.0)
+            } else {
+                0.0
+            };
+            (image.luminance[i] - opening) * cos_sr(i)
+        })
         .sum();
-    let lb = ((background_e - analytic_e) / PI).max(0.0);
+    let lb = (background_e / PI).max(0.0);
     let terms: Vec<f64> = sources
         .iter()
         .map(|s| s.luminance * s.luminance * s.solid_angle / (s.position_index * s.position_index))
@@ -190,6 +208,7 @@ mod tests {
             std_error: vec![se, se],
             direction: vec![DVec3::Z, DVec3::new(0.6, 0.0, 0.8)],
             solid_angle: vec![0.01, 2.0],
+            opening: vec![0.0; 2],
             basis: None,
         }
     }

@@ -3,7 +3,6 @@
 //! and a `VIEW= -vta … -vh 180 -vv 180` line with the eye, the line of sight and up.
 
 use super::image::GlareImage;
-use std::io::Write;
 
 /// Radiance's luminous efficacy of its RGB white (lm/W).
 pub const RADIANCE_EFFICACY: f64 = 179.0;
@@ -95,21 +94,14 @@ pub fn radiance_hdr(image: &GlareImage, view: &View) -> Vec<u8> {
     out
 }
 
-/// Writes the picture to `path` (through a temporary file beside it, so a failed write leaves
-/// nothing half-written).
+/// Writes the picture to `path` as every export is written (through a temporary file beside
+/// it, so a failed write leaves nothing half-written).
 pub fn write_radiance_hdr(
     path: &std::path::Path,
     image: &GlareImage,
     view: &View,
-) -> std::io::Result<()> {
-    let bytes = radiance_hdr(image, view);
-    let tmp = path.with_extension("hdr.partial");
-    {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(&bytes)?;
-        f.sync_all()?;
-    }
-    std::fs::rename(&tmp, path)
+) -> Result<(), crate::export::ExportError> {
+    crate::export::write_bytes(path, &radiance_hdr(image, view))
 }
 
 #[cfg(test)]

@@ -20,6 +20,9 @@ pub struct GlareImage {
     pub direction: Vec<DVec3>,
     /// sr; 0 outside the image circle.
     pub solid_angle: Vec<f64>,
+    /// cd/m²: the part of each pixel's luminance that luminous openings drawn into it give
+    /// ([`super::openings::draw_openings`]); exact, no standard error.
+    pub opening: Vec<f64>,
     /// The lens it was rendered through (None for an image made up in a test).
     pub basis: Option<CameraBasis>,
 }
@@ -36,6 +39,7 @@ impl GlareImage {
             std_error: vec![0.0; n],
             direction: vec![DVec3::ZERO; n],
             solid_angle: vec![0.0; n],
+            opening: vec![0.0; n],
             basis: Some(*basis),
         };
         let pixels = f64::from(w) * f64::from(h);

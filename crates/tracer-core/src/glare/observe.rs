@@ -68,14 +68,18 @@ fn sphere_directions(n: usize) -> impl Iterator<Item = Vec3> {
 }
 
 /// Directions the eye test looks along; how many must meet a surface, and what share of those
-/// must meet its back, to refuse the eye.
+/// must meet its back, to refuse the eye as outside a closed room or inside a closed solid.
 const EYE_TEST_RAYS: usize = 128;
 const EYE_TEST_MIN_HITS: usize = 16;
 const EYE_TEST_BACK_SHARE: f32 = 0.9;
+/// Inside an open solid (a block standing on the floor, without a bottom face, whose floor the
+/// downward directions meet from the front): two in five of all directions meet a back.
+const EYE_TEST_OPEN_BACK_SHARE: f32 = 0.4;
 
 /// Whether `observer`'s eye is in open air: refused (naming the observer and its `position`)
-/// when nine in ten of the directions from it that meet a surface meet its back first, as from
-/// inside a solid wall or from outside a closed room.
+/// when nine in ten of the directions from it that meet a surface meet its back first (inside a
+/// closed solid, or outside a closed room), or when two in five of all directions do (inside a
+/// block that stands on something).
 pub fn check_eye(lit: &LitScene<'_>, observer: &Observer) -> Result<(), String> {
     let eye = Vec3::from(observer.position);
     let (mut back, mut hits) = (0usize, 0usize);
@@ -88,11 +92,14 @@ pub fn check_eye(lit: &LitScene<'_>, observer: &Observer) -> Result<(), String> 
             }
         }
     }
-    if hits >= EYE_TEST_MIN_HITS && back as f32 >= EYE_TEST_BACK_SHARE * hits as f32 {
+    let closed = hits >= EYE_TEST_MIN_HITS && back as f32 >= EYE_TEST_BACK_SHARE * hits as f32;
+    let open = back as f32 >= EYE_TEST_OPEN_BACK_SHARE * EYE_TEST_RAYS as f32;
+    if closed || open {
         let [x, y, z] = observer.position;
         return Err(format!(
             "observer {}: position [{x}, {y}, {z}] is inside a solid or outside the room: \
-             {back} of the {hits} directions from it that meet a surface meet its back",
+             {back} of the {hits} directions from it that meet a surface meet its back (or \
+             the room's surfaces face away from its inside)",
             observer.name
         ));
     }

@@ -182,6 +182,7 @@ pub fn draw_openings(image: &mut GlareImage, lit: &LitScene<'_>, basis: &CameraB
                 let k = f64::from(n * n);
                 let rest = 1.0 - covered / k;
                 image.luminance[i] = image.luminance[i] * rest + glow / k;
+                image.opening[i] = glow / k;
                 image.std_error[i] *= rest;
                 changed += 1;
             }

@@ -43,7 +43,11 @@ impl GlareSource {
     /// Degrees above (+) or below (−) the line of sight, and to the right (+) or left (−).
     pub fn angles_deg(&self) -> (f64, f64) {
         let d = self.direction;
-        (d.y.atan2(d.z).to_degrees(), d.x.atan2(d.z).to_degrees())
+        // (+ 0.0 turns −0.0 into 0.0, so a source straight ahead is not "−0.0° right".)
+        (
+            d.y.atan2(d.z).to_degrees() + 0.0,
+            d.x.atan2(d.z).to_degrees() + 0.0,
+        )
     }
 }
 
@@ -210,7 +214,8 @@ pub fn luminaire_sources(
         if dist <= 1e-6 {
             continue;
         }
-        let Some(luminance) = opening_luminance(g, -to_light / dist) else {
+        let Some(luminance) = opening_luminance(g, -to_light / dist).filter(|l| *l > 0.0) else {
+            // An opening that sends the eye no light (seen from behind) is no source.
             continue;
         };
         let local_eye = g.frame.to_local(eye - g.position);
@@ -240,12 +245,16 @@ pub fn luminaire_sources(
                 }
                 let cos_at_opening = f64::from(normal.dot(to_eye_local).abs()) / r2.sqrt();
                 let point = g.position + g.frame.to_scene(p_local);
+                let d = to_observer((point - eye).normalize_or_zero());
+                if d.z <= 0.0 {
+                    // Behind the eye's plane: outside the 180° view, as in the image.
+                    continue;
+                }
                 let seen = f64::from(lit.transmittance(eye, point - eye));
                 if seen <= 0.0 {
                     continue;
                 }
                 let d_sr = seen * facing / f64::from(n) * cos_at_opening / r2;
-                let d = to_observer((point - eye).normalize_or_zero());
                 sr += d_sr;
                 e += d_sr * d.z.max(0.0);
                 dir += d * d_sr;

@@ -77,14 +77,17 @@ impl Observer {
                 return Err(format!("observer {name}: {key} must be finite numbers"));
             }
         }
-        let dir = Vec3::from(self.direction);
+        // In f64: the squares of large f32 components overflow.
+        let dir = Vec3::from(self.direction).as_dvec3();
         if dir.length_squared() < 1e-12 {
             return Err(format!("observer {name}: direction must not be zero"));
         }
-        let up = Vec3::from(self.up);
+        let up = Vec3::from(self.up).as_dvec3();
         if up.length_squared() < 1e-12 || dir.normalize().cross(up.normalize()).length() < 1e-4 {
             return Err(format!(
-                "observer {name}: up must not be zero or along the direction"
+                "observer {name}: up [{}, {}, {}] must not be zero or along the direction \
+                 (looking straight up or down, give an up across the line of sight)",
+                self.up[0], self.up[1], self.up[2]
             ));
         }
         Ok(())
@@ -153,8 +156,14 @@ mod tests {
                 up: [0.0, 0.0, 1.0],
                 ..desk()
             })
-            .contains("up must not")
+            .contains("must not be zero or along the direction")
         );
+        // Huge but finite numbers: no overflow blamed on up.
+        let far = Observer {
+            direction: [0.0, 0.0, -2e19],
+            ..desk()
+        };
+        assert!(far.check().is_ok(), "{:?}", far.check());
         assert!(
             err(Observer {
                 name: "a b".into(),
