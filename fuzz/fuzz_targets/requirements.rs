@@ -33,7 +33,7 @@ fuzz_target!(|data: &[u8]| {
     for a in &table.activities {
         let found = table.activity(&a.key);
         assert!(found.is_ok());
-        let c = check(&grid, a, Some(80.0), &["o".into()]);
+        let c = check(&grid, a, Some(80.0), &[("o".into(), Ok(Some((18.0, 0.2))))]);
         let _ = c.passes();
     }
     let _ = table.activity("no such key");
