@@ -50,6 +50,7 @@ pub enum Command {
     Report(ReportArgs),
     /// Glare at the sidecar's [[observers]]: UGR and DGP with their standard errors, from a
     /// 180° fisheye at each eye (sources from the image and from luminaires' openings).
+    /// Samples a pixel: 16 in direct mode, 64 otherwise, at least 2 (--samples).
     Glare(GlareArgs),
 }
 
@@ -60,7 +61,8 @@ pub struct GlareArgs {
     /// Only this observer (repeat for several; default: every observer).
     #[arg(long, value_name = "NAME")]
     pub observer: Vec<String>,
-    /// Side of the square fisheye, pixels.
+    /// Side of the square fisheye, pixels (32 to 4096): finer images judge small sources
+    /// better (docs/glare.md).
     #[arg(long, value_name = "PX", default_value_t = tracer_core::glare::DEFAULT_IMAGE_SIZE,
           value_parser = clap::value_parser!(u32).range(32..=4096))]
     pub size: u32,
