@@ -278,17 +278,33 @@ impl RenderWorker {
         } else if let Some(texture) = self.texture.as_mut().filter(|_| denoised.is_none()) {
             // (A denoised picture stays as it is until the next one: new samples change the
             // readouts at once, the picture with the next denoise.)
-            for rect in merge_rows(dirty) {
-                let image = self.session.with_film(|f| {
-                    f.map(|f| texture_rect(f, display, exposure, Some(rect), Some(mapper), None))
-                });
-                if let Some(image) = image {
-                    texture.set_partial(
-                        [rect.x0 as usize, rect.y0 as usize],
-                        image,
-                        TextureOptions::NEAREST,
-                    );
-                }
+            // One look at the film for all the rectangles, and only if it is still the film
+            // they were taken from and the texture's size: a new generation (a resize) can
+            // replace it between `take_dirty` and here, and then the next frame redraws it all.
+            let size = texture.size();
+            let images = self.session.with_film(|f| {
+                let Some(f) = f.filter(|f| {
+                    f.generation == generation && [f.width() as usize, f.height() as usize] == size
+                }) else {
+                    return Vec::new();
+                };
+                merge_rows(dirty)
+                    .into_iter()
+                    .filter(|r| r.x0 < r.x1 && r.y0 < r.y1)
+                    .filter(|r| r.x1 <= f.width() && r.y1 <= f.height())
+                    .map(|rect| {
+                        let image =
+                            texture_rect(f, display, exposure, Some(rect), Some(mapper), None);
+                        (rect, image)
+                    })
+                    .collect()
+            });
+            for (rect, image) in images {
+                texture.set_partial(
+                    [rect.x0 as usize, rect.y0 as usize],
+                    image,
+                    TextureOptions::NEAREST,
+                );
             }
         }
     }

@@ -680,3 +680,28 @@ fn a_point_light_becomes_a_spot_and_back() {
     assert_eq!(light.intensity_cd(), before);
     assert_eq!(h.query_all_by_label_contains("cone (°)").count(), 0);
 }
+
+/// A CI run failed once when the film was replaced (a new resolution scale) between the
+/// viewer taking the changed tiles and drawing them: it read a tile of the old, larger film
+/// from the new one. Rescaling and resizing while tiles arrive must never do that.
+#[test]
+fn rescaling_and_resizing_while_tiles_arrive_never_reads_a_stale_tile() {
+    let mut h = super::box_viewer(Vec2::new(640.0, 420.0), IntegratorKind::Direct, 64, 1.0);
+    let end = std::time::Instant::now() + std::time::Duration::from_secs(5);
+    let mut round = 0_u32;
+    while std::time::Instant::now() < end {
+        round += 1;
+        let scale = [1.0, 0.5, 0.75, 0.3][(round % 4) as usize];
+        h.state_mut().render_prefs_mut().resolution_scale = scale;
+        if round.is_multiple_of(5) {
+            let grow = if round.is_multiple_of(10) { 80.0 } else { 0.0 };
+            h.set_size(Vec2::new(640.0 + grow, 420.0 + grow / 2.0));
+        }
+        for _ in 0..(1 + round % 3) {
+            h.run_steps(1);
+            std::thread::sleep(std::time::Duration::from_millis((round % 4) as u64 * 3));
+        }
+    }
+    assert!(round > 20, "only {round} rounds in 5 s");
+    assert!(h.state().worker().with_film(|f| f.is_some()));
+}
