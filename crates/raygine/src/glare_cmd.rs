@@ -12,10 +12,10 @@ use std::time::{Duration, Instant};
 use tracer_core::glare::hdr::{View, write_radiance_hdr};
 use tracer_core::glare::{
     Detection, GlareFigures, GlareOptions, ObserverGlare, check_eye, judge_observer, light_names,
-    observer_basis, observer_setup,
+    observer_basis, observer_setup, render_in_batches,
 };
 use tracer_core::lit_scene::LitScene;
-use tracer_core::render::{RenderSettings, render_with_progress};
+use tracer_core::render::RenderSettings;
 use tracer_core::scene::Observer;
 
 /// Samples per pixel of the direct mode's fisheye when --samples is not given (a standard
@@ -77,8 +77,10 @@ pub fn run(args: &GlareArgs) -> Result<()> {
                 );
             }
         };
-        let (film, stats) = pool.install(|| {
-            render_with_progress(&loaded.scene, &setup, &settings, time_limit, &mut progress)
+        // Where samples splat (bidirectional, light), in independent batches: their spread is
+        // the figures' error.
+        let (film, batches, stats) = pool.install(|| {
+            render_in_batches(&loaded.scene, &setup, &settings, time_limit, &mut progress)
         });
         if film.rejected_samples() > 0 {
             bail!(
@@ -87,8 +89,17 @@ pub fn run(args: &GlareArgs) -> Result<()> {
                 film.rejected_samples()
             );
         }
-        let glare =
-            pool.install(|| judge_observer(&lit, &setup, observer, &film, &options, &names));
+        let glare = pool.install(|| {
+            judge_observer(
+                &lit,
+                &setup,
+                observer,
+                &film,
+                batches.as_ref(),
+                &options,
+                &names,
+            )
+        });
         let secs = at.elapsed().as_secs_f64();
         print!(
             "{}",
@@ -172,6 +183,17 @@ fn with_error(value: f64, se: f64, min_decimals: usize) -> String {
     format!("{value:.decimals$} ± {se:.decimals$}")
 }
 
+/// Where the figures' standard errors come from.
+fn errors_from(f: &GlareFigures) -> String {
+    match f.error_batches {
+        Some(k) => format!(
+            "from the spread of {k} independent batches of samples (this integrator's light \
+             subpaths splat into many pixels, so their errors are not independent)"
+        ),
+        None => "from the pixels' own standard errors (independent pixels)".to_owned(),
+    }
+}
+
 fn figures_lines(out: &mut String, f: &GlareFigures) {
     let ugr = match (f.ugr, f.ugr_evalglare_index) {
         (Some(u), Some(e)) => format!(
@@ -195,6 +217,7 @@ fn figures_lines(out: &mut String, f: &GlareFigures) {
         with_error(f.dgp, f.dgp_se, 3),
         with_error(f.lb, f.lb_se, 1)
     );
+    let _ = writeln!(out, "    ± {}", errors_from(f));
     for s in &f.sources {
         let (up, right) = s.angles_deg();
         let flag = if s.outside_cie117() {
@@ -284,6 +307,7 @@ fn figures_json(f: &GlareFigures) -> serde_json::Value {
         "ugr": f.ugr, "ugr_std_error": f.ugr_se,
         "ugr_with_evalglare_position_index": f.ugr_evalglare_index,
         "dgp": f.dgp, "dgp_std_error": f.dgp_se,
+        "std_errors_from": f.error_batches.map_or("pixels".to_owned(), |k| format!("{k} batches")),
         "dgp_low_light_asked": f.low_light_asked,
         "dgp_low_light_applied": f.low_light_applied,
         "notes": f.notes(),

@@ -9,8 +9,8 @@ use glam::DVec3;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use tracer_core::glare::{
-    GlareFigures, GlareOptions, check_eye, judge_observer, light_names, observer_basis,
-    observer_setup,
+    GlareFigures, GlareOptions, SampleBatches, check_eye, judge_observer, light_names,
+    observer_basis, observer_setup,
 };
 use tracer_core::integrator::IntegratorKind;
 use tracer_core::lit_scene::LitScene;
@@ -24,6 +24,10 @@ pub const IMAGE_SIZE: u32 = 400;
 
 /// Samples a pixel rendered between two checks for cancellation.
 const CHUNK: u32 = 4;
+
+/// Batches kept for the errors of an integrator that splats: one a sample, neighbours merged
+/// in pairs whenever there are more than this.
+const MAX_BATCHES: usize = 16;
 
 /// What a judgement depends on.
 #[derive(Clone, Debug, PartialEq)]
@@ -139,6 +143,7 @@ fn judge(
     setup: &Setup,
     observer: &Observer,
     film: &Film,
+    batches: Option<&SampleBatches>,
     options: &GlareOptions,
     max_depth: u32,
 ) -> Judged {
@@ -149,6 +154,7 @@ fn judge(
         &obs_setup,
         observer,
         film,
+        batches,
         options,
         &light_names(setup),
     );
@@ -190,6 +196,11 @@ fn run(
     let observers = &setup.observers;
     // Each observer's film so far, and the eyes that cannot see.
     let mut films: Vec<Option<Film>> = vec![None; observers.len()];
+    // Where samples splat, each observer's samples also in independent batches, one sample
+    // each (merged in pairs beyond MAX_BATCHES): the errors' source (tracer_core::glare::batches).
+    let splats = integrator.splats();
+    let chunk = if splats { 1 } else { CHUNK };
+    let mut batches: Vec<SampleBatches> = vec![SampleBatches::default(); observers.len()];
     let eyes: Vec<Result<(), String>> = observers
         .iter()
         .map(|o| {
@@ -209,9 +220,12 @@ fn run(
                 if cancel.load(Ordering::Acquire) {
                     return;
                 }
-                let end = (at + CHUNK).min(target);
+                let end = (at + chunk).min(target);
                 let (part, _) =
                     pool.install(|| render_samples(scene, &obs_setup, &settings, at..end));
+                if splats {
+                    batches[i].push_capped(&part, MAX_BATCHES);
+                }
                 match &mut films[i] {
                     Some(f) => {
                         if f.merge(&part).is_err() {
@@ -232,8 +246,10 @@ fn run(
                 result: match (&eyes[i], &films[i]) {
                     (Err(e), _) => Err(e.clone()),
                     (Ok(()), Some(film)) => {
-                        Ok(pool
-                            .install(|| judge(scene, setup, o, film, &options, settings.max_depth)))
+                        let b = splats.then_some(&batches[i]);
+                        Ok(pool.install(|| {
+                            judge(scene, setup, o, film, b, &options, settings.max_depth)
+                        }))
                     }
                     (Ok(()), None) => Err("not rendered".to_owned()),
                 },

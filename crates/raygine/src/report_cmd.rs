@@ -329,12 +329,14 @@ fn observer_ugr(
         };
         let lit = tracer_core::lit_scene::LitScene::new(scene, &view, settings.max_depth);
         tracer_core::glare::check_eye(&lit, observer)?;
-        let (film, _) = render(scene, &view, &settings);
+        let (film, batches, _) =
+            tracer_core::glare::render_in_batches(scene, &view, &settings, None, &mut |_| {});
         let g = tracer_core::glare::judge_observer(
             &lit,
             &view,
             observer,
             &film,
+            batches.as_ref(),
             &Default::default(),
             &tracer_core::glare::light_names(setup),
         );

@@ -30,6 +30,10 @@ fn sources_text(f: &GlareFigures) -> String {
         pm(f.lb, f.lb_se, 1),
         pm(f.ev, f.ev_se, 1)
     )];
+    lines.push(match f.error_batches {
+        Some(k) => format!("± from the spread of {k} independent batches of samples"),
+        None => "± from the pixels' own errors".to_owned(),
+    });
     for s in &f.sources {
         let (up, right) = s.angles_deg();
         lines.push(format!(

@@ -193,3 +193,35 @@ fn an_observer_is_added_at_the_camera_and_viewed_through_a_fisheye() {
     assert_eq!(camera.projection, Projection::FisheyeEquidistant);
     assert_eq!((camera.fov_deg, camera.position), (180.0, before.position));
 }
+
+/// In bidirectional mode the Glare section's errors come from independent batches of samples
+/// (one a sample: four at the first refinement), since light subpaths splat into many pixels.
+#[test]
+fn bidirectional_glare_errors_come_from_independent_batches() {
+    let mut h = crate::box_viewer(
+        Vec2::new(960.0, 900.0),
+        IntegratorKind::Bidirectional,
+        1,
+        0.25,
+    );
+    h.run_steps(2);
+    for group in ["Lights", "Camera", "Materials", "Render"] {
+        h.get_by_label(group).click();
+        h.step();
+    }
+    h.get_by_label("Glare").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Add observer at camera")
+        .click();
+    h.run_steps(2);
+    let started = std::time::Instant::now();
+    while h.state().glare_readings().is_none() && started.elapsed().as_secs() < 90 {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        h.step();
+    }
+    let readings = h.state().glare_readings().expect("glare within 90 s");
+    assert_eq!(readings.samples, 4);
+    let judged = readings.observers[0].result.as_ref().expect("the eye sees");
+    assert_eq!(judged.from_image.error_batches, Some(4));
+    assert!(judged.from_image.ugr_se.is_finite() && judged.from_image.ugr_se > 0.0);
+}

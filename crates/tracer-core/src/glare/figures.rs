@@ -14,9 +14,13 @@
 //! The uncertainty: every figure is a smooth function of the pixels' mean luminances, which are
 //! independent Monte Carlo estimates with known standard errors (an analytic source's luminance
 //! is exact). Its standard error is the first-order (delta-method) one, √(Σ (∂F/∂Lⱼ)² σⱼ²), with
-//! the derivatives worked out below. It says how far the figure may move with more samples; it
-//! does not cover the image's resolution or the choice of threshold.
+//! the derivatives worked out below. Where pixels share samples (bidirectional and light tracing
+//! splat one light subpath into many), the same derivatives are applied to independent batches
+//! of the samples instead, and the error is their spread ([`super::batches`]). Either way it
+//! says how far the figure may move with more samples; it does not cover the image's resolution
+//! or the choice of threshold.
 
+use super::batches::SampleBatches;
 use super::image::GlareImage;
 use super::position_index::evalglare_index;
 use super::source::GlareSource;
@@ -42,6 +46,9 @@ pub struct GlareFigures {
     pub ugr_evalglare_index: Option<f64>,
     pub dgp: f64,
     pub dgp_se: f64,
+    /// The independent batches the standard errors come from; None when they come from the
+    /// pixels' own errors (taken as independent).
+    pub error_batches: Option<usize>,
     /// Whether the low-light correction was asked for, and whether it changed DGP.
     pub low_light_asked: bool,
     pub low_light_applied: bool,
@@ -85,11 +92,14 @@ impl GlareFigures {
     }
 }
 
-/// The figures of `image` with `sources` (from the image, analytic, or both).
+/// The figures of `image` with `sources` (from the image, analytic, or both). With two or more
+/// `batches` of the image's samples, the standard errors are their spread ([`super::batches`]:
+/// for integrators whose samples splat into many pixels), else the per-pixel propagation.
 pub fn glare_figures(
     image: &GlareImage,
     sources: Vec<GlareSource>,
     low_light: bool,
+    batches: Option<&SampleBatches>,
 ) -> GlareFigures {
     let n = image.luminance.len();
     // Which image source each pixel belongs to.
@@ -118,6 +128,21 @@ pub fn glare_figures(
         })
         .sum();
     let lb = (background_e / PI).max(0.0);
+    let mut sources = sources;
+    if let Some(b) = batches.filter(|b| b.len() >= 2) {
+        // An image source's luminance is its pixels' ω-weighted mean: its error, too, is the
+        // batches' spread.
+        for s in sources.iter_mut().filter(|s| !s.pixels.is_empty()) {
+            let omega: f64 = s.pixels.iter().map(|&i| image.solid_angle[i]).sum();
+            if omega > 0.0 {
+                let mut gradient = vec![0.0; n];
+                for &i in &s.pixels {
+                    gradient[i] = image.solid_angle[i] / omega;
+                }
+                s.luminance_se = b.std_error_of(&gradient).unwrap_or(f64::NAN);
+            }
+        }
+    }
     let terms: Vec<f64> = sources
         .iter()
         .map(|s| s.luminance * s.luminance * s.solid_angle / (s.position_index * s.position_index))
@@ -147,13 +172,12 @@ pub fn glare_figures(
     let capped = raw_dgp * factor > 1.0;
     let dgp = (raw_dgp * factor).min(1.0);
 
-    // Derivatives with respect to each pixel's luminance, and the variances they carry.
+    // Derivatives with respect to each pixel's luminance, and the variances they carry; with
+    // batches, the derivatives themselves (Ev, Lb, UGR, DGP), for the batches' spread.
+    let batches = batches.filter(|b| b.len() >= 2);
+    let mut gradients = batches.map(|_| [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]]);
     let (mut var_ev, mut var_lb, mut var_ugr, mut var_dgp) = (0.0, 0.0, 0.0, 0.0);
     for i in image.seen() {
-        let se = image.std_error[i];
-        if se == 0.0 {
-            continue;
-        }
         let d_ev = cos_sr(i);
         let (d_sum, d_lb) = match owner[i] {
             Some(k) => {
@@ -163,29 +187,46 @@ pub fn glare_figures(
             }
             None => (0.0, d_ev / PI),
         };
-        var_ev += (d_ev * se).powi(2);
-        var_lb += (d_lb * se).powi(2);
-        if ugr.is_some() {
-            let d_ugr = 8.0 / LN_10 * (d_sum / sum - d_lb / lb);
-            var_ugr += (d_ugr * se).powi(2);
-        }
+        let d_ugr = if ugr.is_some() {
+            8.0 / LN_10 * (d_sum / sum - d_lb / lb)
+        } else {
+            0.0
+        };
         let d_g = d_sum / ev_pow - 1.87 * g * d_ev / ev.max(1e-12);
         let d_raw = 5.87e-5 * d_ev + 9.18e-2 / LN_10 * d_g / (1.0 + g);
-        if !capped {
-            let d_dgp = d_raw * factor + raw_dgp * dfactor * d_ev;
+        let d_dgp = if capped {
+            0.0
+        } else {
+            d_raw * factor + raw_dgp * dfactor * d_ev
+        };
+        if let Some(gr) = gradients.as_mut() {
+            for (v, d) in gr.iter_mut().zip([d_ev, d_lb, d_ugr, d_dgp]) {
+                v[i] = d;
+            }
+        }
+        let se = image.std_error[i];
+        if se != 0.0 {
+            var_ev += (d_ev * se).powi(2);
+            var_lb += (d_lb * se).powi(2);
+            var_ugr += (d_ugr * se).powi(2);
             var_dgp += (d_dgp * se).powi(2);
         }
     }
+    let [ev_se, lb_se, ugr_se, dgp_se] = match (batches, &gradients) {
+        (Some(b), Some(gr)) => [0, 1, 2, 3].map(|k| b.std_error_of(&gr[k]).unwrap_or(f64::NAN)),
+        _ => [var_ev, var_lb, var_ugr, var_dgp].map(f64::sqrt),
+    };
     GlareFigures {
         ev,
-        ev_se: var_ev.sqrt(),
+        ev_se,
         lb,
-        lb_se: var_lb.sqrt(),
+        lb_se,
         ugr,
-        ugr_se: var_ugr.sqrt(),
+        ugr_se,
         ugr_evalglare_index,
         dgp,
-        dgp_se: var_dgp.sqrt(),
+        dgp_se,
+        error_batches: batches.map(SampleBatches::len),
         low_light_asked: low_light,
         low_light_applied: factor < 1.0,
         sources,
@@ -230,7 +271,7 @@ mod tests {
     #[test]
     fn figures_follow_the_formulas() {
         let image = two_pixels(10_000.0, 50.0, 0.0);
-        let f = glare_figures(&image, vec![source_of(&image)], false);
+        let f = glare_figures(&image, vec![source_of(&image)], false, None);
         let ev = 10_000.0 * 0.01 + 50.0 * 0.8 * 2.0;
         let lb = 50.0 * 0.8 * 2.0 / PI;
         assert!((f.ev - ev).abs() < 1e-9 && (f.lb - lb).abs() < 1e-9);
@@ -239,7 +280,7 @@ mod tests {
         let dgp = 5.87e-5 * ev + 0.0918 * (1.0 + 1e6 / ev.powf(1.87)).log10() + 0.16;
         assert!((f.dgp - dgp).abs() < 1e-12);
         assert_eq!((f.ugr_se, f.dgp_se), (0.0, 0.0));
-        let low = glare_figures(&image, vec![source_of(&image)], true);
+        let low = glare_figures(&image, vec![source_of(&image)], true, None);
         let a = (0.024f64 * ev - 4.0).exp();
         assert!((low.dgp - dgp * a / (1.0 + a)).abs() < 1e-12 && low.low_light_applied);
     }
@@ -249,14 +290,14 @@ mod tests {
     fn standard_errors_are_the_first_order_propagation() {
         let se = 30.0;
         let image = two_pixels(10_000.0, 50.0, se);
-        let base = glare_figures(&image, vec![source_of(&image)], true);
+        let base = glare_figures(&image, vec![source_of(&image)], true, None);
         let mut var_ugr = 0.0;
         let mut var_dgp = 0.0;
         for i in 0..2 {
             let mut moved = image.clone();
             let h = 1e-3;
             moved.luminance[i] += h;
-            let m = glare_figures(&moved, vec![source_of(&moved)], true);
+            let m = glare_figures(&moved, vec![source_of(&moved)], true, None);
             var_ugr += ((m.ugr.unwrap() - base.ugr.unwrap()) / h * se).powi(2);
             var_dgp += ((m.dgp - base.dgp) / h * se).powi(2);
         }
@@ -268,5 +309,70 @@ mod tests {
             (base.dgp_se / var_dgp.sqrt() - 1.0).abs() < 1e-4,
             "{base:?}"
         );
+    }
+
+    /// With batches, the error is the spread of the figures' linearisation over them: checked
+    /// against finite differences of UGR and DGP applied to each batch.
+    #[test]
+    fn batch_errors_are_the_spread_of_the_linearised_figures() {
+        let batches = SampleBatches {
+            samples: vec![3, 3, 3, 3],
+            luminance: vec![
+                vec![9000.0, 52.0],
+                vec![11_500.0, 47.0],
+                vec![9800.0, 55.0],
+                vec![9700.0, 46.0],
+            ],
+        };
+        let mut image = two_pixels(0.0, 0.0, 1.0);
+        for j in 0..2 {
+            image.luminance[j] = batches
+                .luminance
+                .iter()
+                .map(|l| f64::from(l[j]))
+                .sum::<f64>()
+                / 4.0;
+        }
+        let base = glare_figures(&image, vec![source_of(&image)], false, Some(&batches));
+        assert_eq!(base.error_batches, Some(4));
+        let h = 1e-3;
+        let slopes: Vec<(f64, f64)> = (0..2)
+            .map(|j| {
+                let mut moved = image.clone();
+                moved.luminance[j] += h;
+                let m = glare_figures(&moved, vec![source_of(&moved)], false, None);
+                (
+                    (m.ugr.unwrap() - base.ugr.unwrap()) / h,
+                    (m.dgp - base.dgp) / h,
+                )
+            })
+            .collect();
+        let spread = |pick: &dyn Fn(&(f64, f64)) -> f64| {
+            let x: Vec<f64> = batches
+                .luminance
+                .iter()
+                .map(|l| (0..2).map(|j| pick(&slopes[j]) * f64::from(l[j])).sum())
+                .collect();
+            let mean = x.iter().sum::<f64>() / 4.0;
+            (x.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / 12.0).sqrt()
+        };
+        let (ugr_se, dgp_se) = (spread(&|s| s.0), spread(&|s| s.1));
+        assert!(
+            (base.ugr_se / ugr_se - 1.0).abs() < 1e-3,
+            "{} vs {ugr_se}",
+            base.ugr_se
+        );
+        assert!(
+            (base.dgp_se / dgp_se - 1.0).abs() < 1e-3,
+            "{} vs {dgp_se}",
+            base.dgp_se
+        );
+        // One batch is no spread: the pixels' own errors are used.
+        let one = SampleBatches {
+            samples: vec![12],
+            luminance: vec![vec![10_000.0, 50.0]],
+        };
+        let f = glare_figures(&image, vec![source_of(&image)], false, Some(&one));
+        assert_eq!(f.error_batches, None);
     }
 }

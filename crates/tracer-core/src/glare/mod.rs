@@ -9,10 +9,12 @@
 //!                 ├─► source.rs: analytic sources (openings: I / A_proj, A_proj / d²)
 //!                 │ position_index.rs: Guth (CIE 117 table) above, Iwata below the line of sight
 //!                 └─► figures.rs: Ev, Lb, UGR, DGP and their standard errors
+//!                       (batches.rs: from independent batches where samples splat)
 //! ```
 //!
 //! `hdr.rs` writes the fisheye as a Radiance picture evalglare reads.
 
+pub mod batches;
 pub mod figures;
 pub mod hdr;
 pub mod image;
@@ -21,6 +23,7 @@ pub mod openings;
 pub mod position_index;
 pub mod source;
 
+pub use batches::{SampleBatches, render_in_batches};
 pub use figures::{GlareFigures, LOW_LIGHT_LX, glare_figures};
 pub use image::GlareImage;
 pub use observe::{

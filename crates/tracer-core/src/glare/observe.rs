@@ -1,6 +1,7 @@
 //! Glare at one observer: the fisheye it looks through, the check that its eye is in open air,
 //! and both ways of finding sources judged from one rendered image.
 
+use super::batches::SampleBatches;
 use super::figures::{GlareFigures, glare_figures};
 use super::image::GlareImage;
 use super::openings::draw_openings;
@@ -107,12 +108,15 @@ pub fn check_eye(lit: &LitScene<'_>, observer: &Observer) -> Result<(), String> 
 }
 
 /// Judges glare at `observer` from `film`, rendered through [`observer_setup`] at `size`
-/// pixels square. `names` name `setup`'s lights in order (for the analytic sources).
+/// pixels square. `names` name `setup`'s lights in order (for the analytic sources). With
+/// `batches` of the film's samples (needed where samples splat, see [`super::batches`]) the
+/// standard errors are their spread.
 pub fn judge_observer(
     lit: &LitScene<'_>,
     setup: &Setup,
     observer: &Observer,
     film: &Film,
+    batches: Option<&SampleBatches>,
     options: &GlareOptions,
     names: &[String],
 ) -> ObserverGlare {
@@ -121,7 +125,7 @@ pub fn judge_observer(
     let opening_pixels = draw_openings(&mut image, lit, &basis);
     let threshold = options.detection.threshold_cd_m2(&image);
     let found = image_sources(&image, &options.detection);
-    let from_image = glare_figures(&image, found, options.low_light);
+    let from_image = glare_figures(&image, found, options.low_light, batches);
     let to_observer = |v: Vec3| {
         let v = v.as_dvec3();
         DVec3::new(
@@ -137,7 +141,7 @@ pub fn judge_observer(
         .is_some();
     let analytic = has_openings.then(|| {
         let sources = luminaire_sources(lit, eye, to_observer, names);
-        glare_figures(&image, sources, options.low_light)
+        glare_figures(&image, sources, options.low_light, batches)
     });
     ObserverGlare {
         observer: observer.name.clone(),
