@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use tracer_core::glare::hdr::{View, write_radiance_hdr};
 use tracer_core::glare::{
     Detection, GlareFigures, GlareOptions, ObserverGlare, check_eye, judge_observer, light_names,
-    observer_basis, observer_setup, render_in_batches,
+    observer_basis, observer_setup, render_in_batches, sun_pixels,
 };
 use tracer_core::lit_scene::LitScene;
 use tracer_core::render::RenderSettings;
@@ -78,9 +78,17 @@ pub fn run(args: &GlareArgs) -> Result<()> {
             }
         };
         // Where samples splat (bidirectional, light), in independent batches: their spread is
-        // the figures' error.
+        // the figures' error. The pixels the sun may fall in take more samples.
+        let sun = sun_pixels(&lit, &observer_basis(&loaded.setup, observer, args.size));
         let (film, batches, stats) = pool.install(|| {
-            render_in_batches(&loaded.scene, &setup, &settings, time_limit, &mut progress)
+            render_in_batches(
+                &loaded.scene,
+                &setup,
+                &settings,
+                &sun,
+                time_limit,
+                &mut progress,
+            )
         });
         if film.rejected_samples() > 0 {
             bail!(

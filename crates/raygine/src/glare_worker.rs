@@ -10,11 +10,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use tracer_core::glare::{
     GlareFigures, GlareOptions, SampleBatches, check_eye, judge_observer, light_names,
-    observer_basis, observer_setup,
+    observer_basis, observer_setup, samples_of, sun_pixels,
 };
 use tracer_core::integrator::IntegratorKind;
 use tracer_core::lit_scene::LitScene;
-use tracer_core::render::{Film, RenderSettings, render_samples};
+use tracer_core::render::{Film, RenderSettings, render_pixels};
 use tracer_core::scene::{Observer, Scene, Setup};
 
 /// Samples a pixel of the successive refinements, and the fisheye's side (half the command
@@ -215,14 +215,22 @@ fn run(
                 continue;
             }
             let obs_setup = observer_setup(setup, o);
+            let sun = sun_pixels(
+                &LitScene::new(scene, &obs_setup, settings.max_depth),
+                &observer_basis(setup, o, IMAGE_SIZE),
+            );
             let mut at = done;
             while at < target {
                 if cancel.load(Ordering::Acquire) {
                     return;
                 }
                 let end = (at + chunk).min(target);
-                let (part, _) =
-                    pool.install(|| render_samples(scene, &obs_setup, &settings, at..end));
+                // The sun's pixels take more of their own samples (tracer_core::glare::sun).
+                let (part, _) = pool.install(|| {
+                    render_pixels(scene, &obs_setup, &settings, &|p| {
+                        samples_of(p, &(at..end), &sun)
+                    })
+                });
                 if splats {
                     batches[i].push_capped(&part, MAX_BATCHES);
                 }

@@ -329,8 +329,10 @@ fn observer_ugr(
         };
         let lit = tracer_core::lit_scene::LitScene::new(scene, &view, settings.max_depth);
         tracer_core::glare::check_eye(&lit, observer)?;
+        let basis = tracer_core::glare::observer_basis(setup, observer, settings.width);
+        let sun = tracer_core::glare::sun_pixels(&lit, &basis);
         let (film, batches, _) =
-            tracer_core::glare::render_in_batches(scene, &view, &settings, None, &mut |_| {});
+            tracer_core::glare::render_in_batches(scene, &view, &settings, &sun, None, &mut |_| {});
         let g = tracer_core::glare::judge_observer(
             &lit,
             &view,

@@ -14,7 +14,11 @@
 //! over K batches of n_b samples a pixel, N in all, X̄ = Σ n_b X_b / N. It has K − 1 degrees of
 //! freedom (about 27 % relative spread of its own at K = 8).
 
-use crate::render::{Film, RenderSettings, RenderStats, render_samples};
+use super::sun::SUN_SAMPLES;
+use crate::render::{
+    Film, FrameSampler, RenderSettings, RenderStats, render_pixel_ranges, render_samples,
+    render_with_progress_mapped,
+};
 use crate::scene::{Scene, Setup};
 use std::ops::Range;
 use std::time::{Duration, Instant};
@@ -125,37 +129,39 @@ pub fn batch_ranges(total: u32, count: u32) -> Vec<Range<u32>> {
         .collect()
 }
 
-/// Renders the fisheye for glare: for an integrator that splats, as [`BATCHES`] batches of
-/// consecutive sample indices (the film is their exact sum, the same as one render's), else
-/// in one go. Stops after the batch in which `time_limit` passes; `progress` hears after each
-/// batch (or chunk).
+/// Renders the fisheye for glare. For an integrator that splats, in [`BATCHES`] batches of
+/// consecutive sample indices, kept as [`SampleBatches`]; else as
+/// [`crate::render::render_with_progress`] does. The film is the same as one render's (exact
+/// sums). Pixels marked in `sun` (one flag a pixel, or
+/// none) get [`SUN_SAMPLES`] times the samples, in every pass. Stops after the pass in which
+/// `time_limit` passes; `progress` hears after each pass.
 pub fn render_in_batches(
     scene: &Scene,
     setup: &Setup,
     settings: &RenderSettings,
+    sun: &[bool],
     time_limit: Option<Duration>,
     progress: &mut dyn FnMut(&RenderStats),
 ) -> (Film, Option<SampleBatches>, RenderStats) {
+    let map = |i: usize, range: &Range<u32>| samples_of(i, range, sun);
     if !settings.integrator.splats() {
         let (film, stats) =
-            crate::render::render_with_progress(scene, setup, settings, time_limit, progress);
+            render_with_progress_mapped(scene, setup, settings, time_limit, &map, progress);
         return (film, None, stats);
     }
     let started = Instant::now();
+    let frame = FrameSampler::new(scene, setup, settings);
     let mut batches = SampleBatches::default();
     let mut film: Option<Film> = None;
     let mut stats = RenderStats::default();
     for range in batch_ranges(settings.samples_per_pixel.max(1), BATCHES) {
-        let (part, part_stats) = render_samples(scene, setup, settings, range);
+        let (mut part, rays) = render_pixel_ranges(&frame, settings, &|i| map(i, &range));
+        part.count_splat_paths();
         batches.push(&part);
-        stats.rays += part_stats.rays;
-        stats.samples_per_pixel += part_stats.samples_per_pixel;
-        stats.mean_samples_per_pixel += part_stats.mean_samples_per_pixel;
-        stats.elapsed_secs = started.elapsed().as_secs_f64();
         match &mut film {
+            // Disjoint ranges of the same settings always merge; were one refused, the film
+            // would not be the batches' sum, so stop with what agrees.
             Some(f) => {
-                // Disjoint ranges of the same settings always merge; were one refused, the
-                // film would not be the batches' sum, so stop with what agrees.
                 if f.merge(&part).is_err() {
                     batches.samples.pop();
                     batches.luminance.pop();
@@ -164,13 +170,31 @@ pub fn render_in_batches(
             }
             None => film = Some(part),
         }
+        stats.rays += rays;
+        stats.samples_per_pixel = range.end;
+        stats.elapsed_secs = started.elapsed().as_secs_f64();
+        if let Some(f) = &film {
+            let added: u64 = f.counts().map(u64::from).sum();
+            stats.mean_samples_per_pixel = added as f64 / f.len().max(1) as f64;
+        }
         progress(&stats);
         if time_limit.is_some_and(|l| started.elapsed() >= l) {
             break;
         }
     }
-    let film = film.unwrap_or_else(|| render_samples(scene, setup, settings, 0..1).0);
+    let mut film = film.unwrap_or_else(|| render_samples(scene, setup, settings, 0..1).0);
+    film.count_splat_paths();
     (film, Some(batches), stats)
+}
+
+/// The sample indices pixel `i` takes in the batch of `range`: those, or [`SUN_SAMPLES`] times
+/// as many of its own where the sun may show.
+pub fn samples_of(i: usize, range: &Range<u32>, sun: &[bool]) -> Range<u32> {
+    if sun.get(i).copied().unwrap_or(false) {
+        range.start.saturating_mul(SUN_SAMPLES)..range.end.saturating_mul(SUN_SAMPLES)
+    } else {
+        range.clone()
+    }
 }
 
 #[cfg(test)]

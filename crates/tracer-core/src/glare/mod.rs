@@ -10,6 +10,8 @@
 //!                 │ position_index.rs: Guth (CIE 117 table) above, Iwata below the line of sight
 //!                 └─► figures.rs: Ev, Lb, UGR, DGP and their standard errors
 //!                       (batches.rs: from independent batches where samples splat)
+//!
+//! sun.rs marks the pixels the sun's disc may fall in: they get more samples (batches.rs).
 //! ```
 //!
 //! `hdr.rs` writes the fisheye as a Radiance picture evalglare reads.
@@ -22,8 +24,9 @@ pub mod observe;
 pub mod openings;
 pub mod position_index;
 pub mod source;
+pub mod sun;
 
-pub use batches::{SampleBatches, render_in_batches};
+pub use batches::{SampleBatches, render_in_batches, samples_of};
 pub use figures::{GlareFigures, LOW_LIGHT_LX, glare_figures};
 pub use image::GlareImage;
 pub use observe::{
@@ -32,3 +35,4 @@ pub use observe::{
 };
 pub use position_index::{IndexRule, guth_table, iwata, levin, position_index};
 pub use source::{CIE117_MAX_SR, CIE117_MIN_SR, Detection, GlareSource};
+pub use sun::{SUN_SAMPLES, sun_pixels};

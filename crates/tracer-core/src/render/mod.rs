@@ -148,6 +148,26 @@ pub fn render_with_progress(
     time_limit: Option<std::time::Duration>,
     progress: &mut dyn FnMut(&RenderStats),
 ) -> (Film, RenderStats) {
+    render_with_progress_mapped(
+        scene,
+        setup,
+        settings,
+        time_limit,
+        &|_, r| r.clone(),
+        progress,
+    )
+}
+
+/// [`render_with_progress`] where pixel i takes the sample indices `map(i, pass)` in each pass
+/// of indices `pass` (more of its own, say, where it needs them), disjoint across passes.
+pub fn render_with_progress_mapped(
+    scene: &Scene,
+    setup: &Setup,
+    settings: &RenderSettings,
+    time_limit: Option<std::time::Duration>,
+    map: &(dyn Fn(usize, &Range<u32>) -> Range<u32> + Sync),
+    progress: &mut dyn FnMut(&RenderStats),
+) -> (Film, RenderStats) {
     let started = std::time::Instant::now();
     let frame = FrameSampler::new(scene, setup, settings);
     let target = settings.samples_per_pixel.max(1);
@@ -176,7 +196,7 @@ pub fn render_with_progress(
         };
         // Added in place (no second film): an overflow is counted as rejected samples.
         let range = done..done + chunk;
-        let part_rays = render_pixel_ranges_into(&frame, settings, &|_| range.clone(), &mut film);
+        let part_rays = render_pixel_ranges_into(&frame, settings, &|i| map(i, &range), &mut film);
         rays += part_rays;
         done += chunk;
         progress(&stats(rays, done));

@@ -128,6 +128,11 @@ impl SunDisc {
     pub fn direction(&self) -> Vec3 {
         self.dir
     }
+
+    /// The disc's angular radius α (rad).
+    pub fn angular_radius(&self) -> f64 {
+        f64::from(self.sin2_alpha).sqrt().asin()
+    }
 }
 
 #[cfg(test)]
