@@ -1,13 +1,16 @@
 //! Observers: the eyes where glare is judged (`[[observers]]`). Each can be looked through (a
 //! 180° equidistant fisheye at the eye, the view glare is computed from), edited number by
-//! number (an edit that makes it invalid is refused with the reason) or removed; one can be
-//! added where the camera stands. Edits the setup in place, like the camera's numbers.
+//! number (an edit that makes it invalid is refused, its reason shown for a few seconds) or
+//! removed; one can be added where the camera stands. Edits the setup in place, like the camera's numbers.
 
 use crate::document::Document;
 use tracer_core::scene::Observer;
 
+/// How long a refused edit's reason stays under the observer, seconds.
+const REFUSAL_SECS: f64 = 8.0;
+
 /// The observer's numbers as editable fields; the edited observer when it changed and is valid
-/// (else the reason is shown and the observer kept).
+/// (else the observer is kept, and the reason shown for a few seconds).
 fn edit_ui(ui: &mut egui::Ui, o: &Observer, unit: &str, speed: f64) -> Option<Observer> {
     let mut e = o.clone();
     egui::CollapsingHeader::new(format!("edit {}", o.name))
@@ -32,16 +35,36 @@ fn edit_ui(ui: &mut egui::Ui, o: &Observer, unit: &str, speed: f64) -> Option<Ob
                 });
             }
         });
-    if e == *o {
-        return None;
-    }
-    match e.check() {
-        Ok(()) => Some(e),
-        Err(reason) => {
-            ui.colored_label(egui::Color32::from_rgb(255, 120, 100), reason);
-            None
+    // The last refusal (reason, when) lives in egui's memory: the edit itself reverts at once.
+    let id = ui.make_persistent_id("refused");
+    let now = ui.input(|i| i.time);
+    let mut accepted = None;
+    if e != *o {
+        match e.check() {
+            Ok(()) => {
+                ui.data_mut(|d| d.remove::<(String, f64)>(id));
+                accepted = Some(e);
+            }
+            Err(reason) => {
+                ui.data_mut(|d| d.insert_temp(id, (reason, now)));
+            }
         }
     }
+    if let Some((reason, at)) = ui.data(|d| d.get_temp::<(String, f64)>(id)) {
+        if now - at < REFUSAL_SECS {
+            ui.colored_label(
+                egui::Color32::from_rgb(255, 120, 100),
+                format!("edit refused: {reason}"),
+            );
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_secs_f64(
+                    REFUSAL_SECS - (now - at),
+                ));
+        } else {
+            ui.data_mut(|d| d.remove::<(String, f64)>(id));
+        }
+    }
+    accepted
 }
 
 pub fn observers_ui(ui: &mut egui::Ui, doc: &mut Document) {

@@ -225,3 +225,50 @@ fn bidirectional_glare_errors_come_from_independent_batches() {
     assert_eq!(judged.from_image.error_batches, Some(4));
     assert!(judged.from_image.ugr_se.is_finite() && judged.from_image.ugr_se > 0.0);
 }
+
+/// An observer edit that would make it invalid (a zero line of sight) is refused: the observer
+/// keeps its numbers and the reason stays on screen, not for one frame only.
+#[test]
+fn a_refused_observer_edit_keeps_the_observer_and_says_why() {
+    let mut h = crate::box_viewer(Vec2::new(960.0, 900.0), IntegratorKind::Direct, 1, 0.25);
+    h.run_steps(2);
+    for group in ["Lights", "Camera", "Materials", "Render"] {
+        h.get_by_label(group).click();
+        h.step();
+    }
+    h.get_by_label("Glare").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Add observer at camera")
+        .click();
+    h.run_steps(2);
+    let before = h.state().document().setup.observers[0].clone();
+    assert_eq!(
+        before.direction,
+        [0.0, 0.0, -1.0],
+        "the box camera looks along -z"
+    );
+    h.get_by_label("edit observer1").click();
+    h.run_steps(2);
+    let fields = h
+        .get_all_by_role_and_label(Role::SpinButton, "line of sight")
+        .count();
+    assert_eq!(fields, 3, "x, y and z of the line of sight");
+    // z from -1 to 0: a zero line of sight.
+    h.get_all_by_role_and_label(Role::SpinButton, "line of sight")
+        .nth(2)
+        .unwrap()
+        .set_value_accesskit(0.0);
+    h.run_steps(3);
+    assert_eq!(
+        h.state().document().setup.observers[0],
+        before,
+        "the edit was kept"
+    );
+    for _ in 0..10 {
+        h.step();
+    }
+    assert!(
+        h.query_by_label_contains("edit refused").is_some(),
+        "the reason is not on screen ten frames later"
+    );
+}
