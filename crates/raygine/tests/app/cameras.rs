@@ -148,12 +148,11 @@ fn an_orthographic_scene_under_the_light_tracer_switches_to_bidirectional_with_a
     );
 }
 
-/// The Glare section's observers: one added where the camera stands, its glare judged in the
-/// background and shown (UGR and DGP with their errors), then "View from observer" looks
-/// through a 180° equidistant fisheye from it; the eye stays where the camera was.
-#[test]
-fn an_observer_is_added_at_the_camera_and_viewed_through_a_fisheye() {
-    let mut h = crate::box_viewer(Vec2::new(960.0, 900.0), IntegratorKind::Direct, 1, 0.25);
+/// The box in `integrator` mode with the side panel's other groups closed and Glare open.
+fn glare_section(
+    integrator: IntegratorKind,
+) -> egui_kittest::Harness<'static, raygine::app::RaygineApp> {
+    let mut h = crate::box_viewer(Vec2::new(960.0, 900.0), integrator, 1, 0.25);
     h.run_steps(2);
     for group in ["Lights", "Camera", "Materials", "Render"] {
         h.get_by_label(group).click();
@@ -161,10 +160,23 @@ fn an_observer_is_added_at_the_camera_and_viewed_through_a_fisheye() {
     }
     h.get_by_label("Glare").click();
     h.run_steps(2);
-    let before = h.state().document().setup.camera;
+    h
+}
+
+fn add_observer_at_camera(h: &mut egui_kittest::Harness<'static, raygine::app::RaygineApp>) {
     h.get_by_role_and_label(Role::Button, "Add observer at camera")
         .click();
     h.run_steps(2);
+}
+
+/// The Glare section's observers: one added where the camera stands, its glare judged in the
+/// background and shown (UGR and DGP with their errors), then "View from observer" looks
+/// through a 180° equidistant fisheye from it; the eye stays where the camera was.
+#[test]
+fn an_observer_is_added_at_the_camera_and_viewed_through_a_fisheye() {
+    let mut h = glare_section(IntegratorKind::Direct);
+    let before = h.state().document().setup.camera;
+    add_observer_at_camera(&mut h);
     let observers = h.state().document().setup.observers.clone();
     assert_eq!(observers.len(), 1);
     assert_eq!(observers[0].name, "observer1");
@@ -198,22 +210,8 @@ fn an_observer_is_added_at_the_camera_and_viewed_through_a_fisheye() {
 /// (one a sample: four at the first refinement), since light subpaths splat into many pixels.
 #[test]
 fn bidirectional_glare_errors_come_from_independent_batches() {
-    let mut h = crate::box_viewer(
-        Vec2::new(960.0, 900.0),
-        IntegratorKind::Bidirectional,
-        1,
-        0.25,
-    );
-    h.run_steps(2);
-    for group in ["Lights", "Camera", "Materials", "Render"] {
-        h.get_by_label(group).click();
-        h.step();
-    }
-    h.get_by_label("Glare").click();
-    h.run_steps(2);
-    h.get_by_role_and_label(Role::Button, "Add observer at camera")
-        .click();
-    h.run_steps(2);
+    let mut h = glare_section(IntegratorKind::Bidirectional);
+    add_observer_at_camera(&mut h);
     let started = std::time::Instant::now();
     while h.state().glare_readings().is_none() && started.elapsed().as_secs() < 90 {
         std::thread::sleep(std::time::Duration::from_millis(50));
@@ -230,17 +228,8 @@ fn bidirectional_glare_errors_come_from_independent_batches() {
 /// keeps its numbers and the reason stays on screen, not for one frame only.
 #[test]
 fn a_refused_observer_edit_keeps_the_observer_and_says_why() {
-    let mut h = crate::box_viewer(Vec2::new(960.0, 900.0), IntegratorKind::Direct, 1, 0.25);
-    h.run_steps(2);
-    for group in ["Lights", "Camera", "Materials", "Render"] {
-        h.get_by_label(group).click();
-        h.step();
-    }
-    h.get_by_label("Glare").click();
-    h.run_steps(2);
-    h.get_by_role_and_label(Role::Button, "Add observer at camera")
-        .click();
-    h.run_steps(2);
+    let mut h = glare_section(IntegratorKind::Direct);
+    add_observer_at_camera(&mut h);
     let before = h.state().document().setup.observers[0].clone();
     assert_eq!(
         before.direction,

@@ -506,22 +506,8 @@ fn bidirectional_errors_match_the_spread_of_independent_runs() {
 /// several times smaller than without them (at 4 spp, where too few samples land in the disc).
 #[test]
 fn the_sun_through_a_window_gives_its_illuminance_at_the_eye() {
-    let (sx, sy, sz) = (4.0, 3.0, 5.0);
-    let (x0, x1, y0, y1) = (1.0, 3.0, 0.8, 2.4);
-    let mut quads: Vec<Quad> = box_faces(sx, sy, sz)
-        .into_iter()
-        .filter(|(n, _)| *n != "wall_z1")
-        .map(|(_, q)| q)
-        .collect();
-    for (a0, a1, b0, b1) in [
-        (0.0, sx, 0.0, y0),
-        (0.0, sx, y1, sy),
-        (0.0, x0, y0, y1),
-        (x1, sx, y0, y1),
-    ] {
-        quads.push([[a0, b0, sz], [a0, b1, sz], [a1, b1, sz], [a1, b0, sz]]);
-    }
-    let sc = scene(vec![brep("room", &quads)]);
+    // A 4 x 3 x 5 m room, a 2 x 1.6 m window in its south wall (z = 5; north is −Z).
+    let sc = window_room([4.0, 3.0, 5.0], [1.0, 3.0, 0.8, 2.4]);
     // Winter noon at 50° N: the sun 16.6° high in the south (+Z), straight ahead. A sky of
     // 1 lx (a sun without a sky is no background: camera rays would not see it) adds < 0.1 lx.
     let text = "unit = \"m\"\nhandedness = \"right\"\n[default_material]\nkd = [0.0, 0.0, 0.0]\n\

@@ -241,22 +241,7 @@ fn a_luminaire_against_evalglare() {
 fn a_window_with_sun_against_evalglare() {
     let Some(exe) = evalglare() else { return };
     // A 4 x 3 x 5 m grey room, a 2 x 1.6 m window in its south wall (z = 5; north is −Z).
-    let (sx, sy, sz) = (4.0, 3.0, 5.0);
-    let (x0, x1, y0, y1) = (1.0, 3.0, 0.8, 2.4);
-    let mut quads: Vec<Quad> = box_faces(sx, sy, sz)
-        .into_iter()
-        .filter(|(n, _)| *n != "wall_z1")
-        .map(|(_, q)| q)
-        .collect();
-    for (a0, a1, b0, b1) in [
-        (0.0, sx, 0.0, y0),
-        (0.0, sx, y1, sy),
-        (0.0, x0, y0, y1),
-        (x1, sx, y0, y1),
-    ] {
-        quads.push([[a0, b0, sz], [a0, b1, sz], [a1, b1, sz], [a1, b0, sz]]);
-    }
-    let sc = scene(vec![brep("room", &quads)]);
+    let sc = window_room([4.0, 3.0, 5.0], [1.0, 3.0, 0.8, 2.4]);
     // Winter noon at 50° N: the sun 16.5° high in the south, seen through the window to the
     // right of the line of sight; a hazy sun of 5000 lx and a clear sky.
     let text = "unit = \"m\"\nhandedness = \"right\"\n[default_material]\nkd = [0.5, 0.5, 0.5]\n\

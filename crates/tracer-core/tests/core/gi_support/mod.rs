@@ -299,3 +299,24 @@ pub fn ies_sized(
     }
     s
 }
+
+/// A `sx` x `sy` x `sz` room whose z = sz wall has an open window from (x0, y0) to (x1, y1).
+pub fn window_room(
+    [sx, sy, sz]: [f64; 3],
+    [x0, x1, y0, y1]: [f64; 4],
+) -> tracer_core::scene::Scene {
+    let mut quads: Vec<Quad> = box_faces(sx, sy, sz)
+        .into_iter()
+        .filter(|(n, _)| *n != "wall_z1")
+        .map(|(_, q)| q)
+        .collect();
+    for (a0, a1, b0, b1) in [
+        (0.0, sx, 0.0, y0),
+        (0.0, sx, y1, sy),
+        (0.0, x0, y0, y1),
+        (x1, sx, y0, y1),
+    ] {
+        quads.push([[a0, b0, sz], [a0, b1, sz], [a1, b1, sz], [a1, b0, sz]]);
+    }
+    scene(vec![brep("room", &quads)])
+}
