@@ -201,13 +201,16 @@ fn run(
     let splats = integrator.splats();
     let chunk = if splats { 1 } else { CHUNK };
     let mut batches: Vec<SampleBatches> = vec![SampleBatches::default(); observers.len()];
-    let eyes: Vec<Result<(), String>> = observers
+    // Per observer, once: whether its eye can see, and the pixels the sun may fall in (they
+    // take more of their own samples, tracer_core::glare::sun).
+    let (eyes, suns): (Vec<Result<(), String>>, Vec<Vec<bool>>) = observers
         .iter()
         .map(|o| {
-            let s = observer_setup(setup, o);
-            check_eye(&LitScene::new(scene, &s, settings.max_depth), o)
+            let lit = LitScene::new(scene, &observer_setup(setup, o), settings.max_depth);
+            let sun = sun_pixels(&lit, &observer_basis(setup, o, IMAGE_SIZE));
+            (check_eye(&lit, o), sun)
         })
-        .collect();
+        .unzip();
     let mut done = 0;
     for (k, &target) in REFINEMENTS.iter().enumerate() {
         for (i, o) in observers.iter().enumerate() {
@@ -215,20 +218,16 @@ fn run(
                 continue;
             }
             let obs_setup = observer_setup(setup, o);
-            let sun = sun_pixels(
-                &LitScene::new(scene, &obs_setup, settings.max_depth),
-                &observer_basis(setup, o, IMAGE_SIZE),
-            );
+            let sun = &suns[i];
             let mut at = done;
             while at < target {
                 if cancel.load(Ordering::Acquire) {
                     return;
                 }
                 let end = (at + chunk).min(target);
-                // The sun's pixels take more of their own samples (tracer_core::glare::sun).
                 let (part, _) = pool.install(|| {
                     render_pixels(scene, &obs_setup, &settings, &|p| {
-                        samples_of(p, &(at..end), &sun)
+                        samples_of(p, &(at..end), sun)
                     })
                 });
                 if splats {
